@@ -1,0 +1,147 @@
+# Helpers shared by every CMakeLists.txt of the project: dependency discovery for both toolchains,
+# the project's warning set, sanitizers, and the library/test/executable conventions.
+
+# ---------------------------------------------------------------------------------------------
+# Emscripten version pin: emsdk-version.txt holds the one version the project is built and tested
+# with (Debian 12's package). Another version fails here, before anything is compiled.
+function(quakeview_check_emscripten_version)
+  file(READ "${CMAKE_SOURCE_DIR}/emsdk-version.txt" wanted)
+  string(STRIP "${wanted}" wanted)
+  execute_process(COMMAND "${CMAKE_C_COMPILER}" --version
+                  OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+  string(REGEX MATCH "emcc \\([^)]*\\) ([0-9]+\\.[0-9]+\\.[0-9]+)" _ "${out}")
+  set(found "${CMAKE_MATCH_1}")
+  if(NOT rc EQUAL 0 OR found STREQUAL "")
+    message(FATAL_ERROR "Could not read the Emscripten version from '${CMAKE_C_COMPILER} --version' "
+                        "(exit ${rc}): ${out}${err}")
+  endif()
+  if(NOT found STREQUAL wanted)
+    message(FATAL_ERROR "Emscripten ${found} found, but this project is pinned to ${wanted} "
+                        "(emsdk-version.txt). Install Debian 12's emscripten package "
+                        "(scripts/setup.sh does) or put emcc ${wanted} first on PATH.")
+  endif()
+  message(STATUS "Emscripten ${found} (pinned ${wanted})")
+endfunction()
+
+# ---------------------------------------------------------------------------------------------
+# Dependencies. Natively they come from Debian's packages. In the WebAssembly build only
+# header-only libraries are used from /usr/include, through build-tree folders that link just the
+# one library (adding /usr/include itself would let host headers shadow Emscripten's sysroot), and
+# compiled libraries come from the Debian source packages unpacked by scripts/setup.sh.
+function(quakeview_link_headers name source)
+  set(dir "${CMAKE_BINARY_DIR}/system-include/${name}")
+  file(MAKE_DIRECTORY "${dir}")
+  get_filename_component(leaf "${source}" NAME)
+  if(NOT EXISTS "${dir}/${leaf}")
+    file(CREATE_LINK "${source}" "${dir}/${leaf}" SYMBOLIC)
+  endif()
+  set(QUAKEVIEW_LINK_DIR "${dir}" PARENT_SCOPE)
+endfunction()
+
+macro(quakeview_require_deps_file path what)
+  if(NOT EXISTS "${QUAKEVIEW_DEPS_DIR}/${path}")
+    message(FATAL_ERROR "${what} not found at ${QUAKEVIEW_DEPS_DIR}/${path}. "
+                        "Run scripts/setup.sh (it unpacks Debian's source packages there).")
+  endif()
+endmacro()
+
+macro(quakeview_find_dependencies)
+  # GLM: header-only, always as a SYSTEM include (0.9.9.8 is not -Werror clean under C++20).
+  add_library(quakeview_glm INTERFACE)
+  # Through a link folder in both builds: never -isystem /usr/include (it breaks #include_next in
+  # libstdc++ natively and lets host headers shadow the sysroot in WASM).
+  if(NOT EXISTS /usr/include/glm/glm.hpp)
+    message(FATAL_ERROR "GLM not found in /usr/include/glm: run scripts/setup.sh (libglm-dev)")
+  endif()
+  quakeview_link_headers(glm /usr/include/glm)
+  target_include_directories(quakeview_glm SYSTEM INTERFACE "${QUAKEVIEW_LINK_DIR}")
+  target_compile_definitions(quakeview_glm INTERFACE GLM_FORCE_XYZW_ONLY GLM_ENABLE_EXPERIMENTAL)
+  add_library(glm::quakeview ALIAS quakeview_glm)
+
+  # simdjson: Debian's library natively; the source package's single header in WASM (its portable
+  # "fallback" kernel). Compiled without the project's warnings.
+  if(EMSCRIPTEN)
+    quakeview_require_deps_file(simdjson/singleheader/simdjson.cpp "simdjson 3.0.1 sources")
+    add_library(quakeview_simdjson STATIC "${QUAKEVIEW_DEPS_DIR}/simdjson/singleheader/simdjson.cpp")
+    target_include_directories(quakeview_simdjson SYSTEM PUBLIC "${QUAKEVIEW_DEPS_DIR}/simdjson/singleheader")
+    target_compile_definitions(quakeview_simdjson PUBLIC SIMDJSON_EXCEPTIONS=0)
+    add_library(simdjson::quakeview ALIAS quakeview_simdjson)
+  else()
+    find_package(simdjson REQUIRED CONFIG)
+    add_library(quakeview_simdjson INTERFACE)
+    target_link_libraries(quakeview_simdjson INTERFACE simdjson::simdjson)
+    add_library(simdjson::quakeview ALIAS quakeview_simdjson)
+  endif()
+
+  # Dear ImGui 1.86 from Debian's source package, for both builds (the UI layer is also compiled
+  # natively so its text mirror can be tested without a browser).
+  quakeview_require_deps_file(imgui/imgui.cpp "Dear ImGui 1.86 sources")
+  set(imgui_dir "${QUAKEVIEW_DEPS_DIR}/imgui")
+  add_library(quakeview_imgui STATIC
+    "${imgui_dir}/imgui.cpp"
+    "${imgui_dir}/imgui_draw.cpp"
+    "${imgui_dir}/imgui_tables.cpp"
+    "${imgui_dir}/imgui_widgets.cpp")
+  target_include_directories(quakeview_imgui SYSTEM PUBLIC "${imgui_dir}")
+  target_compile_definitions(quakeview_imgui PUBLIC IMGUI_DISABLE_OBSOLETE_FUNCTIONS)
+  add_library(imgui::imgui ALIAS quakeview_imgui)
+  if(EMSCRIPTEN)
+    add_library(quakeview_imgui_gles3 STATIC "${imgui_dir}/backends/imgui_impl_opengl3.cpp")
+    target_include_directories(quakeview_imgui_gles3 SYSTEM PUBLIC "${imgui_dir}/backends")
+    target_compile_definitions(quakeview_imgui_gles3 PUBLIC IMGUI_IMPL_OPENGL_ES3)
+    target_link_libraries(quakeview_imgui_gles3 PUBLIC quakeview_imgui)
+    add_library(imgui::gles3 ALIAS quakeview_imgui_gles3)
+  endif()
+
+  # Catch2 v2 (header-only): Debian's package natively, its header through a link folder in WASM.
+  if(QUAKEVIEW_TESTS OR QUAKEVIEW_BENCHMARKS)
+    if(EMSCRIPTEN)
+      quakeview_link_headers(catch2 /usr/include/catch2)
+      add_library(quakeview_catch2 INTERFACE)
+      target_include_directories(quakeview_catch2 SYSTEM INTERFACE "${QUAKEVIEW_LINK_DIR}")
+      add_library(Catch2::Catch2 ALIAS quakeview_catch2)
+    else()
+      find_package(Catch2 2 REQUIRED CONFIG)
+      include(Catch)
+    endif()
+  endif()
+
+  if(NOT EMSCRIPTEN)
+    find_package(Threads REQUIRED)
+  endif()
+endmacro()
+
+# ---------------------------------------------------------------------------------------------
+# Warnings and sanitizers, applied to the project's own targets only.
+set(QUAKEVIEW_WARNINGS -Wall -Wextra -Wconversion -Wshadow -Wpedantic -Wnon-virtual-dtor
+    -Wold-style-cast -Wcast-align -Woverloaded-virtual -Wnull-dereference
+    -Wimplicit-fallthrough)
+if(CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+  list(APPEND QUAKEVIEW_WARNINGS -Wsign-conversion -Wshorten-64-to-32)
+else()
+  list(APPEND QUAKEVIEW_WARNINGS -Wsign-conversion)
+endif()
+
+if(QUAKEVIEW_SANITIZE AND NOT EMSCRIPTEN)
+  add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=undefined
+                      -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=address,undefined)
+endif()
+
+function(quakeview_apply_warnings target)
+  target_compile_options(${target} PRIVATE ${QUAKEVIEW_WARNINGS})
+  if(QUAKEVIEW_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+# quakeview_add_library(<name> SOURCES ... [PUBLIC ...] [PRIVATE ...])
+# Creates target engine_<name> (alias engine::<name>) with public headers under include/.
+function(quakeview_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;PUBLIC;PRIVATE" ${ARGN})
+  add_library(engine_${name} STATIC ${ARG_SOURCES})
+  add_library(engine::${name} ALIAS engine_${name})
+  target_include_directories(engine_${name} PUBLIC "${CMAKE_CURRENT_SOURCE_DIR}/include")
+  target_link_libraries(engine_${name} PUBLIC ${ARG_PUBLIC} PRIVATE ${ARG_PRIVATE})
+  quakeview_apply_warnings(engine_${name})
+endfunction()

@@ -1,0 +1,67 @@
+// CPU-side building meshes: footprints extruded into walls with one vertex ring per floor level,
+// plus a roof from a given triangulation. The vertex layout is what the GPU consumes (the render
+// layer uploads these bytes as they are).
+//
+// Frame: positions are metres relative to a mesh origin chosen by the caller (a tile origin), in
+// the city frame (x east, y north, z up). Rings: outer rings counter-clockwise, holes clockwise
+// (seen from above), not repeating the first point.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+namespace qv {
+
+/// 20 bytes. `slot` is the building's row in the per-building GPU tables. Walls of storey k are
+/// drawn with flat attributes from their bottom-ring vertex (the provoking vertex of both
+/// triangles), which lets the shader colour each storey by its own drift.
+struct BuildingVertex {
+  float x, y, z;
+  std::int8_t nx, ny, nz;  ///< unit normal × 127
+  std::uint8_t kind;       ///< VertexKind
+  std::uint32_t slot;
+};
+static_assert(sizeof(BuildingVertex) == 20);
+
+enum VertexKind : std::uint8_t { kWall = 0, kRoof = 1, kGround = 2 };
+
+struct MeshData {
+  std::vector<BuildingVertex> vertices;
+  std::vector<std::uint32_t> indices;  ///< triangles, counter-clockwise seen from outside
+
+  void clear() {
+    vertices.clear();
+    indices.clear();
+  }
+  [[nodiscard]] std::size_t triangleCount() const { return indices.size() / 3; }
+};
+
+/// One footprint (polygon with holes) extruded between two heights.
+struct ExtrusionInput {
+  std::span<const glm::vec2> points;             ///< all rings' points, relative to the mesh origin
+  std::span<const std::uint32_t> ringEnds;       ///< ring i is points[ringEnds[i-1] (or 0), ringEnds[i])
+  std::span<const std::uint32_t> roofTriangles;  ///< indices into points; empty: no roof
+  float baseZ = 0.0f;                            ///< metres
+  float topZ = 0.0f;                             ///< metres, > baseZ
+  /// Heights strictly between baseZ and topZ where a vertex ring is placed (floor levels),
+  /// ascending. Empty: a plain prism (two rings).
+  std::span<const float> levels;
+  std::uint32_t slot = 0;
+};
+
+/// Appends the walls (and roof) of `input` to `mesh`. Degenerate edges (shorter than 1 mm) are
+/// skipped. Returns the number of triangles appended.
+std::size_t appendExtrusion(MeshData& mesh, const ExtrusionInput& input);
+
+/// The heights of the floor levels strictly between baseZ and topZ for a building whose storeys
+/// are `storeyHeight` metres tall starting at ground level (z = 0), appended to `out`.
+void floorLevelsBetween(float baseZ, float topZ, float storeyHeight, std::vector<float>& out);
+
+/// Fan triangulation of a convex ring (indices into that ring starting at `first`). For test
+/// scenes and coarse prisms only: real footprints come with a triangulation from preprocess.
+void triangulateConvexRing(std::uint32_t first, std::uint32_t count, std::vector<std::uint32_t>& out);
+
+}  // namespace qv

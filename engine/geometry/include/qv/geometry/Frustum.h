@@ -1,0 +1,32 @@
+// View frustum as six planes, for culling boxes in the city frame.
+#pragma once
+
+#include <array>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec4.hpp>
+
+#include "qv/geometry/Bounds.h"
+
+namespace qv {
+
+enum class Containment { Outside, Intersects, Inside };
+
+class Frustum {
+ public:
+  Frustum() = default;
+  /// viewProjection: clip = viewProjection * world, OpenGL clip conventions (-w <= x,y,z <= w).
+  explicit Frustum(const glm::mat4& viewProjection);
+
+  /// Conservative: Outside only when the box is entirely behind one plane.
+  [[nodiscard]] Containment classify(const Box& box) const;
+  [[nodiscard]] bool intersects(const Box& box) const { return classify(box) != Containment::Outside; }
+
+  /// Planes (a, b, c, d) with a·x + b·y + c·z + d >= 0 inside; normals are unit length.
+  [[nodiscard]] const std::array<glm::vec4, 6>& planes() const { return planes_; }
+
+ private:
+  std::array<glm::vec4, 6> planes_{};
+};
+
+}  // namespace qv

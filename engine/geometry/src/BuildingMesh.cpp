@@ -1,0 +1,87 @@
+#include "qv/geometry/BuildingMesh.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace qv {
+namespace {
+
+std::int8_t packNormal(float v) {
+  return static_cast<std::int8_t>(std::lround(v * 127.0f));
+}
+
+}  // namespace
+
+std::size_t appendExtrusion(MeshData& mesh, const ExtrusionInput& in) {
+  if (!(in.topZ > in.baseZ) || in.points.empty()) return 0;
+  const std::size_t trianglesBefore = mesh.indices.size() / 3;
+
+  // Ring heights: base, the floor levels strictly inside, top.
+  std::vector<float> heights;
+  heights.reserve(in.levels.size() + 2);
+  heights.push_back(in.baseZ);
+  for (float z : in.levels) {
+    if (z > heights.back() + 1e-3f && z < in.topZ - 1e-3f) heights.push_back(z);
+  }
+  heights.push_back(in.topZ);
+  const auto levelCount = static_cast<std::uint32_t>(heights.size());
+
+  std::uint32_t ringBegin = 0;
+  for (std::uint32_t ringEnd : in.ringEnds) {
+    if (ringEnd > in.points.size() || ringEnd < ringBegin) break;  // malformed: stop quietly
+    const std::uint32_t n = ringEnd - ringBegin;
+    for (std::uint32_t e = 0; n >= 2 && e < n; ++e) {
+      const glm::vec2 a = in.points[ringBegin + e];
+      const glm::vec2 b = in.points[ringBegin + (e + 1) % n];
+      const glm::vec2 d = b - a;
+      const float length = std::sqrt(d.x * d.x + d.y * d.y);
+      if (length < 1e-3f) continue;
+      // Outward for a counter-clockwise outer ring and for clockwise holes alike.
+      const std::int8_t nx = packNormal(d.y / length);
+      const std::int8_t ny = packNormal(-d.x / length);
+      const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
+      for (float z : heights) {
+        mesh.vertices.push_back({a.x, a.y, z, nx, ny, 0, kWall, in.slot});
+        mesh.vertices.push_back({b.x, b.y, z, nx, ny, 0, kWall, in.slot});
+      }
+      for (std::uint32_t k = 0; k + 1 < levelCount; ++k) {
+        const std::uint32_t a0 = first + 2 * k, b0 = a0 + 1, a1 = a0 + 2, b1 = a0 + 3;
+        // Both triangles end on a bottom-ring vertex: the provoking vertex carries storey k.
+        mesh.indices.insert(mesh.indices.end(), {b1, a0, b0, b1, a1, a0});
+      }
+    }
+    ringBegin = ringEnd;
+  }
+
+  if (!in.roofTriangles.empty()) {
+    const auto first = static_cast<std::uint32_t>(mesh.vertices.size());
+    for (const glm::vec2& p : in.points) {
+      mesh.vertices.push_back({p.x, p.y, in.topZ, 0, 0, 127, kRoof, in.slot});
+    }
+    for (std::size_t t = 0; t + 2 < in.roofTriangles.size(); t += 3) {
+      const std::uint32_t i0 = in.roofTriangles[t], i1 = in.roofTriangles[t + 1], i2 = in.roofTriangles[t + 2];
+      if (i0 >= in.points.size() || i1 >= in.points.size() || i2 >= in.points.size()) continue;
+      mesh.indices.insert(mesh.indices.end(), {first + i0, first + i1, first + i2});
+    }
+  }
+  return mesh.indices.size() / 3 - trianglesBefore;
+}
+
+void floorLevelsBetween(float baseZ, float topZ, float storeyHeight, std::vector<float>& out) {
+  if (!(storeyHeight > 0.1f)) return;
+  const auto firstLevel = static_cast<int>(std::floor(baseZ / storeyHeight)) + 1;
+  // A storey count beyond any real building (or a corrupt height) stops at 1000 levels.
+  for (int k = std::max(firstLevel, 1); k < 1000; ++k) {
+    const float z = static_cast<float>(k) * storeyHeight;
+    if (z >= topZ - 1e-3f) break;
+    if (z > baseZ + 1e-3f) out.push_back(z);
+  }
+}
+
+void triangulateConvexRing(std::uint32_t first, std::uint32_t count, std::vector<std::uint32_t>& out) {
+  for (std::uint32_t i = 1; i + 1 < count; ++i) {
+    out.insert(out.end(), {first, first + i, first + i + 1});
+  }
+}
+
+}  // namespace qv

@@ -1,0 +1,45 @@
+// Browser services for the app: the WebGL2 context, the canvas size, the main loop, memory
+// figures, and the calls back into the page's shell (web/quakeview.js).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "qv/scene/Viewer.h"
+
+namespace qv::browser {
+
+struct GlContextOptions {
+  bool antialias = true;
+};
+
+/// Creates a WebGL2 context on the canvas and makes it current. False (with a reason for the
+/// user in `error`) when the browser has no WebGL2.
+bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& options, std::string& error);
+
+struct CanvasSize {
+  double cssWidth = 1.0, cssHeight = 1.0;
+  int pixelWidth = 1, pixelHeight = 1;
+  double devicePixelRatio = 1.0;
+};
+
+/// Reads the canvas's CSS size and resizes its drawing buffer to CSS size × devicePixelRatio.
+CanvasSize syncCanvasSize(const char* canvasSelector);
+
+/// Live heap bytes (malloc'd and not freed) and the size of the WASM memory.
+MemoryInfo memoryInfo();
+
+/// Seconds since an arbitrary origin (performance.now()).
+double nowSeconds();
+
+/// Runs `frame` once per display refresh (requestAnimationFrame) for the life of the page.
+void runMainLoop(std::function<void()> frame);
+
+// Calls into the shell.
+/// The initial view has loaded (or failed): resolves `quakeview.ready`.
+void notifyReady();
+/// A fatal problem (no WebGL2, shaders failed): shows `message` on the page, rejects `ready`.
+void notifyFatal(const std::string& message);
+
+}  // namespace qv::browser

@@ -1,0 +1,75 @@
+// The WebGL2 (OpenGL ES 3.0) implementation of RenderDevice.
+//
+// Meshes live in one VAO + vertex buffer + index buffer each (a tile's merged geometry). The
+// per-building table and the per-floor displacement table are RGBA32F data textures 2048 texels
+// wide that the vertex shader reads with texelFetch; CPU shadows let them grow and let only the
+// changed rows be re-sent each frame. Must be created and used with a current WebGL2 context.
+#pragma once
+
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include "qv/scene/RenderDevice.h"
+
+namespace qv {
+
+class GlRenderDevice final : public RenderDevice {
+ public:
+  GlRenderDevice();
+  ~GlRenderDevice() override;
+  GlRenderDevice(const GlRenderDevice&) = delete;
+  GlRenderDevice& operator=(const GlRenderDevice&) = delete;
+
+  /// False when the shaders failed to compile or link; error() says why.
+  [[nodiscard]] bool ok() const { return error_.empty(); }
+  [[nodiscard]] const std::string& error() const { return error_; }
+
+  MeshHandle createMesh(const MeshData& mesh) override;
+  void destroyMesh(MeshHandle mesh) override;
+  [[nodiscard]] std::size_t meshTriangles(MeshHandle mesh) const override;
+  void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) override;
+  void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) override;
+  void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) override;
+  [[nodiscard]] DeviceFrameStats lastFrameStats() const override { return last_; }
+  [[nodiscard]] std::size_t gpuBytes() const override;
+
+  /// Texels per row of both data textures (the shaders hard-code the same number).
+  static constexpr int kTableWidth = 2048;
+
+ private:
+  struct Mesh {
+    unsigned vao = 0, vertexBuffer = 0, indexBuffer = 0;
+    int indexCount = 0;
+    std::size_t bytes = 0;
+  };
+  struct DataTexture {
+    unsigned texture = 0;
+    int rows = 0;               // allocated rows
+    std::vector<float> shadow;  // rows × kTableWidth × 4 floats
+    int dirtyFirstRow = -1, dirtyLastRow = -1;
+  };
+  void writeTexels(DataTexture& table, std::size_t firstTexel, const float* data, std::size_t texelCount);
+  void flush(DataTexture& table);
+
+  std::string error_;
+  unsigned buildingProgram_ = 0, groundProgram_ = 0;
+  unsigned groundVao_ = 0, groundBuffer_ = 0;
+  DataTexture buildings_, floors_;
+  std::unordered_map<std::uint32_t, Mesh> meshes_;
+  std::uint32_t nextId_ = 1;
+  std::uint64_t pendingUpload_ = 0;
+  std::size_t meshBytes_ = 0;
+  DeviceFrameStats last_;
+  int maxTextureSize_ = 2048;
+
+  struct Uniforms {
+    int viewProjection = -1, origin = -1, buildings = -1, floors = -1, colorMode = -1, driftFullScale = -1,
+        amplitude = -1, sunDirection = -1, eye = -1, anyDimmed = -1;
+  } u_;
+  struct GroundUniforms {
+    int viewProjection = -1, rect = -1, sunDirection = -1, eye = -1;
+  } g_;
+};
+
+}  // namespace qv

@@ -1,0 +1,286 @@
+#include "qv/render/GlRenderDevice.h"
+
+#include <GLES3/gl3.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "Shaders.h"
+
+namespace qv {
+namespace {
+
+unsigned compileShader(GLenum kind, const char* source, std::string& error) {
+  const GLuint shader = glCreateShader(kind);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    error = std::string(kind == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader: " + log;
+    glDeleteShader(shader);
+    return 0;
+  }
+  return shader;
+}
+
+unsigned linkProgram(const char* vertex, const char* fragment, std::string& error) {
+  const unsigned vs = compileShader(GL_VERTEX_SHADER, vertex, error);
+  if (vs == 0) return 0;
+  const unsigned fs = compileShader(GL_FRAGMENT_SHADER, fragment, error);
+  if (fs == 0) {
+    glDeleteShader(vs);
+    return 0;
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    error = std::string("program link: ") + log;
+    glDeleteProgram(program);
+    return 0;
+  }
+  return program;
+}
+
+void* byteOffset(std::size_t offset) {
+  return reinterpret_cast<void*>(offset);  // NOLINT(performance-no-int-to-ptr): GL's offset convention
+}
+
+}  // namespace
+
+GlRenderDevice::GlRenderDevice() {
+  buildingProgram_ = linkProgram(shaders::kBuildingVertex, shaders::kBuildingFragment, error_);
+  if (buildingProgram_ != 0) {
+    groundProgram_ = linkProgram(shaders::kGroundVertex, shaders::kGroundFragment, error_);
+  }
+  if (!ok()) return;
+
+  const auto p = buildingProgram_;
+  u_.viewProjection = glGetUniformLocation(p, "u_viewProjection");
+  u_.origin = glGetUniformLocation(p, "u_origin");
+  u_.buildings = glGetUniformLocation(p, "u_buildings");
+  u_.floors = glGetUniformLocation(p, "u_floors");
+  u_.colorMode = glGetUniformLocation(p, "u_colorMode");
+  u_.driftFullScale = glGetUniformLocation(p, "u_driftFullScale");
+  u_.amplitude = glGetUniformLocation(p, "u_amplitude");
+  u_.sunDirection = glGetUniformLocation(p, "u_sunDirection");
+  u_.eye = glGetUniformLocation(p, "u_eye");
+  u_.anyDimmed = glGetUniformLocation(p, "u_anyDimmed");
+  g_.viewProjection = glGetUniformLocation(groundProgram_, "u_viewProjection");
+  g_.rect = glGetUniformLocation(groundProgram_, "u_rect");
+  g_.eye = glGetUniformLocation(groundProgram_, "u_eye");
+
+  GLint maxSize = 2048;
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
+  maxTextureSize_ = maxSize;
+
+  const float corners[] = {0, 0, 1, 0, 1, 1, 0, 0, 1, 1, 0, 1};
+  glGenVertexArrays(1, &groundVao_);
+  glBindVertexArray(groundVao_);
+  glGenBuffers(1, &groundBuffer_);
+  glBindBuffer(GL_ARRAY_BUFFER, groundBuffer_);
+  glBufferData(GL_ARRAY_BUFFER, sizeof corners, corners, GL_STATIC_DRAW);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glBindVertexArray(0);
+
+  for (DataTexture* t : {&buildings_, &floors_}) {
+    glGenTextures(1, &t->texture);
+    glBindTexture(GL_TEXTURE_2D, t->texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  }
+}
+
+GlRenderDevice::~GlRenderDevice() {
+  for (auto& [id, mesh] : meshes_) {
+    glDeleteVertexArrays(1, &mesh.vao);
+    glDeleteBuffers(1, &mesh.vertexBuffer);
+    glDeleteBuffers(1, &mesh.indexBuffer);
+  }
+  glDeleteTextures(1, &buildings_.texture);
+  glDeleteTextures(1, &floors_.texture);
+  glDeleteVertexArrays(1, &groundVao_);
+  glDeleteBuffers(1, &groundBuffer_);
+  glDeleteProgram(buildingProgram_);
+  glDeleteProgram(groundProgram_);
+}
+
+MeshHandle GlRenderDevice::createMesh(const MeshData& data) {
+  if (!ok() || data.indices.empty() || data.vertices.empty()) return {};
+  Mesh mesh;
+  glGenVertexArrays(1, &mesh.vao);
+  glBindVertexArray(mesh.vao);
+  glGenBuffers(1, &mesh.vertexBuffer);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vertexBuffer);
+  const auto vertexBytes = static_cast<GLsizeiptr>(data.vertices.size() * sizeof(BuildingVertex));
+  glBufferData(GL_ARRAY_BUFFER, vertexBytes, data.vertices.data(), GL_STATIC_DRAW);
+  constexpr auto stride = static_cast<GLsizei>(sizeof(BuildingVertex));
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, byteOffset(offsetof(BuildingVertex, x)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribIPointer(1, 4, GL_BYTE, stride, byteOffset(offsetof(BuildingVertex, nx)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, stride, byteOffset(offsetof(BuildingVertex, slot)));
+  glGenBuffers(1, &mesh.indexBuffer);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indexBuffer);
+  const auto indexBytes = static_cast<GLsizeiptr>(data.indices.size() * sizeof(std::uint32_t));
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, indexBytes, data.indices.data(), GL_STATIC_DRAW);
+  glBindVertexArray(0);
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glDeleteVertexArrays(1, &mesh.vao);
+    glDeleteBuffers(1, &mesh.vertexBuffer);
+    glDeleteBuffers(1, &mesh.indexBuffer);
+    return {};
+  }
+  mesh.indexCount = static_cast<int>(data.indices.size());
+  mesh.bytes = static_cast<std::size_t>(vertexBytes + indexBytes);
+  meshBytes_ += mesh.bytes;
+  pendingUpload_ += mesh.bytes;
+  const std::uint32_t id = nextId_++;
+  meshes_.emplace(id, mesh);
+  return MeshHandle{id};
+}
+
+void GlRenderDevice::destroyMesh(MeshHandle handle) {
+  const auto it = meshes_.find(handle.id);
+  if (it == meshes_.end()) return;
+  glDeleteVertexArrays(1, &it->second.vao);
+  glDeleteBuffers(1, &it->second.vertexBuffer);
+  glDeleteBuffers(1, &it->second.indexBuffer);
+  meshBytes_ -= it->second.bytes;
+  meshes_.erase(it);
+}
+
+std::size_t GlRenderDevice::meshTriangles(MeshHandle handle) const {
+  const auto it = meshes_.find(handle.id);
+  return it == meshes_.end() ? 0 : static_cast<std::size_t>(it->second.indexCount / 3);
+}
+
+void GlRenderDevice::writeTexels(DataTexture& table, std::size_t firstTexel, const float* data,
+                                 std::size_t texelCount) {
+  if (texelCount == 0) return;
+  const std::size_t endTexel = firstTexel + texelCount;
+  const auto neededRows = static_cast<int>((endTexel + kTableWidth - 1) / kTableWidth);
+  if (neededRows > maxTextureSize_) return;  // beyond the device: the caller's budget prevents this
+  if (neededRows > table.rows) {
+    // Grow by doubling; the whole shadow is re-sent into the new storage at the next flush.
+    int rows = std::max(table.rows, 8);
+    while (rows < neededRows) rows *= 2;
+    rows = std::min(rows, maxTextureSize_);
+    table.shadow.resize(static_cast<std::size_t>(rows) * kTableWidth * 4, 0.0f);
+    glBindTexture(GL_TEXTURE_2D, table.texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA32F, kTableWidth, rows, 0, GL_RGBA, GL_FLOAT, nullptr);
+    table.dirtyFirstRow = 0;
+    table.dirtyLastRow = rows - 1;
+    table.rows = rows;
+  }
+  std::memcpy(table.shadow.data() + firstTexel * 4, data, texelCount * 4 * sizeof(float));
+  const auto firstRow = static_cast<int>(firstTexel / kTableWidth);
+  const auto lastRow = static_cast<int>((endTexel - 1) / kTableWidth);
+  table.dirtyFirstRow = table.dirtyFirstRow < 0 ? firstRow : std::min(table.dirtyFirstRow, firstRow);
+  table.dirtyLastRow = std::max(table.dirtyLastRow, lastRow);
+}
+
+void GlRenderDevice::flush(DataTexture& table) {
+  if (table.dirtyFirstRow < 0) return;
+  const int rows = table.dirtyLastRow - table.dirtyFirstRow + 1;
+  glBindTexture(GL_TEXTURE_2D, table.texture);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, table.dirtyFirstRow, kTableWidth, rows, GL_RGBA, GL_FLOAT,
+                  table.shadow.data() + static_cast<std::size_t>(table.dirtyFirstRow) * kTableWidth * 4);
+  pendingUpload_ += static_cast<std::uint64_t>(rows) * kTableWidth * 16;
+  table.dirtyFirstRow = table.dirtyLastRow = -1;
+}
+
+void GlRenderDevice::writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) {
+  writeTexels(buildings_, static_cast<std::size_t>(first) * 2, reinterpret_cast<const float*>(records.data()),
+              records.size() * 2);
+}
+
+void GlRenderDevice::writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) {
+  writeTexels(floors_, first, reinterpret_cast<const float*>(records.data()), records.size());
+}
+
+void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> items) {
+  DeviceFrameStats stats;
+  flush(buildings_);
+  flush(floors_);
+  stats.uploadBytes = pendingUpload_;
+  pendingUpload_ = 0;
+
+  glViewport(0, 0, f.viewportWidth, f.viewportHeight);
+  glClearColor(0.80f, 0.85f, 0.90f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDisable(GL_BLEND);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_CULL_FACE);
+
+  if (ok() && !f.ground.empty()) {
+    glUseProgram(groundProgram_);
+    glUniformMatrix4fv(g_.viewProjection, 1, GL_FALSE, &f.viewProjection[0][0]);
+    glUniform4f(g_.rect, f.ground.minX, f.ground.minY, f.ground.maxX, f.ground.maxY);
+    glUniform3f(g_.eye, f.eye.x, f.eye.y, f.eye.z);
+    glBindVertexArray(groundVao_);
+    glDrawArrays(GL_TRIANGLES, 0, 6);
+    stats.drawCalls += 1;
+    stats.triangles += 2;
+  }
+
+  if (ok() && !items.empty() && buildings_.rows > 0) {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glUseProgram(buildingProgram_);
+    glUniformMatrix4fv(u_.viewProjection, 1, GL_FALSE, &f.viewProjection[0][0]);
+    glUniform1i(u_.colorMode, static_cast<int>(f.colorMode));
+    glUniform1f(u_.driftFullScale, f.driftFullScale);
+    glUniform1f(u_.amplitude, f.amplitude);
+    glUniform3f(u_.sunDirection, f.sunDirection.x, f.sunDirection.y, f.sunDirection.z);
+    glUniform3f(u_.eye, f.eye.x, f.eye.y, f.eye.z);
+    glUniform1i(u_.anyDimmed, f.anyDimmed ? 1 : 0);
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, buildings_.texture);
+    glUniform1i(u_.buildings, 0);
+    glActiveTexture(GL_TEXTURE1);
+    // An empty floor table still needs storage for texelFetch to be defined.
+    if (floors_.rows == 0) {
+      const FloorGpuRecord zero;
+      writeFloors(0, std::span<const FloorGpuRecord>(&zero, 1));
+      flush(floors_);
+    }
+    glBindTexture(GL_TEXTURE_2D, floors_.texture);
+    glUniform1i(u_.floors, 1);
+    for (const DrawItem& item : items) {
+      const auto it = meshes_.find(item.mesh.id);
+      if (it == meshes_.end()) continue;
+      glUniform3f(u_.origin, item.origin.x, item.origin.y, item.origin.z);
+      glBindVertexArray(it->second.vao);
+      glDrawElements(GL_TRIANGLES, it->second.indexCount, GL_UNSIGNED_INT, nullptr);
+      stats.drawCalls += 1;
+      stats.triangles += static_cast<std::uint64_t>(it->second.indexCount / 3);
+    }
+    glActiveTexture(GL_TEXTURE0);
+  }
+  glBindVertexArray(0);
+  glDisable(GL_CULL_FACE);
+  last_ = stats;
+}
+
+std::size_t GlRenderDevice::gpuBytes() const {
+  return meshBytes_ + (buildings_.shadow.size() + floors_.shadow.size()) * sizeof(float);
+}
+
+}  // namespace qv

@@ -1,0 +1,156 @@
+#include "Shaders.h"
+
+namespace qv::shaders {
+
+// Buildings. Each vertex is a footprint corner at a floor level (or a roof point) with its slot in
+// the building table. Animated buildings (floorBase >= 0) move each vertex by the displacement of
+// its floor, interpolated between the two floor levels around its height; walls are coloured per
+// storey from the provoking (bottom-ring) vertex, so each storey shows its own drift.
+const char* const kBuildingVertex = R"(#version 300 es
+precision highp float;
+precision highp int;
+precision highp sampler2D;
+
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in ivec4 a_normalKind;
+layout(location = 2) in uint a_slot;
+
+uniform mat4 u_viewProjection;
+uniform vec3 u_origin;
+uniform sampler2D u_buildings;
+uniform sampler2D u_floors;
+uniform int u_colorMode;
+uniform float u_driftFullScale;
+uniform float u_amplitude;
+uniform bool u_anyDimmed;
+
+out vec3 v_normal;
+out vec3 v_world;
+flat out vec4 v_color;
+
+const int kWidth = 2048;
+
+vec4 texel(sampler2D table, int i) { return texelFetch(table, ivec2(i % kWidth, i / kWidth), 0); }
+
+// Sequential ramp, light to dark (monotonic lightness: readable in grey and with colour-vision
+// deficiencies): grey, yellow, orange, red, dark red.
+vec3 ramp(float t) {
+  t = clamp(t, 0.0, 1.0);
+  vec3 c0 = vec3(0.80, 0.82, 0.84);
+  vec3 c1 = vec3(0.99, 0.85, 0.46);
+  vec3 c2 = vec3(0.98, 0.55, 0.24);
+  vec3 c3 = vec3(0.84, 0.19, 0.12);
+  vec3 c4 = vec3(0.40, 0.00, 0.05);
+  if (t < 0.25) return mix(c0, c1, t * 4.0);
+  if (t < 0.50) return mix(c1, c2, (t - 0.25) * 4.0);
+  if (t < 0.75) return mix(c2, c3, (t - 0.50) * 4.0);
+  return mix(c3, c4, (t - 0.75) * 4.0);
+}
+
+void main() {
+  int slot = int(a_slot);
+  vec4 b0 = texel(u_buildings, slot * 2);
+  vec4 b1 = texel(u_buildings, slot * 2 + 1);
+  float storeyHeight = max(b0.x, 0.1);
+  int storeys = max(int(b0.y + 0.5), 1);
+  int floorBase = int(b0.z);
+  float peakValue = b0.w;
+  float damage = b1.x;
+  uint flags = uint(b1.y + 0.5);
+
+  vec3 position = a_position;
+  float drift = peakValue;
+  float peakStorey = peakValue;
+  if (floorBase >= 0) {
+    float level = clamp(position.z / storeyHeight, 0.0, float(storeys));
+    int f0 = min(int(floor(level)), storeys);
+    int f1 = min(f0 + 1, storeys);
+    vec4 d0 = texel(u_floors, floorBase + f0);
+    vec4 d1 = texel(u_floors, floorBase + f1);
+    position.xy += mix(d0.xy, d1.xy, level - float(f0)) * u_amplitude;
+    // The storey above this vertex's level (the top ring belongs to the top storey).
+    int s = min(int(floor(level + 0.01)), storeys - 1);
+    vec4 below = texel(u_floors, floorBase + s);
+    vec4 above = texel(u_floors, floorBase + s + 1);
+    drift = length(above.xy - below.xy) / storeyHeight;
+    peakStorey = below.z;
+  }
+
+  vec3 color;
+  if (u_colorMode == 0) color = ramp(drift / u_driftFullScale);
+  else if (u_colorMode == 1) color = ramp(peakStorey / u_driftFullScale);
+  else if (u_colorMode == 2) color = damage < -0.5 ? vec3(0.62, 0.66, 0.74) : ramp(damage / 4.0);
+  else color = vec3(0.82, 0.80, 0.76);
+
+  if (a_normalKind.w == 1) color *= 1.08;  // roofs a touch lighter than walls
+  float alpha = 1.0;
+  if ((flags & 2u) != 0u) { color = mix(color, vec3(0.90, 0.91, 0.92), 0.80); alpha = 0.0; }
+  if ((flags & 1u) != 0u) { color = mix(color, vec3(0.10, 0.75, 1.00), 0.65); alpha = 2.0; }
+  v_color = vec4(color, alpha);
+
+  vec3 world = position + u_origin;
+  v_world = world;
+  v_normal = vec3(a_normalKind.xyz) / 127.0;
+  gl_Position = (flags & 4u) != 0u ? vec4(2.0, 2.0, 2.0, 1.0) : u_viewProjection * vec4(world, 1.0);
+}
+)";
+
+const char* const kBuildingFragment = R"(#version 300 es
+precision highp float;
+
+in vec3 v_normal;
+in vec3 v_world;
+flat in vec4 v_color;
+
+uniform vec3 u_sunDirection;
+uniform vec3 u_eye;
+
+out vec4 o_color;
+
+void main() {
+  vec3 n = normalize(v_normal);
+  float sun = max(dot(n, -u_sunDirection), 0.0);
+  float sky = 0.5 + 0.5 * n.z;  // hemispheric ambient: up-facing surfaces see more sky
+  vec3 lit = v_color.rgb * (0.42 + 0.22 * sky + 0.55 * sun);
+  // Selected buildings glow slightly so they stand out in shadow too.
+  if (v_color.a > 1.5) lit = max(lit, v_color.rgb * 0.75);
+  // Aerial perspective: far buildings fade towards the sky colour.
+  float d = length(v_world - u_eye);
+  float fog = 1.0 - exp(-d * 0.000035);
+  o_color = vec4(mix(lit, vec3(0.80, 0.85, 0.90), fog * 0.7), 1.0);
+}
+)";
+
+// Ground: one quad over the given rectangle with a faint 100 m grid for scale.
+const char* const kGroundVertex = R"(#version 300 es
+precision highp float;
+layout(location = 0) in vec2 a_corner;
+uniform mat4 u_viewProjection;
+uniform vec4 u_rect;
+out vec3 v_world;
+void main() {
+  vec2 p = mix(u_rect.xy, u_rect.zw, a_corner);
+  v_world = vec3(p, -0.05);
+  gl_Position = u_viewProjection * vec4(v_world, 1.0);
+}
+)";
+
+const char* const kGroundFragment = R"(#version 300 es
+precision highp float;
+in vec3 v_world;
+uniform vec3 u_eye;
+out vec4 o_color;
+void main() {
+  vec2 cell = abs(fract(v_world.xy / 100.0 + 0.5) - 0.5) * 100.0;
+  vec2 width = fwidth(v_world.xy) * 1.2;
+  float line = 1.0 - min(min(cell.x / max(width.x, 1e-3), cell.y / max(width.y, 1e-3)), 1.0);
+  float d = length(v_world - u_eye);
+  line *= clamp(1.0 - d / 6000.0, 0.0, 1.0);
+  vec3 base = vec3(0.60, 0.63, 0.60);
+  vec3 color = mix(base, vec3(0.52, 0.55, 0.53), line * 0.6);
+  float fog = 1.0 - exp(-d * 0.000035);
+  o_color = vec4(mix(color, vec3(0.80, 0.85, 0.90), fog * 0.7), 1.0);
+}
+)";
+
+}  // namespace qv::shaders

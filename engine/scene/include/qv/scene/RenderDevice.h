@@ -1,0 +1,101 @@
+// The boundary between the pure scene code and a graphics backend (the WebGL2 device in
+// engine::render, or the null device here for tests and benchmarks without a GPU).
+//
+// The device owns GPU resources behind small typed handles. A handle whose creation failed is
+// invalid (id 0) and drawing it is a no-op. All calls come from the frame loop's thread.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "qv/geometry/Bounds.h"
+#include "qv/geometry/BuildingMesh.h"
+
+namespace qv {
+
+struct MeshHandle {
+  std::uint32_t id = 0;
+  explicit operator bool() const { return id != 0; }
+  friend bool operator==(MeshHandle, MeshHandle) = default;
+};
+
+/// Per-building row of the GPU building table (two RGBA32F texels). Slots index this table.
+struct BuildingGpuRecord {
+  float storeyHeightMeters = 3.0f;  ///< height of one storey (floor ring k sits at k × this)
+  float storeys = 1.0f;             ///< number of storeys
+  float floorBase = -1.0f;          ///< first texel of its floor rows, -1 when not animated
+  float peakValue = 0.0f;           ///< peak drift ratio (colour when static)
+  float damageState = -1.0f;        ///< 0..4 none..complete, -1 no result
+  float flags = 0.0f;               ///< BuildingFlag bits
+  float reserved0 = 0.0f;
+  float reserved1 = 0.0f;
+};
+static_assert(sizeof(BuildingGpuRecord) == 32);
+
+enum BuildingFlag : unsigned { kFlagSelected = 1u, kFlagDimmed = 2u, kFlagHidden = 4u };
+
+/// Per-floor row of an animated building (one RGBA32F texel): displacement of floor level k
+/// (k = 0 ground .. storeys roof) in metres as simulated (the shader applies the amplitude
+/// exaggeration to positions only, so colours show true drift), and the peak drift ratio of
+/// storey k+1 (the storey above that level).
+struct FloorGpuRecord {
+  float dxMeters = 0.0f;
+  float dyMeters = 0.0f;
+  float peakDriftAbove = 0.0f;
+  float reserved = 0.0f;
+};
+static_assert(sizeof(FloorGpuRecord) == 16);
+
+enum class ColorMode : int { CurrentDrift = 0, PeakDrift = 1, DamageState = 2, Neutral = 3 };
+
+struct FrameUniforms {
+  glm::mat4 viewProjection{1.0f};
+  glm::vec3 eye{0.0f};
+  glm::vec3 sunDirection{-0.4f, -0.6f, -0.7f};  ///< direction the light travels (towards ground)
+  ColorMode colorMode = ColorMode::CurrentDrift;
+  float amplitude = 1.0f;        ///< exaggeration applied to displayed displacements
+  float driftFullScale = 0.02f;  ///< drift ratio shown as the top of the colour ramp
+  int viewportWidth = 1;
+  int viewportHeight = 1;
+  Rect ground;  ///< ground plane extent (empty: no ground)
+  bool anyDimmed = false;
+};
+
+struct DrawItem {
+  MeshHandle mesh;
+  glm::vec3 origin{0.0f};  ///< added to the mesh's positions (tile origin in the city frame)
+};
+
+struct DeviceFrameStats {
+  std::uint32_t drawCalls = 0;
+  std::uint64_t triangles = 0;
+  std::uint64_t uploadBytes = 0;  ///< bytes sent to the GPU since the previous frame
+};
+
+class RenderDevice {
+ public:
+  virtual ~RenderDevice() = default;
+
+  /// Uploads a mesh; invalid handle when it cannot (out of memory, empty mesh).
+  virtual MeshHandle createMesh(const MeshData& mesh) = 0;
+  virtual void destroyMesh(MeshHandle mesh) = 0;
+  [[nodiscard]] virtual std::size_t meshTriangles(MeshHandle mesh) const = 0;
+
+  /// Writes rows [first, first + records.size()) of the building table, growing it as needed.
+  virtual void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) = 0;
+  /// Writes texels [first, first + records.size()) of the floor table, growing it as needed.
+  virtual void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) = 0;
+
+  /// Draws one frame: clears, draws the ground and the items. Resets the frame statistics.
+  virtual void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) = 0;
+
+  [[nodiscard]] virtual DeviceFrameStats lastFrameStats() const = 0;
+  /// Bytes of GPU memory held by meshes and tables.
+  [[nodiscard]] virtual std::size_t gpuBytes() const = 0;
+};
+
+}  // namespace qv

@@ -1,0 +1,95 @@
+// Viewer: the platform-independent heart of the app. It owns the camera, the playback clock and
+// the content, and each frame culls, animates and asks the RenderDevice to draw, timing every
+// phase. The platform layer feeds it input and time; the UI layer reads and steers it.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "qv/scene/CameraController.h"
+#include "qv/scene/FrameStats.h"
+#include "qv/scene/RenderDevice.h"
+#include "qv/scene/TestScene.h"
+
+namespace qv {
+
+/// Memory figures only the platform knows (the WASM heap).
+struct MemoryInfo {
+  std::uint64_t heapBytes = 0;          ///< live allocated bytes
+  std::uint64_t heapReservedBytes = 0;  ///< size of the WASM memory
+};
+
+class Viewer {
+ public:
+  explicit Viewer(RenderDevice& device);
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  /// Shows the built-in test scene (see TestScene.h) and frames the camera on it.
+  void showTestScene();
+
+  /// Drawing-buffer size in device pixels, and the canvas size in CSS pixels (input coordinates).
+  void setViewport(int widthPixels, int heightPixels, double widthCss, double heightCss);
+
+  [[nodiscard]] CameraState& camera() { return camera_; }
+  [[nodiscard]] const CameraState& camera() const { return camera_; }
+  [[nodiscard]] CameraController& controller() { return controller_; }
+  /// Sets the camera, clamping invalid fields to the current values; false if any was invalid.
+  bool setCamera(const CameraState& camera);
+
+  // Playback of simulation time.
+  void play() { playing_ = true; }
+  void pause() { playing_ = false; }
+  [[nodiscard]] bool playing() const { return playing_; }
+  /// Clamped into [0, duration()]; non-finite values are ignored (returns false).
+  bool setTime(double seconds);
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] double duration() const { return duration_; }
+  void setSpeed(double speed) { speed_ = speed; }
+  [[nodiscard]] double speed() const { return speed_; }
+  void setAmplitude(float amplitude) { amplitude_ = amplitude; }
+  [[nodiscard]] float amplitude() const { return amplitude_; }
+  void setColorMode(ColorMode mode) { colorMode_ = mode; }
+  [[nodiscard]] ColorMode colorMode() const { return colorMode_; }
+
+  /// Advances the clock by dtSeconds of wall time (× speed while playing) and draws a frame.
+  void frame(double dtSeconds);
+
+  /// True once everything of the initial view has loaded or failed.
+  [[nodiscard]] bool settled() const { return settled_; }
+
+  void reportError(std::string message);
+  [[nodiscard]] const std::vector<std::string>& errors() const { return errors_; }
+
+  [[nodiscard]] StatsSummary stats() const { return stats_.summary(); }
+  [[nodiscard]] std::string statsJson(const MemoryInfo& memory) const;
+  [[nodiscard]] std::string cameraJson() const;
+  /// Where a city-frame point (metres) appears on the canvas, in CSS pixels from its top-left
+  /// corner; nullopt when behind the eye.
+  [[nodiscard]] std::optional<glm::dvec2> worldToScreen(double x, double y, double z) const;
+
+ private:
+  RenderDevice& device_;
+  CameraState camera_;
+  CameraController controller_;
+  int widthPixels_ = 1, heightPixels_ = 1;
+  double widthCss_ = 1.0, heightCss_ = 1.0;
+  double time_ = 0.0;
+  double duration_ = 0.0;
+  double speed_ = 1.0;
+  float amplitude_ = 1.0f;
+  bool playing_ = true;
+  ColorMode colorMode_ = ColorMode::CurrentDrift;
+  bool settled_ = false;
+  std::vector<std::string> errors_;
+  FrameStats stats_;
+
+  struct TestContent;
+  std::unique_ptr<TestContent> test_;
+};
+
+}  // namespace qv

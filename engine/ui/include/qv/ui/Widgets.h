@@ -1,0 +1,49 @@
+// Thin wrappers over Dear ImGui widgets that also write their visible text to a TextMirror.
+// Keep ImGui's dialect inside the UI layer: panels call these, not ImGui directly, for anything a
+// person reads. Labels follow ImGui's "visible##id" convention; only the visible part is mirrored.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "qv/ui/TextMirror.h"
+
+namespace qv::ui {
+
+/// The visible part of an ImGui label ("Play##transport" -> "Play").
+std::string_view visibleLabel(std::string_view label);
+
+/// printf-style formatting into a std::string.
+std::string format(const char* fmt, ...) __attribute__((format(printf, 1, 2)));
+
+class Widgets {
+ public:
+  explicit Widgets(TextMirror& mirror) : mirror_(mirror) {}
+
+  /// Begins a window; returns false when collapsed or clipped (its title is still mirrored).
+  bool begin(const char* title, bool* open = nullptr, int flags = 0);
+  void end();
+  void text(std::string_view text);
+  void textColored(float r, float g, float b, std::string_view text);
+  void textWrapped(std::string_view text);
+  void separator();
+  void sameLine();
+  bool button(const char* label);
+  bool checkbox(const char* label, bool* value);
+  bool radio(const char* label, bool active);
+  bool sliderFloat(const char* label, float* value, float min, float max, const char* fmt = "%.2f",
+                   bool logarithmic = false);
+  bool sliderDouble(const char* label, double* value, double min, double max, const char* fmt = "%.2f");
+  bool sliderInt(const char* label, int* value, int min, int max);
+  bool combo(const char* label, int* current, const char* const items[], int count);
+  bool collapsingHeader(const char* label, bool defaultOpen = true);
+  /// A labelled value row: "label: value".
+  void field(std::string_view label, std::string_view value);
+
+  [[nodiscard]] TextMirror& mirror() { return mirror_; }
+
+ private:
+  TextMirror& mirror_;
+};
+
+}  // namespace qv::ui

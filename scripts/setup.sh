@@ -1,0 +1,135 @@
+#!/usr/bin/env bash
+# Installs whatever QuakeView needs that this machine lacks, and nothing else. Idempotent: a second
+# run on a complete machine does no network access and takes about a second.
+#
+# - Debian packages (apt, as root or through sudo);
+# - Dear ImGui 1.86 sources from Debian's source package (and simdjson's single-header sources,
+#   used by the WebAssembly build), unpacked under .deps/ (git-ignored, never committed);
+# - npm packages pinned by tests/e2e/package-lock.json (playwright-core; never a browser download).
+#
+# On a system without apt it stops and lists what to install.
+set -euo pipefail
+
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+deps="$root/.deps"
+
+log() { printf '[setup] %s\n' "$*"; }
+die() { printf '[setup] error: %s\n' "$*" >&2; exit 1; }
+
+# Build tools, libraries (native tools and tests), the WebAssembly toolchain, the browser for the
+# end-to-end tests, and the fuzzing runtime.
+packages=(
+  build-essential cmake ninja-build pkg-config git ca-certificates dpkg-dev clang-format
+  emscripten clang-14 libclang-rt-14-dev
+  libglm-dev libgeographiclib-dev libsimdjson-dev catch2
+  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev liblz4-dev
+  libproj-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev libtinyobjloader-dev
+  osmium-tool
+  chromium fonts-dejavu-core
+)
+
+if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>&1; then
+  cat >&2 <<MSG
+[setup] error: this set-up step needs Debian's apt (Debian 12 "bookworm").
+Install these by hand (names are Debian's; other systems have equivalents):
+  ${packages[*]}
+plus Node.js >= 18 with npm, Dear ImGui 1.86 sources in $deps/imgui,
+simdjson 3.0.1 single-header sources in $deps/simdjson, then run:
+  (cd $root/tests/e2e && npm ci)
+MSG
+  exit 1
+fi
+
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null 2>&1 || die "not root and no sudo: run as root, or install sudo"
+  sudo_cmd=(sudo)
+fi
+
+is_installed() {
+  dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'
+}
+
+missing=()
+for p in "${packages[@]}"; do
+  is_installed "$p" || missing+=("$p")
+done
+# npm: this machine kind has NodeSource's node with its own npm (Debian's npm conflicts with it); a
+# bare Debian 12 gets Debian's node 18 with emscripten and needs Debian's npm.
+if ! command -v npm >/dev/null 2>&1; then
+  missing+=(npm)
+fi
+
+apt_updated=0
+apt_update() {
+  if [ "$apt_updated" -eq 0 ]; then
+    log "apt-get update"
+    "${sudo_cmd[@]}" apt-get update -qq
+    apt_updated=1
+  fi
+}
+
+if [ "${#missing[@]}" -gt 0 ]; then
+  log "installing Debian packages: ${missing[*]}"
+  apt_update
+  "${sudo_cmd[@]}" env DEBIAN_FRONTEND=noninteractive apt-get install -y -qq "${missing[@]}"
+fi
+
+# Source packages need a deb-src entry for bookworm main. It must repeat the URI and Signed-By of
+# the existing binary entry, or apt rejects the pair as conflicting.
+ensure_deb_src() {
+  if grep -rqsE '^[[:space:]]*(deb-src|Types:.*deb-src)' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+    return
+  fi
+  log "adding a deb-src entry for bookworm main"
+  local deb822=/etc/apt/sources.list.d/debian.sources entry
+  if [ -f "$deb822" ]; then
+    # The stanza that lists the plain "bookworm" suite: keep its URIs and Signed-By.
+    entry=$(awk -v RS= '/Suites:[^\n]*bookworm([[:space:]]|$)/ && !/security/ {print; exit}' "$deb822" |
+      grep -E '^(URIs|Signed-By):')
+    [ -n "$entry" ] || entry='URIs: http://deb.debian.org/debian'
+    printf 'Types: deb-src\n%s\nSuites: bookworm\nComponents: main\n' "$entry" |
+      "${sudo_cmd[@]}" tee /etc/apt/sources.list.d/quakeview-deb-src.sources >/dev/null
+  else
+    entry=$(grep -hE '^[[:space:]]*deb[[:space:]].*[[:space:]]bookworm[[:space:]].*main' \
+      /etc/apt/sources.list /etc/apt/sources.list.d/*.list 2>/dev/null | head -n 1)
+    [ -n "$entry" ] || entry='deb http://deb.debian.org/debian bookworm main'
+    echo "$entry" | sed -E 's/^[[:space:]]*deb[[:space:]]/deb-src /' |
+      "${sudo_cmd[@]}" tee /etc/apt/sources.list.d/quakeview-deb-src.list >/dev/null
+  fi
+  apt_updated=0
+}
+
+# Unpacks Debian source package $1 into $deps/$2 (once).
+fetch_source() {
+  local pkg=$1 dest=$deps/$2 marker=$3
+  if [ -f "$dest/$marker" ]; then return; fi
+  ensure_deb_src
+  apt_update
+  local tmp
+  tmp=$(mktemp -d)
+  chmod 755 "$tmp"  # apt downloads as user _apt
+  log "fetching Debian source package $pkg"
+  (cd "$tmp" && apt-get source -qq --download-only "$pkg" >/dev/null &&
+    dpkg-source --no-check -x ./*.dsc src >/dev/null)
+  mkdir -p "$deps"
+  rm -rf "$dest"
+  mv "$tmp/src" "$dest"
+  rm -rf "$tmp"
+  [ -f "$dest/$marker" ] || die "source package $pkg has no $marker"
+}
+
+fetch_source imgui imgui imgui.cpp
+fetch_source simdjson simdjson singleheader/simdjson.cpp
+
+# npm packages, pinned by the lockfile. A stamp of the lockfile's hash makes the re-run free.
+e2e="$root/tests/e2e"
+stamp="$e2e/node_modules/.quakeview-lock.sha256"
+want=$(sha256sum "$e2e/package-lock.json" | cut -d' ' -f1)
+if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
+  log "installing npm packages (tests/e2e)"
+  (cd "$e2e" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
+  echo "$want" >"$stamp"
+fi
+
+log "ok"

@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# Sets up whatever is missing, builds, and runs every QuakeView test:
+#   1. native unit tests (Catch2, AddressSanitizer + UBSan, warnings as errors) and the layering check
+#   2. the same pure-library tests compiled to WebAssembly, run under node
+#   (the native build is also compiled with clang 14, warnings as errors)
+#   3. browser end-to-end tests (playwright-core + Debian's headless Chromium, pages served over HTTP)
+# Ends with one summary line; exits non-zero if anything failed. Every stage runs even after a
+# failure so one run shows everything that is wrong.
+set -uo pipefail
+root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$root"
+export NODE_PATH=/usr/share/nodejs
+jobs=${QUAKEVIEW_JOBS:-$(nproc)}
+
+bash scripts/setup.sh || { echo "QuakeView tests: FAILED (set-up failed)"; exit 1; }
+
+declare -a failures=()
+declare -A counts=()
+start=$(date +%s)
+
+stage() { printf '\n==== %s ====\n' "$*"; }
+
+# ctest prints "N% tests passed, F tests failed out of T"; keep T and F.
+run_ctest() {
+  local name=$1 preset=$2
+  local log
+  log=$(mktemp)
+  ctest --preset "$preset" -j "$jobs" 2>&1 | tee "$log"
+  local total failed
+  total=$(sed -nE 's/.*tests failed out of ([0-9]+).*/\1/p' "$log" | tail -n 1)
+  failed=$(sed -nE 's/.* ([0-9]+) tests failed out of.*/\1/p' "$log" | tail -n 1)
+  counts[$name]="${total:-0}"
+  if [ -z "$total" ] || [ "${failed:-1}" != 0 ]; then failures+=("$name"); fi
+  rm -f "$log"
+}
+
+stage "native build (debug, ASan + UBSan, -Werror)"
+if cmake --preset native-debug >/dev/null && cmake --build --preset native-debug -j "$jobs"; then
+  stage "native unit tests"
+  run_ctest native native-debug
+else
+  failures+=("native build")
+fi
+
+stage "native build with clang 14 (-Werror: the code must be warning-free under both compilers)"
+if ! (cmake --preset native-clang >/dev/null && cmake --build --preset native-clang -j "$jobs"); then
+  failures+=("clang build")
+fi
+
+stage "WebAssembly build (release, -Werror)"
+if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release -j "$jobs"; then
+  stage "WebAssembly unit tests under node"
+  run_ctest wasm wasm-release
+
+  stage "browser end-to-end tests (headless Chromium)"
+  log=$(mktemp)
+  (cd tests/e2e && QUAKEVIEW_SITE="$root/build/wasm-release/site" \
+    node --test --test-reporter=tap ./*.test.mjs) 2>&1 | tee "$log"
+  e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)
+  e2e_fail=$(sed -nE 's/^# fail ([0-9]+)/\1/p' "$log" | tail -n 1)
+  counts[e2e]="${e2e_pass:-0}"
+  if [ -z "$e2e_pass" ] || [ "${e2e_fail:-1}" != 0 ]; then failures+=("e2e"); fi
+  rm -f "$log"
+else
+  failures+=("wasm build")
+fi
+
+elapsed=$(( $(date +%s) - start ))
+summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests in ${elapsed}s"
+if [ "${#failures[@]}" -eq 0 ]; then
+  echo "QuakeView tests: ALL PASSED ($summary)"
+else
+  echo "QuakeView tests: FAILED in ${failures[*]} ($summary)"
+  exit 1
+fi

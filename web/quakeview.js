@@ -1,0 +1,155 @@
+// QuakeView page shell: loads the engine (quakeview-engine.js/.wasm) with a progress bar, shows
+// fatal errors on the page, and defines the scriptable API `window.quakeview`.
+//
+// API (kept for the life of the product; later versions only add members):
+//   ready      Promise: resolves after the first frame in which everything of the initial view has
+//              loaded or failed; rejects with an Error carrying the on-page message when WebGL2 is
+//              unavailable or the engine cannot start.
+//   stats()    {fps, frameMs: {cull, lod, animate, upload, render, total}, drawCalls, triangles,
+//              buildings: {loaded, visible, animated}, tiles: {loaded, pending, failed}, heapBytes,
+//              heapReservedBytes, uploadBytes, timeSeconds} — medians over recent frames.
+//   errors()   the message strings the UI shows.
+//   uiText()   the text of the panels and windows currently shown.
+//   getCamera() {x, y, distance, headingDeg, pitchDeg, fovDeg} (metres east/north of the origin).
+//   worldToScreen(x, y, z) [px, py] CSS pixels of a city-frame point, or null.
+(function () {
+  'use strict';
+
+  const canvas = document.getElementById('canvas');
+  const loading = document.getElementById('loading');
+  const loadingFill = loading.querySelector('.loading-fill');
+  const loadingLabel = loading.querySelector('.loading-label');
+  const errorBox = document.getElementById('error');
+  const params = new URLSearchParams(window.location.search);
+
+  let resolveReady;
+  let rejectReady;
+  const ready = new Promise((resolve, reject) => { resolveReady = resolve; rejectReady = reject; });
+  // A rejection nobody awaits must not become an "unhandled rejection" console error.
+  ready.catch(() => {});
+
+  let engine = null;
+  const shellErrors = [];
+
+  function setProgress(fraction, label) {
+    const percent = Math.max(0, Math.min(100, Math.round(fraction * 100)));
+    loadingFill.style.width = percent + '%';
+    loading.setAttribute('aria-valuenow', String(percent));
+    if (label) loadingLabel.textContent = label;
+  }
+
+  function fatal(message) {
+    loading.hidden = true;
+    errorBox.textContent = message;
+    errorBox.hidden = false;
+    shellErrors.push(message);
+    rejectReady(new Error(message));
+  }
+
+  function callString(name) {
+    if (!engine) return null;
+    return engine.UTF8ToString(engine['_' + name]());
+  }
+
+  const api = {
+    ready,
+    stats() {
+      const text = callString('qv_stats_json');
+      return text ? JSON.parse(text) : null;
+    },
+    errors() {
+      const text = callString('qv_errors_json');
+      return shellErrors.concat(text ? JSON.parse(text) : []);
+    },
+    uiText() {
+      return callString('qv_ui_text') || '';
+    },
+    // Extension: where a city-frame point [x, y, z] (metres from the tileset origin) appears on
+    // the canvas, in CSS pixels from its top-left corner; null when behind the camera.
+    worldToScreen(x, y, z = 0) {
+      if (!engine) return null;
+      return JSON.parse(engine.UTF8ToString(engine._qv_world_to_screen(Number(x), Number(y), Number(z))));
+    },
+    getCamera() {
+      const text = callString('qv_get_camera_json');
+      return text ? JSON.parse(text) : null;
+    },
+  };
+  Object.defineProperty(window, 'quakeview', { value: api, writable: false, configurable: false });
+
+  // WebGL2 first: without it the engine cannot draw, and the user should read why at once.
+  const probe = document.createElement('canvas');
+  const gl = probe.getContext('webgl2');
+  if (!gl) {
+    fatal('WebGL2 is not available in this browser or on this device, so the city cannot be drawn. ' +
+          'Use a current Chrome, Edge, Firefox or Safari with hardware acceleration enabled.');
+    return;
+  }
+  const lose = gl.getExtension('WEBGL_lose_context');
+  if (lose) lose.loseContext();
+
+  // Engine arguments from the page URL.
+  const args = [];
+  if (params.get('scene')) args.push('--scene', params.get('scene'));
+  if (params.get('data')) args.push('--data', params.get('data'));
+  if (params.get('aa') === '0') args.push('--no-antialias');
+
+  // Download the .wasm ourselves to show progress, then hand the bytes to the engine.
+  async function fetchWasm(url) {
+    const response = await fetch(url);
+    if (!response.ok) throw new Error('HTTP ' + response.status + ' for ' + url);
+    const total = Number(response.headers.get('Content-Length')) || 0;
+    if (!response.body || !total) return new Uint8Array(await response.arrayBuffer());
+    const reader = response.body.getReader();
+    const bytes = new Uint8Array(total);
+    let received = 0;
+    for (;;) {
+      const { done, value } = await reader.read();
+      if (done) break;
+      if (received + value.length > total) throw new Error('more bytes than announced for ' + url);
+      bytes.set(value, received);
+      received += value.length;
+      setProgress(received / total * 0.9, 'Loading QuakeView… ' + Math.round(received / 1024) + ' KB');
+    }
+    return bytes.subarray(0, received);
+  }
+
+  function loadScript(src) {
+    return new Promise((resolve, reject) => {
+      const script = document.createElement('script');
+      script.src = src;
+      script.onload = resolve;
+      script.onerror = () => reject(new Error('could not load ' + src));
+      document.head.appendChild(script);
+    });
+  }
+
+  async function start() {
+    setProgress(0.02, 'Loading QuakeView…');
+    const [wasmBytes] = await Promise.all([fetchWasm('quakeview-engine.wasm'), loadScript('quakeview-engine.js')]);
+    setProgress(0.95, 'Starting…');
+    const module = {
+      canvas,
+      arguments: args,
+      qvHooks: {
+        ready() {
+          loading.hidden = true;
+          resolveReady();
+        },
+        fatal,
+      },
+      instantiateWasm(imports, successCallback) {
+        WebAssembly.instantiate(wasmBytes, imports)
+          .then((result) => successCallback(result.instance, result.module))
+          .catch((e) => fatal('The QuakeView engine could not start: ' + e.message));
+        return {};
+      },
+      print(text) { console.log(text); },
+      printErr(text) { console.warn(text); },
+      onAbort(what) { fatal('The QuakeView engine stopped unexpectedly: ' + what); },
+    };
+    engine = await window.createQuakeViewEngine(module);
+  }
+
+  start().catch((e) => fatal('QuakeView could not load: ' + e.message));
+})();
