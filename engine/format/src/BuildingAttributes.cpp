@@ -1,0 +1,82 @@
+#include "qv/format/BuildingAttributes.h"
+
+#include <array>
+
+namespace qv {
+namespace {
+
+struct TypeInfo {
+  std::string_view code;
+  std::string_view description;
+};
+
+constexpr std::array<TypeInfo, static_cast<std::size_t>(StructuralType::Count)> kTypes = {{
+    {"unknown", "Unknown structural system"},
+    {"W1", "Wood, light frame"},
+    {"W2", "Wood, commercial and industrial"},
+    {"S1L", "Steel moment frame, low-rise"},
+    {"S1M", "Steel moment frame, mid-rise"},
+    {"S1H", "Steel moment frame, high-rise"},
+    {"S2L", "Steel braced frame, low-rise"},
+    {"S2M", "Steel braced frame, mid-rise"},
+    {"S2H", "Steel braced frame, high-rise"},
+    {"C1L", "Concrete moment frame, low-rise"},
+    {"C1M", "Concrete moment frame, mid-rise"},
+    {"C1H", "Concrete moment frame, high-rise"},
+    {"C2L", "Concrete shear walls, low-rise"},
+    {"C2M", "Concrete shear walls, mid-rise"},
+    {"C2H", "Concrete shear walls, high-rise"},
+    {"C3L", "Concrete frame with masonry infill, low-rise"},
+    {"C3M", "Concrete frame with masonry infill, mid-rise"},
+    {"C3H", "Concrete frame with masonry infill, high-rise"},
+    {"PC1", "Precast concrete tilt-up walls"},
+    {"RM1L", "Reinforced masonry bearing walls, low-rise"},
+    {"RM1M", "Reinforced masonry bearing walls, mid-rise"},
+    {"URML", "Unreinforced masonry bearing walls, low-rise"},
+    {"URMM", "Unreinforced masonry bearing walls, mid-rise"},
+    {"MH", "Mobile home"},
+}};
+
+constexpr std::array<std::string_view, static_cast<std::size_t>(CodeEra::Count)> kEras = {
+    "unknown", "pre-code", "low-code", "moderate-code", "high-code"};
+
+}  // namespace
+
+std::string_view structuralTypeCode(StructuralType type) {
+  const auto i = static_cast<std::size_t>(type);
+  return i < kTypes.size() ? kTypes[i].code : kTypes[0].code;
+}
+
+std::string_view structuralTypeDescription(StructuralType type) {
+  const auto i = static_cast<std::size_t>(type);
+  return i < kTypes.size() ? kTypes[i].description : kTypes[0].description;
+}
+
+StructuralType parseStructuralType(std::string_view code) {
+  for (std::size_t i = 1; i < kTypes.size(); ++i) {
+    if (kTypes[i].code == code) return static_cast<StructuralType>(i);
+  }
+  return StructuralType::Unknown;
+}
+
+std::string_view codeEraName(CodeEra era) {
+  const auto i = static_cast<std::size_t>(era);
+  return i < kEras.size() ? kEras[i] : kEras[0];
+}
+
+CodeEra parseCodeEra(std::string_view name) {
+  for (std::size_t i = 1; i < kEras.size(); ++i) {
+    if (kEras[i] == name) return static_cast<CodeEra>(i);
+  }
+  return CodeEra::Unknown;
+}
+
+std::string_view importanceName(Importance importance) {
+  return importance == Importance::Critical ? "critical" : "general";
+}
+
+std::string_view valueSourceName(ValueSource source) {
+  return source == ValueSource::Tagged ? "tagged" : "inferred";
+}
+
+}  // namespace qv

@@ -1,0 +1,18 @@
+// The commands of quakeview-prep. Each takes the arguments after its name and returns an exit
+// code (see Cli.h): 0 ok, 1 bad data or I/O failure, 2 usage error. Messages go to stderr,
+// results to stdout.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace qv::prep {
+
+using CommandArgs = std::vector<std::string>;
+
+int runCity(const CommandArgs& args);       ///< city --input FILE... --out DIR
+int runSynthCity(const CommandArgs& args);  ///< synth-city --buildings N --seed S --out DIR
+int runInfo(const CommandArgs& args);       ///< info DIR [--json] [--building ID] [--verify]
+int runMdof(const CommandArgs& args);       ///< mdof --storeys N --mass KG --stiffness N_PER_M ...
+
+}  // namespace qv::prep
