@@ -73,6 +73,33 @@ macro(quakeview_find_dependencies)
     add_library(simdjson::quakeview ALIAS quakeview_simdjson)
   endif()
 
+  # GeographicLib (transverse Mercator, for lon/lat in the viewer and the tools): Debian's library
+  # natively; in WASM the two source files it needs, from Debian's source package 2.1.2, with a
+  # Config.h written here (the package generates it at configure time).
+  if(EMSCRIPTEN)
+    quakeview_require_deps_file(geographiclib/src/TransverseMercator.cpp "GeographicLib 2.1.2 sources")
+    set(geo_config "${CMAKE_BINARY_DIR}/geographiclib-config/GeographicLib/Config.h")
+    file(WRITE "${geo_config}.in"
+      "#define GEOGRAPHICLIB_VERSION_STRING \"2.1.2\"\n#define GEOGRAPHICLIB_VERSION_MAJOR 2\n"
+      "#define GEOGRAPHICLIB_VERSION_MINOR 1\n#define GEOGRAPHICLIB_VERSION_PATCH 2\n"
+      "#define GEOGRAPHICLIB_DATA \"\"\n#define GEOGRAPHICLIB_HAVE_LONG_DOUBLE 1\n"
+      "#define GEOGRAPHICLIB_WORDS_BIGENDIAN 0\n#define GEOGRAPHICLIB_PRECISION 2\n"
+      "#define GEOGRAPHICLIB_SHARED_LIB 0\n")
+    configure_file("${geo_config}.in" "${geo_config}" COPYONLY)
+    add_library(quakeview_geographiclib STATIC
+      "${QUAKEVIEW_DEPS_DIR}/geographiclib/src/Math.cpp"
+      "${QUAKEVIEW_DEPS_DIR}/geographiclib/src/TransverseMercator.cpp")
+    target_include_directories(quakeview_geographiclib SYSTEM PUBLIC
+      "${CMAKE_BINARY_DIR}/geographiclib-config" "${QUAKEVIEW_DEPS_DIR}/geographiclib/include")
+  else()
+    list(APPEND CMAKE_MODULE_PATH /usr/share/cmake/geographiclib)
+    find_package(GeographicLib REQUIRED)
+    add_library(quakeview_geographiclib INTERFACE)
+    target_include_directories(quakeview_geographiclib SYSTEM INTERFACE ${GeographicLib_INCLUDE_DIRS})
+    target_link_libraries(quakeview_geographiclib INTERFACE ${GeographicLib_LIBRARIES})
+  endif()
+  add_library(geographiclib::quakeview ALIAS quakeview_geographiclib)
+
   # Dear ImGui 1.86 from Debian's source package, for both builds (the UI layer is also compiled
   # natively so its text mirror can be tested without a browser).
   quakeview_require_deps_file(imgui/imgui.cpp "Dear ImGui 1.86 sources")

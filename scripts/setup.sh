@@ -3,8 +3,9 @@
 # run on a complete machine does no network access and takes about a second.
 #
 # - Debian packages (apt, as root or through sudo);
-# - Dear ImGui 1.86 sources from Debian's source package (and simdjson's single-header sources,
-#   used by the WebAssembly build), unpacked under .deps/ (git-ignored, never committed);
+# - Dear ImGui 1.86 sources from Debian's source package (and simdjson's single-header sources and
+#   GeographicLib's, used by the WebAssembly build), unpacked under .deps/ (git-ignored, never
+#   committed);
 # - npm packages pinned by tests/e2e/package-lock.json (playwright-core; never a browser download).
 #
 # On a system without apt it stops and lists what to install.
@@ -23,7 +24,7 @@ packages=(
   emscripten clang-14 libclang-rt-14-dev
   libglm-dev libgeographiclib-dev libsimdjson-dev catch2
   libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev liblz4-dev
-  libproj-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev libtinyobjloader-dev
+  libproj-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev libtinyobjloader-dev libeigen3-dev
   osmium-tool
   chromium fonts-dejavu-core
 )
@@ -34,7 +35,7 @@ if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>
 Install these by hand (names are Debian's; other systems have equivalents):
   ${packages[*]}
 plus Node.js >= 18 with npm, Dear ImGui 1.86 sources in $deps/imgui,
-simdjson 3.0.1 single-header sources in $deps/simdjson, then run:
+simdjson 3.0.1 sources in $deps/simdjson, GeographicLib 2.1.2 sources in $deps/geographiclib, then run:
   (cd $root/tests/e2e && npm ci)
 MSG
   exit 1
@@ -108,7 +109,7 @@ fetch_source() {
   apt_update
   local tmp
   tmp=$(mktemp -d)
-  chmod 755 "$tmp"  # apt downloads as user _apt
+  chmod 777 "$tmp"  # apt downloads as user _apt
   log "fetching Debian source package $pkg"
   (cd "$tmp" && apt-get source -qq --download-only "$pkg" >/dev/null &&
     dpkg-source --no-check -x ./*.dsc src >/dev/null)
@@ -121,6 +122,7 @@ fetch_source() {
 
 fetch_source imgui imgui imgui.cpp
 fetch_source simdjson simdjson singleheader/simdjson.cpp
+fetch_source geographiclib geographiclib src/TransverseMercator.cpp
 
 # npm packages, pinned by the lockfile. A stamp of the lockfile's hash makes the re-run free.
 e2e="$root/tests/e2e"

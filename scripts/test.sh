@@ -2,7 +2,8 @@
 # Sets up whatever is missing, builds, and runs every QuakeView test:
 #   1. native unit tests (Catch2, AddressSanitizer + UBSan, warnings as errors) and the layering check
 #   2. the same pure-library tests compiled to WebAssembly, run under node
-#   (the native build is also compiled with clang 14, warnings as errors)
+#   (the native code is also compiled with clang 14, optimized, warnings as errors; its
+#   quakeview-prep prepares the browser tests' cities)
 #   3. browser end-to-end tests (playwright-core + Debian's headless Chromium, pages served over HTTP)
 # Ends with one summary line; exits non-zero if anything failed. Every stage runs even after a
 # failure so one run shows everything that is wrong.
@@ -42,9 +43,21 @@ else
   failures+=("native build")
 fi
 
-stage "native build with clang 14 (-Werror: the code must be warning-free under both compilers)"
+stage "native build with clang 14, release (-Werror: warning-free under both compilers)"
 if ! (cmake --preset native-clang >/dev/null && cmake --build --preset native-clang -j "$jobs"); then
   failures+=("clang build")
+fi
+
+# Small cities for the browser tests, made with the tools just built (the optimized clang build:
+# the response step runs a solver per building).
+stage "preparing the end-to-end test cities"
+e2e_data="$root/build/e2e-data"
+prep="$root/build/native-clang/preprocess/app/quakeview-prep"
+rm -rf "$e2e_data" && mkdir -p "$e2e_data"
+if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out "$e2e_data/synth" >/dev/null ||
+   ! "$prep" response --city "$e2e_data/synth" --synthetic 7 --epicentre -74.005,40.705,8 --magnitude 6.6 >/dev/null ||
+   ! "$prep" info "$e2e_data/synth" --building s1 --json >"$e2e_data/synth-s1.json"; then
+  failures+=("e2e data")
 fi
 
 stage "WebAssembly build (release, -Werror)"
@@ -54,7 +67,7 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
 
   stage "browser end-to-end tests (headless Chromium)"
   log=$(mktemp)
-  (cd tests/e2e && QUAKEVIEW_SITE="$root/build/wasm-release/site" \
+  (cd tests/e2e && QUAKEVIEW_SITE="$root/build/wasm-release/site" QUAKEVIEW_E2E_DATA="$e2e_data" \
     node --test --test-reporter=tap ./*.test.mjs) 2>&1 | tee "$log"
   e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)
   e2e_fail=$(sed -nE 's/^# fail ([0-9]+)/\1/p' "$log" | tail -n 1)

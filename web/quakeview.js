@@ -12,6 +12,11 @@
 //   uiText()   the text of the panels and windows currently shown.
 //   getCamera() {x, y, distance, headingDeg, pitchDeg, fovDeg} (metres east/north of the origin).
 //   worldToScreen(x, y, z) [px, py] CSS pixels of a city-frame point, or null.
+//   setCamera(c)  any subset of getCamera()'s fields; false when a value was invalid.
+//   setTime(s), time(), duration(), play(), pause(), playing()
+//   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
+//              render, total}, drawCalls, triangles}, each but seconds/frames as {median, p95};
+//              null until the flight ends (benchDone: a Promise of it).
 (function () {
   'use strict';
 
@@ -74,8 +79,36 @@
       const text = callString('qv_get_camera_json');
       return text ? JSON.parse(text) : null;
     },
+    // Takes any subset of getCamera()'s fields; returns false (and keeps the previous value of a
+    // field) when a given value is not a finite number or out of range.
+    setCamera(c) {
+      if (!engine || !c || typeof c !== 'object') return false;
+      const current = api.getCamera();
+      const keys = ['x', 'y', 'distance', 'headingDeg', 'pitchDeg', 'fovDeg'];
+      let valid = true;
+      const v = keys.map((k) => {
+        if (!(k in c)) return current[k];
+        const n = typeof c[k] === 'number' ? c[k] : NaN;
+        if (!Number.isFinite(n)) valid = false;
+        return n;
+      });
+      const accepted = engine._qv_set_camera(...v) === 1;
+      return valid && accepted;
+    },
+    setTime(seconds) {
+      return !!engine && typeof seconds === 'number' && engine._qv_set_time(seconds) === 1;
+    },
+    time() { return engine ? engine._qv_time() : 0; },
+    duration() { return engine ? engine._qv_duration() : 0; },
+    play() { if (engine) engine._qv_play(); },
+    pause() { if (engine) engine._qv_pause(); },
+    playing() { return !!engine && engine._qv_playing() === 1; },
+    benchResult: null,
   };
   Object.defineProperty(window, 'quakeview', { value: api, writable: false, configurable: false });
+  let resolveBench;
+  // Extension: resolves with benchResult when a ?bench=SECONDS flight ends.
+  api.benchDone = new Promise((resolve) => { resolveBench = resolve; });
 
   // WebGL2 first: without it the engine cannot draw, and the user should read why at once.
   const probe = document.createElement('canvas');
@@ -89,10 +122,12 @@
   if (lose) lose.loseContext();
 
   // Engine arguments from the page URL.
+  // Without ?data= or ?scene= the page shows the city prepared beside it (the demo's default).
   const args = [];
   if (params.get('scene')) args.push('--scene', params.get('scene'));
-  if (params.get('data')) args.push('--data', params.get('data'));
+  else args.push('--data', params.get('data') || 'data/default/tileset.json');
   if (params.get('aa') === '0') args.push('--no-antialias');
+  if (params.get('bench')) args.push('--bench', params.get('bench'));
 
   // Download the .wasm ourselves to show progress, then hand the bytes to the engine.
   async function fetchWasm(url) {
@@ -137,6 +172,10 @@
           resolveReady();
         },
         fatal,
+        benchDone(json) {
+          api.benchResult = JSON.parse(json);
+          resolveBench(api.benchResult);
+        },
       },
       instantiateWasm(imports, successCallback) {
         WebAssembly.instantiate(wasmBytes, imports)

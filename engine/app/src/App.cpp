@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cstdlib>
 
 namespace qv {
 namespace {
@@ -77,10 +78,20 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
       options.dataUrl = args[++i];
     } else if (a == "--no-antialias") {
       options.antialias = false;
+    } else if (a == "--bench" && hasValue) {
+      const std::string& v = args[++i];
+      char* end = nullptr;
+      const double seconds = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(seconds >= 1.0 && seconds <= 3600.0)) {
+        errors.push_back("bench=" + v + " in the URL is not a number of seconds from 1 to 3600; no benchmark run.");
+      } else {
+        options.benchSeconds = seconds;
+      }
     } else {
       errors.push_back("Ignored unknown engine argument '" + a + "'.");
     }
   }
+  if (options.scene == "test") options.dataUrl.clear();
   return options;
 }
 
@@ -111,7 +122,12 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
 
   viewer_ = std::make_unique<Viewer>(*device_);
   for (const std::string& e : startupErrors) viewer_->reportError(e);
-  viewer_->showTestScene();
+  if (!options.dataUrl.empty()) {
+    viewer_->openCity(options.dataUrl, fetcher_, options.city);
+  } else {
+    viewer_->showTestScene();
+  }
+  if (options.benchSeconds > 0.0) viewer_->startBench(options.benchSeconds);
   input_ = std::make_unique<BrowserInput>(kCanvas);
   lastFrameSeconds_ = browser::nowSeconds();
   return true;
@@ -233,6 +249,10 @@ void App::frame() {
   if (!readySent_ && viewer_->settled()) {
     readySent_ = true;
     browser::notifyReady();
+  }
+  if (!benchSent_ && !viewer_->benchResult().empty()) {
+    benchSent_ = true;
+    browser::notifyBenchDone(viewer_->benchResult());
   }
 }
 

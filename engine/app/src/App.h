@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "qv/platform/Browser.h"
+#include "qv/platform/BrowserFetcher.h"
 #include "qv/platform/BrowserInput.h"
 #include "qv/render/GlRenderDevice.h"
 #include "qv/scene/Viewer.h"
@@ -20,6 +21,8 @@ struct AppOptions {
   std::string scene;    ///< "test" for the built-in test scene
   std::string dataUrl;  ///< tileset.json URL
   bool antialias = true;
+  double benchSeconds = 0.0;  ///< > 0: run the benchmark flight
+  CitySceneOptions city;
 };
 
 /// Parses the engine's arguments (set by the shell from the page URL). Unknown arguments are
@@ -39,6 +42,8 @@ class App {
   void dispatchInput();
 
   std::unique_ptr<GlRenderDevice> device_;
+  BrowserFetcher fetcher_;
+  bool benchSent_ = false;
   std::unique_ptr<Viewer> viewer_;
   std::unique_ptr<BrowserInput> input_;
   std::vector<InputEvent> deferred_;

@@ -55,6 +55,38 @@ EMSCRIPTEN_KEEPALIVE const char* qv_get_camera_json() {
   return hand(gApp->viewer().cameraJson());
 }
 
+/// Sets the camera; the shell fills fields the caller left out with the current values.
+/// Returns 1 when every value was valid, 0 when some were replaced (non-finite or out of range).
+EMSCRIPTEN_KEEPALIVE int qv_set_camera(double x, double y, double distance, double headingDeg, double pitchDeg,
+                                       double fovDeg) {
+  if (gApp == nullptr) return 0;
+  return gApp->viewer().setCamera(qv::CameraState{x, y, distance, headingDeg, pitchDeg, fovDeg}) ? 1 : 0;
+}
+
+EMSCRIPTEN_KEEPALIVE int qv_set_time(double seconds) {
+  return gApp != nullptr && gApp->viewer().setTime(seconds) ? 1 : 0;
+}
+
+EMSCRIPTEN_KEEPALIVE double qv_time() {
+  return gApp == nullptr ? 0.0 : gApp->viewer().time();
+}
+
+EMSCRIPTEN_KEEPALIVE double qv_duration() {
+  return gApp == nullptr ? 0.0 : gApp->viewer().duration();
+}
+
+EMSCRIPTEN_KEEPALIVE void qv_play() {
+  if (gApp != nullptr) gApp->viewer().play();
+}
+
+EMSCRIPTEN_KEEPALIVE void qv_pause() {
+  if (gApp != nullptr) gApp->viewer().pause();
+}
+
+EMSCRIPTEN_KEEPALIVE int qv_playing() {
+  return gApp != nullptr && gApp->viewer().playing() ? 1 : 0;
+}
+
 }  // extern "C"
 
 int main(int argc, char** argv) {

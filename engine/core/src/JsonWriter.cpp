@@ -15,6 +15,10 @@ void JsonWriter::separate() {
     if (needComma_.back()) out_ += ',';
     needComma_.back() = true;
   }
+  if (breakLine_) {
+    out_ += '\n';
+    breakLine_ = false;
+  }
 }
 
 JsonWriter& JsonWriter::beginObject() {
@@ -62,6 +66,21 @@ JsonWriter& JsonWriter::value(double number) {
   for (int precision : {6, 9, 12, 15, 17}) {
     std::snprintf(buffer, sizeof buffer, "%.*g", precision, number);
     if (std::strtod(buffer, nullptr) == number) break;
+  }
+  out_ += buffer;
+  return *this;
+}
+
+JsonWriter& JsonWriter::value(float number) {
+  separate();
+  if (!std::isfinite(number)) {
+    out_ += "null";
+    return *this;
+  }
+  char buffer[32];
+  for (int precision : {6, 7, 8, 9}) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", precision, static_cast<double>(number));
+    if (std::strtof(buffer, nullptr) == number) break;
   }
   out_ += buffer;
   return *this;

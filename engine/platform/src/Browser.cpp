@@ -27,6 +27,11 @@ EM_JS(void, qv_js_notify_fatal, (const char* message), {
   if (Module["qvHooks"] && Module["qvHooks"].fatal) Module["qvHooks"].fatal(text);
 });
 
+EM_JS(void, qv_js_notify_bench, (const char* json), {
+  var text = UTF8ToString(json);
+  if (Module["qvHooks"] && Module["qvHooks"].benchDone) Module["qvHooks"].benchDone(text);
+});
+
 bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& options, std::string& error) {
   EmscriptenWebGLContextAttributes attributes;
   emscripten_webgl_init_context_attributes(&attributes);
@@ -92,6 +97,10 @@ void notifyReady() {
 
 void notifyFatal(const std::string& message) {
   qv_js_notify_fatal(message.c_str());
+}
+
+void notifyBenchDone(const std::string& json) {
+  qv_js_notify_bench(json.c_str());
 }
 
 }  // namespace qv::browser

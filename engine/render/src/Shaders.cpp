@@ -57,12 +57,13 @@ void main() {
   float peakValue = b0.w;
   float damage = b1.x;
   uint flags = uint(b1.y + 0.5);
+  float baseZ = b1.z;
 
   vec3 position = a_position;
   float drift = peakValue;
   float peakStorey = peakValue;
   if (floorBase >= 0) {
-    float level = clamp(position.z / storeyHeight, 0.0, float(storeys));
+    float level = clamp((position.z - baseZ) / storeyHeight, 0.0, float(storeys));
     int f0 = min(int(floor(level)), storeys);
     int f1 = min(f0 + 1, storeys);
     vec4 d0 = texel(u_floors, floorBase + f0);

@@ -65,7 +65,21 @@ void Viewer::setViewport(int widthPixels, int heightPixels, double widthCss, dou
   controller_.setViewport(widthCss, heightCss);
 }
 
+void Viewer::openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options) {
+  city_ = std::make_unique<CityScene>(device_, fetcher, manifestUrl, options,
+                                      [this](const std::string& message) { reportError(message); });
+  cityFramed_ = false;
+  settled_ = false;
+}
+
+void Viewer::startBench(double seconds) {
+  benchSeconds_ = std::clamp(seconds, 1.0, 3600.0);
+  bench_.reset();
+  benchResult_.clear();
+}
+
 bool Viewer::setCamera(const CameraState& camera) {
+  cameraSetByUser_ = true;
   CameraState next = camera;
   const bool valid = sanitizeCamera(next, camera_);
   camera_ = next;
@@ -89,6 +103,25 @@ void Viewer::frame(double dtSeconds) {
   FrameTimesMs times;
   FrameCounts counts;
 
+  if (city_ && city_->manifestLoaded() && !cityFramed_) {
+    // The first frame with the manifest: the duration, and a camera that frames the whole city.
+    cityFramed_ = true;
+    duration_ = city_->duration();
+    const CameraState overview = city_->overviewCamera(camera_.fovDeg);
+    controller_.setHome(overview);
+    if (!cameraSetByUser_) camera_ = overview;
+  }
+  if (benchSeconds_ > 0.0 && benchResult_.empty()) {
+    // The flight starts on the first frame after the initial view has loaded.
+    if (!bench_ && settled_) {
+      bench_ = std::make_unique<BenchRun>(benchSeconds_, city_ ? city_->tileset() : nullptr, camera_.fovDeg);
+      benchElapsed_ = 0.0;
+      playing_ = true;
+    } else if (bench_) {
+      benchElapsed_ += std::max(0.0, dtSeconds);
+    }
+    if (bench_) camera_ = bench_->cameraAt(benchElapsed_);
+  }
   controller_.update(dtSeconds);
   sanitizeCamera(camera_, controller_.home());
   if (playing_ && duration_ > 0.0 && std::isfinite(dtSeconds)) {
@@ -97,50 +130,47 @@ void Viewer::frame(double dtSeconds) {
 
   const CameraView view(camera_, widthPixels_, heightPixels_);
   std::vector<DrawItem> items;
+  FrameUniforms uniforms;
 
-  // Cull.
-  auto t0 = Clock::now();
-  std::vector<std::size_t> visible;
   if (test_) {
+    auto t0 = Clock::now();
+    std::vector<std::size_t> visible;
     for (std::size_t i = 0; i < test_->prisms.size(); ++i) {
       if (view.frustum().intersects(test_->prisms[i].bounds)) visible.push_back(i);
     }
     counts.buildingsLoaded = static_cast<std::uint32_t>(test_->prisms.size());
-  }
-  counts.buildingsVisible = static_cast<std::uint32_t>(visible.size());
-  times.cull = msSince(t0);
-
-  // LOD: the test scene animates every visible prism.
-  t0 = Clock::now();
-  counts.buildingsAnimated = counts.buildingsVisible;
-  times.lod = msSince(t0);
-
-  // Animate.
-  t0 = Clock::now();
-  if (test_) {
+    counts.buildingsVisible = static_cast<std::uint32_t>(visible.size());
+    times.cull = msSince(t0);
+    // The test scene animates every visible prism: no LOD work.
+    counts.buildingsAnimated = counts.buildingsVisible;
+    t0 = Clock::now();
     test_->floors.clear();
     for (const TestPrism& p : test_->prisms) testPrismFloors(p, time_, test_->floors);
+    times.animate = msSince(t0);
+    t0 = Clock::now();
+    device_.writeFloors(0, test_->floors);
+    times.upload = msSince(t0);
+    uniforms.ground = Rect{-400.0f, -400.0f, 400.0f, 400.0f};
+    for (std::size_t i : visible) items.push_back(DrawItem{test_->meshes[i], glm::vec3(0.0f)});
   }
-  times.animate = msSince(t0);
-
-  // Upload.
-  t0 = Clock::now();
-  if (test_) device_.writeFloors(0, test_->floors);
-  times.upload = msSince(t0);
+  if (city_) {
+    city_->update(view, time_, times, counts, items);
+    if (const Tileset* t = city_->tileset()) {
+      // Ground under the whole city with a margin.
+      const float margin = std::max(t->bounds.width(), t->bounds.height()) * 0.5f + 2000.0f;
+      uniforms.ground =
+          Rect{t->bounds.minX - margin, t->bounds.minY - margin, t->bounds.maxX + margin, t->bounds.maxY + margin};
+    }
+  }
 
   // Render.
-  t0 = Clock::now();
-  FrameUniforms uniforms;
+  const auto t0 = Clock::now();
   uniforms.viewProjection = view.viewProjection();
   uniforms.eye = view.eye();
   uniforms.colorMode = colorMode_;
   uniforms.amplitude = amplitude_;
   uniforms.viewportWidth = widthPixels_;
   uniforms.viewportHeight = heightPixels_;
-  if (test_) {
-    uniforms.ground = Rect{-400.0f, -400.0f, 400.0f, 400.0f};
-    for (std::size_t i : visible) items.push_back(DrawItem{test_->meshes[i], glm::vec3(0.0f)});
-  }
   device_.render(uniforms, items);
   times.render = msSince(t0);
 
@@ -150,7 +180,11 @@ void Viewer::frame(double dtSeconds) {
   counts.uploadBytes = device.uploadBytes;
   times.total = msSince(frameStart);
   stats_.record(dtSeconds, times, counts);
-  settled_ = true;
+  if (bench_ && benchResult_.empty()) {
+    if (benchElapsed_ > 0.0) bench_->record(dtSeconds, times, counts);
+    if (benchElapsed_ >= bench_->seconds()) benchResult_ = bench_->resultJson();
+  }
+  settled_ = city_ ? (city_->manifestFailed() || (cityFramed_ && city_->settled())) : true;
 }
 
 std::string Viewer::statsJson(const MemoryInfo& memory) const {
@@ -168,8 +202,9 @@ std::string Viewer::statsJson(const MemoryInfo& memory) const {
   w.field("loaded", s.latest.buildingsLoaded).field("visible", s.latest.buildingsVisible);
   w.field("animated", s.latest.buildingsAnimated);
   w.endObject();
+  const TileCounts tiles = city_ ? city_->tileCounts() : TileCounts{};
   w.key("tiles").beginObject();
-  w.field("loaded", 0).field("pending", 0).field("failed", 0);
+  w.field("loaded", tiles.loaded).field("pending", tiles.pending).field("failed", tiles.failed);
   w.endObject();
   w.field("heapBytes", memory.heapBytes);
   w.field("heapReservedBytes", memory.heapReservedBytes);

@@ -13,6 +13,8 @@ using CommandArgs = std::vector<std::string>;
 int runCity(const CommandArgs& args);       ///< city --input FILE... --out DIR
 int runSynthCity(const CommandArgs& args);  ///< synth-city --buildings N --seed S --out DIR
 int runInfo(const CommandArgs& args);       ///< info DIR [--json] [--building ID] [--verify]
-int runMdof(const CommandArgs& args);       ///< mdof --storeys N --mass KG --stiffness N_PER_M ...
+int runMdof(const CommandArgs& args);
+int runResponse(const CommandArgs& args);  ///< response --city DIR (--motion FILE | --synthetic SEED) ...       ///<
+                                           ///< mdof --storeys N --mass KG --stiffness N_PER_M ...
 
 }  // namespace qv::prep

@@ -21,6 +21,8 @@ constexpr Command kCommands[] = {
     {"synth-city", qv::prep::runSynthCity,
      "synth-city --buildings N --seed S [--origin LON,LAT] --out DIR: a deterministic synthetic city"},
     {"info", qv::prep::runInfo, "info DIR [--json] [--building ID] [--verify]: what a city directory holds"},
+    {"response", qv::prep::runResponse,
+     "response --city DIR (--motion FILE | --synthetic SEED) [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M]"},
     {"mdof", qv::prep::runMdof, "mdof --storeys N --mass KG --stiffness N_PER_M --motion FILE ...: one shear building"},
 };
 

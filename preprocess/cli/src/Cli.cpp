@@ -60,7 +60,9 @@ std::optional<Args> Args::parse(const std::vector<std::string>& argv, const std:
   return args;
 }
 
-bool Args::has(std::string_view name) const { return values_.find(name) != values_.end(); }
+bool Args::has(std::string_view name) const {
+  return values_.find(name) != values_.end();
+}
 
 std::optional<std::string> Args::value(std::string_view name) const {
   const auto it = values_.find(name);
@@ -117,7 +119,9 @@ bool interactiveTerminal() {
 Progress::Progress(std::string label, std::uint64_t total)
     : label_(std::move(label)), total_(total), enabled_(interactiveTerminal()) {}
 
-Progress::~Progress() { finish(); }
+Progress::~Progress() {
+  finish();
+}
 
 void Progress::update(std::uint64_t done) {
   if (!enabled_ || finished_ || total_ == 0) return;

@@ -18,7 +18,8 @@ class JsonWriter {
   /// Inside an object: the next value's key.
   JsonWriter& key(std::string_view name);
   JsonWriter& value(double number);
-  JsonWriter& value(float number) { return value(static_cast<double>(number)); }
+  /// Shortest text that reads back as the same float ("443.2", not "443.20001220703125").
+  JsonWriter& value(float number);
   JsonWriter& value(std::int64_t number);
   JsonWriter& value(std::uint64_t number);
   JsonWriter& value(int number) { return value(static_cast<std::int64_t>(number)); }
@@ -27,6 +28,11 @@ class JsonWriter {
   JsonWriter& value(std::string_view text);
   JsonWriter& value(const char* text) { return value(std::string_view(text)); }
   JsonWriter& null();
+  /// Puts the next value on a new line (after its separating comma), for readable large output.
+  JsonWriter& breakLine() {
+    breakLine_ = true;
+    return *this;
+  }
   /// Inserts already-serialized JSON as one value.
   JsonWriter& raw(std::string_view json);
 
@@ -47,6 +53,7 @@ class JsonWriter {
   std::string out_;
   std::vector<bool> needComma_;  // one entry per open container
   bool afterKey_ = false;
+  bool breakLine_ = false;
 };
 
 }  // namespace qv

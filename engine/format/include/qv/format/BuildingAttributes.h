@@ -18,15 +18,15 @@ enum class ValueSource : std::uint8_t { Tagged = 0, Inferred = 1 };
 /// never renumber, only append.
 enum class StructuralType : std::uint8_t {
   Unknown = 0,
-  W1 = 1,    ///< wood, light frame
-  W2 = 2,    ///< wood, commercial and industrial
-  S1L = 3,   ///< steel moment frame, low-rise (1-3 storeys)
-  S1M = 4,   ///< steel moment frame, mid-rise (4-7)
-  S1H = 5,   ///< steel moment frame, high-rise (8+)
-  S2L = 6,   ///< steel braced frame
+  W1 = 1,   ///< wood, light frame
+  W2 = 2,   ///< wood, commercial and industrial
+  S1L = 3,  ///< steel moment frame, low-rise (1-3 storeys)
+  S1M = 4,  ///< steel moment frame, mid-rise (4-7)
+  S1H = 5,  ///< steel moment frame, high-rise (8+)
+  S2L = 6,  ///< steel braced frame
   S2M = 7,
   S2H = 8,
-  C1L = 9,   ///< concrete moment frame
+  C1L = 9,  ///< concrete moment frame
   C1M = 10,
   C1H = 11,
   C2L = 12,  ///< concrete shear walls
@@ -35,12 +35,12 @@ enum class StructuralType : std::uint8_t {
   C3L = 15,  ///< concrete frame with unreinforced masonry infill walls
   C3M = 16,
   C3H = 17,
-  PC1 = 18,  ///< precast concrete tilt-up walls
-  RM1L = 19, ///< reinforced masonry bearing walls with wood or metal deck diaphragms
+  PC1 = 18,   ///< precast concrete tilt-up walls
+  RM1L = 19,  ///< reinforced masonry bearing walls with wood or metal deck diaphragms
   RM1M = 20,
-  URML = 21, ///< unreinforced masonry bearing walls, low-rise (1-2)
-  URMM = 22, ///< unreinforced masonry bearing walls, mid-rise (3+)
-  MH = 23,   ///< mobile homes
+  URML = 21,  ///< unreinforced masonry bearing walls, low-rise (1-2)
+  URMM = 22,  ///< unreinforced masonry bearing walls, mid-rise (3+)
+  MH = 23,    ///< mobile homes
   Count
 };
 
@@ -63,16 +63,16 @@ enum ImportanceReason : std::uint8_t {
 };
 
 struct BuildingAttributes {
-  std::string id;       ///< stable id: w<osm way>, r<osm relation>, s<n>, cj:<id>, g:<id or index>
-  std::string name;     ///< may be empty
-  std::string use;      ///< normalized use: office, residential, retail, hospital, school, ...
-  std::string address;  ///< "350 5th Avenue, 10118 New York" from addr:*; may be empty
-  std::string material; ///< building:material, may be empty
-  std::string structure;///< building:structure, may be empty
-  std::string amenity;  ///< amenity tag, may be empty
-  float heightM = 0.0f;      ///< top of the building above ground, metres
-  float minHeightM = 0.0f;   ///< bottom of the lowest storey above ground (0 for most buildings)
-  std::uint16_t storeys = 1; ///< number of storeys between minHeightM and heightM (>= 1)
+  std::string id;             ///< stable id: w<osm way>, r<osm relation>, s<n>, cj:<id>, g:<id or index>
+  std::string name;           ///< may be empty
+  std::string use;            ///< normalized use: office, residential, retail, hospital, school, ...
+  std::string address;        ///< "350 5th Avenue, 10118 New York" from addr:*; may be empty
+  std::string material;       ///< building:material, may be empty
+  std::string structure;      ///< building:structure, may be empty
+  std::string amenity;        ///< amenity tag, may be empty
+  float heightM = 0.0f;       ///< top of the building above ground, metres
+  float minHeightM = 0.0f;    ///< bottom of the lowest storey above ground (0 for most buildings)
+  std::uint16_t storeys = 1;  ///< number of storeys between minHeightM and heightM (>= 1)
   ValueSource heightSource = ValueSource::Inferred;
   ValueSource storeysSource = ValueSource::Inferred;
   std::int16_t startYear = 0;  ///< construction year, 0 when unknown

@@ -39,6 +39,8 @@ void runMainLoop(std::function<void()> frame);
 // Calls into the shell.
 /// The initial view has loaded (or failed): resolves `quakeview.ready`.
 void notifyReady();
+/// The benchmark flight ended: sets `quakeview.benchResult` from this JSON.
+void notifyBenchDone(const std::string& json);
 /// A fatal problem (no WebGL2, shaders failed): shows `message` on the page, rejects `ready`.
 void notifyFatal(const std::string& message);
 

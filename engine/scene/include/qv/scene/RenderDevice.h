@@ -25,14 +25,14 @@ struct MeshHandle {
 
 /// Per-building row of the GPU building table (two RGBA32F texels). Slots index this table.
 struct BuildingGpuRecord {
-  float storeyHeightMeters = 3.0f;  ///< height of one storey (floor ring k sits at k × this)
+  float storeyHeightMeters = 3.0f;  ///< height of one storey (floor level k sits at baseZ + k × this)
   float storeys = 1.0f;             ///< number of storeys
   float floorBase = -1.0f;          ///< first texel of its floor rows, -1 when not animated
   float peakValue = 0.0f;           ///< peak drift ratio (colour when static)
   float damageState = -1.0f;        ///< 0..4 none..complete, -1 no result
   float flags = 0.0f;               ///< BuildingFlag bits
-  float reserved0 = 0.0f;
-  float reserved1 = 0.0f;
+  float baseZ = 0.0f;               ///< height of floor level 0 (the building's min height), metres
+  float reserved = 0.0f;
 };
 static_assert(sizeof(BuildingGpuRecord) == 32);
 

@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "qv/scene/Bench.h"
 #include "qv/scene/CameraController.h"
+#include "qv/scene/CityScene.h"
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
 #include "qv/scene/TestScene.h"
@@ -31,6 +33,11 @@ class Viewer {
 
   /// Shows the built-in test scene (see TestScene.h) and frames the camera on it.
   void showTestScene();
+  /// Streams the city whose tileset.json is at `manifestUrl`; the camera frames the whole city
+  /// once the manifest arrives unless setCamera() was called before.
+  void openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options = {});
+  [[nodiscard]] CityScene* city() { return city_.get(); }
+  [[nodiscard]] const CityScene* city() const { return city_.get(); }
 
   /// Drawing-buffer size in device pixels, and the canvas size in CSS pixels (input coordinates).
   void setViewport(int widthPixels, int heightPixels, double widthCss, double heightCss);
@@ -58,6 +65,12 @@ class Viewer {
 
   /// Advances the clock by dtSeconds of wall time (× speed while playing) and draws a frame.
   void frame(double dtSeconds);
+
+  /// Starts the benchmark flight of `seconds` once the initial view has loaded (see Bench.h).
+  void startBench(double seconds);
+  /// The benchmark's result JSON once the flight has ended; empty before.
+  [[nodiscard]] const std::string& benchResult() const { return benchResult_; }
+  [[nodiscard]] bool benchRunning() const { return benchSeconds_ > 0.0 && benchResult_.empty(); }
 
   /// True once everything of the initial view has loaded or failed.
   [[nodiscard]] bool settled() const { return settled_; }
@@ -90,6 +103,13 @@ class Viewer {
 
   struct TestContent;
   std::unique_ptr<TestContent> test_;
+  std::unique_ptr<CityScene> city_;
+  bool cameraSetByUser_ = false;
+  double benchSeconds_ = 0.0;
+  double benchElapsed_ = 0.0;
+  std::unique_ptr<BenchRun> bench_;
+  std::string benchResult_;
+  bool cityFramed_ = false;
 };
 
 }  // namespace qv

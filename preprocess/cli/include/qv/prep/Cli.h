@@ -18,9 +18,9 @@ enum ExitCode : int { kExitOk = 0, kExitDataError = 1, kExitUsage = 2 };
 /// Parsed "--flag value", "--flag=value", "--switch" and positional arguments. A flag declared
 /// repeatable collects every value ("--input A B C" or "--input A --input B").
 class Args {
-public:
+ public:
   struct Spec {
-    std::string name;         ///< without dashes: "input"
+    std::string name;  ///< without dashes: "input"
     bool takesValue = true;
     bool repeatable = false;  ///< values until the next "--": "--input a.osm b.pbf"
   };
@@ -35,7 +35,7 @@ public:
   [[nodiscard]] const std::vector<std::string>& values(std::string_view name) const;
   [[nodiscard]] const std::vector<std::string>& positional() const { return positional_; }
 
-private:
+ private:
   std::map<std::string, std::vector<std::string>, std::less<>> values_;
   std::vector<std::string> positional_;
 };
@@ -48,7 +48,7 @@ std::optional<std::vector<double>> parseNumberList(std::string_view text, std::s
 
 /// A progress bar on a terminal (stderr is a TTY and CI is not set); silent otherwise.
 class Progress {
-public:
+ public:
   Progress(std::string label, std::uint64_t total);
   ~Progress();
   Progress(const Progress&) = delete;
@@ -56,7 +56,7 @@ public:
   void update(std::uint64_t done);
   void finish();
 
-private:
+ private:
   std::string label_;
   std::uint64_t total_;
   bool enabled_;

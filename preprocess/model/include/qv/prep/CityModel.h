@@ -23,11 +23,11 @@ struct BuildingPart {
   std::vector<glm::dvec2> points;
   /// ring i = points[ringEnds[i-1] (or 0), ringEnds[i]).
   std::vector<std::uint32_t> ringEnds;
-  float minHeightM = 0.0f;  ///< bottom of this part above ground
-  float heightM = 0.0f;     ///< top of this part above ground
-  std::string roofShape;    ///< roof:shape, kept for later (flat roofs are drawn for now)
-  float roofHeightM = 0.0f; ///< roof:height, 0 when not tagged
-  std::string sourceId;     ///< the part's own id (w…/r…) when it came from a building:part
+  float minHeightM = 0.0f;   ///< bottom of this part above ground
+  float heightM = 0.0f;      ///< top of this part above ground
+  std::string roofShape;     ///< roof:shape, kept for later (flat roofs are drawn for now)
+  float roofHeightM = 0.0f;  ///< roof:height, 0 when not tagged
+  std::string sourceId;      ///< the part's own id (w…/r…) when it came from a building:part
 
   [[nodiscard]] std::size_t ringCount() const { return ringEnds.size(); }
 };
@@ -54,9 +54,9 @@ struct CityModel {
   std::string projection = "transverse-mercator";  ///< GeographicLib TM on WGS84, k0 = 1
   std::vector<Building> buildings;
   DropCounts drops;
-  std::vector<std::string> warnings;  ///< what was inferred instead of a garbage tag, etc.
+  std::vector<std::string> warnings;                   ///< what was inferred instead of a garbage tag, etc.
   std::map<std::string, std::uint64_t> warningCounts;  ///< "building:levels not a number" -> 1
-  std::vector<std::string> sources;   ///< input files, for the manifest
+  std::vector<std::string> sources;                    ///< input files, for the manifest
 };
 
 }  // namespace qv::prep

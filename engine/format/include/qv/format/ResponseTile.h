@@ -1,0 +1,90 @@
+// Response tiles, aligned with the city tiles (same buildings, same order):
+//   summary (.qvs): for every tile — damage state and peaks per building, peak drift per storey;
+//     the viewer always loads it (colours, inspection, counts);
+//   history (.qvh): for leaf tiles — floor displacement histories, loaded only for the buildings
+//     the viewer animates.
+// Specification: docs/formats.md ("Response tiles"). One codec for writer and reader.
+//
+// Histories are stored compactly as a per-building basis over the floors (the leading singular
+// vectors of the building's displacement history, close to its mode shapes) times coordinate
+// series sampled at a per-building rate and quantized with a per-series scale: floor f at time t
+// is Σ_k shape[f][k] · scale[k] · q_k(t), q_k interpolated between samples by uniform Catmull-Rom
+// cubics (end samples repeated).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "qv/core/Result.h"
+
+namespace qv {
+
+inline constexpr std::uint16_t kResponseTileVersion = 1;
+
+enum class DamageState : std::uint8_t {
+  None = 0,
+  Slight = 1,
+  Moderate = 2,
+  Extensive = 3,
+  Complete = 4,
+  NoResult = 255
+};
+std::string_view damageStateName(DamageState state);  ///< "none" … "complete", "no_result"
+
+enum class ResponseSource : std::uint8_t { None = 0, Model = 1, Imported = 2 };
+std::string_view responseSourceName(ResponseSource source);  ///< "none", "model", "imported"
+
+struct BuildingResponse {
+  DamageState damage = DamageState::NoResult;
+  ResponseSource source = ResponseSource::None;
+  std::uint16_t storeys = 0;              ///< storeys the result has (0 without a result)
+  float peakDriftRatio = 0.0f;            ///< max over storeys and directions
+  float peakRoofDisplacementM = 0.0f;     ///< relative to the ground, max over time of |(x, y)|
+  float pgaG = 0.0f;                      ///< peak ground acceleration applied to this building
+  float peakFloorAccelerationMs2 = 0.0f;  ///< absolute, max over floors
+  float residualDriftRatio = 0.0f;        ///< max over storeys, after the motion
+  std::uint32_t firstStorey = 0;          ///< into ResponseSummaryTile::storeyPeakDrift
+};
+
+struct ResponseSummaryTile {
+  std::vector<BuildingResponse> buildings;
+  std::vector<float> storeyPeakDrift;  ///< per building with a result, `storeys` values, ground up
+};
+
+std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile);
+Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> bytes, std::string_view name);
+
+/// One direction of one building's history.
+struct HistoryDirection {
+  std::uint8_t modes = 0;                 ///< basis vectors (0: no motion in this direction)
+  std::vector<float> shapes;              ///< floors × modes, floor-major (floor 1 first), metres per unit
+  std::vector<float> scales;              ///< modes: coordinate value of one quantization step
+  std::vector<std::int16_t> coordinates;  ///< modes × sampleCount, mode-major
+};
+
+struct BuildingHistory {
+  std::uint16_t floors = 0;  ///< floor levels above ground (= storeys); 0: no history
+  float sampleRateHz = 0.0f;
+  float startSeconds = 0.0f;      ///< the building is at rest before this time (its shaking arrives)
+  std::uint32_t sampleCount = 0;  ///< samples at t = start + i / rate, i = 0 .. sampleCount-1
+  std::uint8_t bits = 16;         ///< 8 or 16: stored width of the coordinates
+  HistoryDirection x, y;
+};
+
+struct ResponseHistoryTile {
+  float durationSeconds = 0.0f;
+  std::vector<BuildingHistory> buildings;
+};
+
+std::vector<std::uint8_t> encodeResponseHistory(const ResponseHistoryTile& tile);
+Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> bytes, std::string_view name);
+
+/// Displacements (metres, x and y) of floor levels 0 .. floors at time t seconds (floor 0, the
+/// ground, is 0), Catmull-Rom interpolated; times beyond the history hold its last sample.
+void sampleHistory(const BuildingHistory& history, double timeSeconds, std::span<float> floorsX,
+                   std::span<float> floorsY);
+
+}  // namespace qv

@@ -1,0 +1,83 @@
+// The tileset manifest (tileset.json): what a city directory holds and how its tiles nest. It is
+// the commit point of every tool that changes a city: tools write new tile files first and replace
+// the manifest last, so a reader always sees a consistent city. Specification: docs/formats.md.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "qv/core/Result.h"
+#include "qv/geometry/Bounds.h"
+
+namespace qv {
+
+inline constexpr int kTilesetVersion = 1;
+inline constexpr std::string_view kTilesetFormat = "quakeview-tileset";
+
+/// Per-tile files of the response step (absent until `quakeview-prep response` ran).
+struct TileResponseFiles {
+  std::string summaryFile;  ///< relative to the manifest; every tile has one
+  std::uint64_t summaryBytes = 0;
+  std::uint32_t summaryCrc32 = 0;
+  std::string historyFile;  ///< leaves only (empty for inner tiles)
+  std::uint64_t historyBytes = 0;
+  std::uint32_t historyCrc32 = 0;
+};
+
+struct TileNode {
+  std::uint8_t level = 0;              ///< quadtree depth, 0 = root
+  std::uint32_t x = 0, y = 0;          ///< quadtree cell at that level
+  Rect bounds;                         ///< metres, the footprints of every building in the subtree
+  float maxHeightM = 0.0f;             ///< tallest building in the subtree
+  bool coarse = false;                 ///< an inner node: simplified prisms of everything below
+  float geometricErrorM = 0;           ///< how far the tile's shapes may stray from the full detail (0 for leaves)
+  std::uint32_t buildings = 0;         ///< buildings in this tile's own file
+  std::uint64_t subtreeBuildings = 0;  ///< distinct buildings in this subtree
+  std::string file;                    ///< relative to the manifest
+  std::uint64_t bytes = 0;
+  std::uint32_t crc32 = 0;              ///< CRC-32 of the whole file
+  std::vector<std::uint32_t> children;  ///< indices into Tileset::nodes
+  std::optional<TileResponseFiles> response;
+
+  [[nodiscard]] std::string key() const;  ///< "level/x/y"
+};
+
+struct ResponseInfo {
+  std::string motion;    ///< e.g. "synthetic Kanai-Tajimi seed 7, PGA 0.35 g" or a file name
+  std::string scenario;  ///< e.g. "M6.8 at -74.02,40.68, depth 10 km" or "" (one record for all)
+  double durationSeconds = 0;
+  double sampleRateHz = 0;              ///< history tier display rate
+  std::uint64_t buildingsRevision = 0;  ///< the city revision the response was computed for
+  std::string method;                   ///< "MDOF shear building, Bouc-Wen" or "imported"
+  /// Counts per damage state: none, slight, moderate, extensive, complete, no_result.
+  std::uint64_t damageStates[6] = {0, 0, 0, 0, 0, 0};
+};
+
+struct Tileset {
+  int version = kTilesetVersion;
+  std::string generator;
+  double originLon = 0.0, originLat = 0.0;  ///< degrees, WGS84; the city frame's (0, 0)
+  std::string projection = "transverse-mercator";
+  Rect bounds;  ///< metres
+  float maxHeightM = 0.0f;
+  std::uint64_t buildings = 0;
+  std::uint64_t buildingsRevision = 1;  ///< bumped by every tool that adds or changes buildings
+  std::vector<std::string> sources;     ///< input files the city came from
+  std::vector<TileNode> nodes;          ///< nodes[0] is the root
+  std::optional<ResponseInfo> response;
+
+  /// True when a response exists but was computed for an older revision of the buildings.
+  [[nodiscard]] bool responseOutOfDate() const { return response && response->buildingsRevision != buildingsRevision; }
+};
+
+/// Serializes the manifest (pretty enough to read: one tile per line).
+std::string tilesetToJson(const Tileset& tileset);
+
+/// Parses and validates a manifest; `name` prefixes error messages. Checks the format name and
+/// version, the tree's shape (indices in range, no cycles, every node reached once) and values.
+Result<Tileset> parseTileset(std::string_view json, std::string_view name);
+
+}  // namespace qv

@@ -1,0 +1,377 @@
+#include "qv/format/ResponseTile.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <optional>
+
+#include "qv/core/ByteIO.h"
+#include "qv/core/Crc32.h"
+
+namespace qv {
+namespace {
+
+constexpr std::size_t kHeaderSize = 28;
+constexpr std::size_t kSummaryRecordSize = 28;
+constexpr std::uint32_t kMaxBuildings = 1u << 20;
+constexpr std::uint32_t kMaxFloors = 500;
+constexpr std::uint8_t kMaxModes = 8;
+constexpr std::uint32_t kMaxSamples = 1u << 20;
+
+std::uint32_t tag(const char (&t)[5]) {
+  return static_cast<std::uint32_t>(t[0]) | static_cast<std::uint32_t>(t[1]) << 8 |
+         static_cast<std::uint32_t>(t[2]) << 16 | static_cast<std::uint32_t>(t[3]) << 24;
+}
+
+struct Section {
+  std::uint32_t id;
+  const ByteWriter* data;
+};
+
+// Header + section table + sections; CRC over [16, end).
+std::vector<std::uint8_t> assemble(const char (&magic)[5], std::uint32_t count, std::uint32_t extra,
+                                   std::span<const Section> sections) {
+  ByteWriter out;
+  out.fourcc(magic);
+  out.u16(kResponseTileVersion);
+  out.u16(0);
+  out.u32(0);
+  out.u32(0);
+  out.u32(count);
+  out.u32(extra);
+  out.u16(static_cast<std::uint16_t>(sections.size()));
+  out.u16(0);
+  std::size_t offset = kHeaderSize + sections.size() * 12;
+  for (const Section& s : sections) {
+    out.u32(s.id);
+    out.u32(static_cast<std::uint32_t>(offset));
+    out.u32(static_cast<std::uint32_t>(s.data->size()));
+    offset += (s.data->size() + 3) / 4 * 4;
+  }
+  for (const Section& s : sections) {
+    out.bytes(s.data->data());
+    out.align(4);
+  }
+  out.patchU32(8, static_cast<std::uint32_t>(out.size()));
+  out.patchU32(12, crc32(std::span(out.data()).subspan(16)));
+  return out.take();
+}
+
+struct Parsed {
+  std::uint32_t count = 0;
+  std::uint32_t extra = 0;
+  std::vector<std::pair<std::uint32_t, std::pair<std::size_t, std::size_t>>> sections;  // id -> offset, size
+};
+
+// Checks magic, version, size and CRC and reads the section table.
+Result<Parsed> parseHeader(std::span<const std::uint8_t> bytes, const char (&magic)[5], const char* kind,
+                           const std::string& prefix) {
+  if (bytes.size() < kHeaderSize) {
+    return Error{prefix + "not a " + kind + ": " + std::to_string(bytes.size()) + " bytes is shorter than the header"};
+  }
+  if (std::memcmp(bytes.data(), magic, 4) != 0) {
+    return Error{prefix + "not a " + kind + ": the file does not start with \"" + magic + "\""};
+  }
+  ByteReader h(bytes.subspan(4, kHeaderSize - 4), 4);
+  const std::uint16_t version = h.u16("version");
+  if (version != kResponseTileVersion) {
+    return Error{prefix + "unsupported " + kind + " version " + std::to_string(version) +
+                 " (this build reads version " + std::to_string(kResponseTileVersion) + ")"};
+  }
+  h.u16("flags");
+  const std::uint32_t size = h.u32("file size");
+  const std::uint32_t stored = h.u32("checksum");
+  Parsed p;
+  p.count = h.u32("count");
+  p.extra = h.u32("extra");
+  const std::uint16_t sections = h.u16("section count");
+  if (size != bytes.size()) {
+    return Error{prefix + "truncated or padded: the header says " + std::to_string(size) + " bytes, the file has " +
+                 std::to_string(bytes.size())};
+  }
+  if (const std::uint32_t crc = crc32(bytes.subspan(16)); crc != stored) {
+    char buffer[96];
+    std::snprintf(buffer, sizeof buffer, "checksum mismatch: stored %08x, computed %08x (corrupt file)", stored, crc);
+    return Error{prefix + buffer};
+  }
+  if (p.count > kMaxBuildings) {
+    return Error{prefix + std::to_string(p.count) + " buildings exceeds the limit of " + std::to_string(kMaxBuildings)};
+  }
+  ByteReader table(bytes.subspan(kHeaderSize), kHeaderSize);
+  for (std::uint16_t i = 0; i < sections; ++i) {
+    const std::uint32_t id = table.u32("section id");
+    const std::uint32_t offset = table.u32("section offset");
+    const std::uint32_t length = table.u32("section size");
+    if (!table.ok()) return Error{prefix + "section table: " + table.error()};
+    if (offset < kHeaderSize || offset > bytes.size() || length > bytes.size() - offset) {
+      return Error{prefix + "a section at byte " + std::to_string(offset) + " lies outside the file"};
+    }
+    p.sections.push_back({id, {offset, length}});
+  }
+  return p;
+}
+
+std::optional<std::pair<std::size_t, std::size_t>> findSection(const Parsed& p, std::uint32_t id) {
+  for (const auto& [sid, range] : p.sections) {
+    if (sid == id) return range;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string_view damageStateName(DamageState s) {
+  switch (s) {
+    case DamageState::None:
+      return "none";
+    case DamageState::Slight:
+      return "slight";
+    case DamageState::Moderate:
+      return "moderate";
+    case DamageState::Extensive:
+      return "extensive";
+    case DamageState::Complete:
+      return "complete";
+    default:
+      return "no_result";
+  }
+}
+
+std::string_view responseSourceName(ResponseSource s) {
+  switch (s) {
+    case ResponseSource::Model:
+      return "model";
+    case ResponseSource::Imported:
+      return "imported";
+    default:
+      return "none";
+  }
+}
+
+std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile) {
+  ByteWriter rsum, sdrf;
+  std::uint32_t storeyValues = 0;
+  for (const BuildingResponse& b : tile.buildings) {
+    rsum.u8(static_cast<std::uint8_t>(b.damage));
+    rsum.u8(static_cast<std::uint8_t>(b.source));
+    const std::uint16_t storeys = b.source == ResponseSource::None ? 0 : b.storeys;
+    rsum.u16(storeys);
+    rsum.f32(b.peakDriftRatio);
+    rsum.f32(b.peakRoofDisplacementM);
+    rsum.f32(b.pgaG);
+    rsum.f32(b.peakFloorAccelerationMs2);
+    rsum.f32(b.residualDriftRatio);
+    rsum.u32(0);
+    for (std::uint16_t s = 0; s < storeys; ++s) {
+      const std::size_t i = b.firstStorey + s;
+      sdrf.f32(i < tile.storeyPeakDrift.size() ? tile.storeyPeakDrift[i] : 0.0f);
+    }
+    storeyValues += storeys;
+  }
+  const std::array<Section, 2> sections = {{{tag("RSUM"), &rsum}, {tag("SDRF"), &sdrf}}};
+  return assemble("QVRS", static_cast<std::uint32_t>(tile.buildings.size()), storeyValues, sections);
+}
+
+Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> bytes, std::string_view name) {
+  const std::string prefix = std::string(name) + ": ";
+  auto header = parseHeader(bytes, "QVRS", "response summary tile", prefix);
+  if (!header.ok()) return Error{header.error()};
+  const auto rsum = findSection(*header, tag("RSUM"));
+  const auto sdrf = findSection(*header, tag("SDRF"));
+  if (!rsum || !sdrf) return Error{prefix + "required section RSUM or SDRF is missing"};
+  if (rsum->second != static_cast<std::size_t>(header->count) * kSummaryRecordSize) {
+    return Error{prefix + "section RSUM at byte " + std::to_string(rsum->first) + " holds " +
+                 std::to_string(rsum->second) + " bytes, expected " + std::to_string(header->count) + " records of 28"};
+  }
+  if (sdrf->second != static_cast<std::size_t>(header->extra) * 4) {
+    return Error{prefix + "section SDRF at byte " + std::to_string(sdrf->first) + " holds " +
+                 std::to_string(sdrf->second) + " bytes, the header declares " + std::to_string(header->extra) +
+                 " storey values"};
+  }
+  ResponseSummaryTile tile;
+  tile.buildings.resize(header->count);
+  ByteReader r(bytes.subspan(rsum->first, rsum->second), rsum->first);
+  std::uint64_t storeyTotal = 0;
+  for (BuildingResponse& b : tile.buildings) {
+    const std::uint8_t damage = r.u8("damage state");
+    const std::uint8_t source = r.u8("source");
+    b.storeys = r.u16("storeys");
+    b.peakDriftRatio = r.f32("peak drift");
+    b.peakRoofDisplacementM = r.f32("peak roof displacement");
+    b.pgaG = r.f32("pga");
+    b.peakFloorAccelerationMs2 = r.f32("peak floor acceleration");
+    b.residualDriftRatio = r.f32("residual drift");
+    r.skip(4, "reserved");
+    if (damage > 4 && damage != 255)
+      return Error{prefix + "section RSUM near byte " + std::to_string(r.offset()) + ": damage state " +
+                   std::to_string(damage)};
+    if (source > 2)
+      return Error{prefix + "section RSUM near byte " + std::to_string(r.offset()) + ": unknown source " +
+                   std::to_string(source)};
+    b.damage = static_cast<DamageState>(damage);
+    b.source = static_cast<ResponseSource>(source);
+    for (float v :
+         {b.peakDriftRatio, b.peakRoofDisplacementM, b.pgaG, b.peakFloorAccelerationMs2, b.residualDriftRatio}) {
+      if (!std::isfinite(v) || v < 0.0f)
+        return Error{prefix + "section RSUM near byte " + std::to_string(r.offset()) + ": invalid peak value"};
+    }
+    if (b.source == ResponseSource::None && b.storeys != 0)
+      return Error{prefix + "a building without a result has storeys"};
+    b.firstStorey = static_cast<std::uint32_t>(storeyTotal);
+    storeyTotal += b.storeys;
+  }
+  if (storeyTotal != header->extra) {
+    return Error{prefix + "the buildings hold " + std::to_string(storeyTotal) + " storeys, the header declares " +
+                 std::to_string(header->extra)};
+  }
+  tile.storeyPeakDrift.resize(header->extra);
+  ByteReader s(bytes.subspan(sdrf->first, sdrf->second), sdrf->first);
+  for (float& v : tile.storeyPeakDrift) {
+    v = s.f32("storey peak drift");
+    if (!std::isfinite(v) || v < 0.0f)
+      return Error{prefix + "section SDRF near byte " + std::to_string(s.offset()) + ": invalid drift"};
+  }
+  return tile;
+}
+
+std::vector<std::uint8_t> encodeResponseHistory(const ResponseHistoryTile& tile) {
+  ByteWriter hist;
+  for (const BuildingHistory& b : tile.buildings) {
+    hist.u16(b.floors);
+    if (b.floors == 0) continue;
+    const std::uint8_t bits = b.bits == 8 ? 8 : 16;
+    hist.u8(bits);
+    hist.u8(0);
+    hist.f32(b.sampleRateHz);
+    hist.f32(b.startSeconds);
+    hist.u32(b.sampleCount);
+    for (const HistoryDirection* d : {&b.x, &b.y}) {
+      hist.u8(d->modes);
+      for (std::size_t i = 0; i < static_cast<std::size_t>(b.floors) * d->modes; ++i) {
+        hist.f32(i < d->shapes.size() ? d->shapes[i] : 0.0f);
+      }
+      for (std::size_t k = 0; k < d->modes; ++k) hist.f32(k < d->scales.size() ? d->scales[k] : 0.0f);
+      const std::size_t n = static_cast<std::size_t>(d->modes) * b.sampleCount;
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::int16_t v = i < d->coordinates.size() ? d->coordinates[i] : 0;
+        if (bits == 8)
+          hist.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp<int>(v, -127, 127))));
+        else
+          hist.i16(v);
+      }
+    }
+  }
+  ByteWriter meta;
+  meta.f32(tile.durationSeconds);
+  const std::array<Section, 2> sections = {{{tag("HMET"), &meta}, {tag("HIST"), &hist}}};
+  return assemble("QVRH", static_cast<std::uint32_t>(tile.buildings.size()), 0, sections);
+}
+
+Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> bytes, std::string_view name) {
+  const std::string prefix = std::string(name) + ": ";
+  auto header = parseHeader(bytes, "QVRH", "response history tile", prefix);
+  if (!header.ok()) return Error{header.error()};
+  const auto meta = findSection(*header, tag("HMET"));
+  const auto hist = findSection(*header, tag("HIST"));
+  if (!meta || !hist) return Error{prefix + "required section HMET or HIST is missing"};
+  ResponseHistoryTile tile;
+  ByteReader m(bytes.subspan(meta->first, meta->second), meta->first);
+  tile.durationSeconds = m.f32("duration");
+  if (!m.ok() || !std::isfinite(tile.durationSeconds) || tile.durationSeconds < 0.0f || tile.durationSeconds > 1.0e5f) {
+    return Error{prefix + "section HMET: invalid duration"};
+  }
+  ByteReader r(bytes.subspan(hist->first, hist->second), hist->first);
+  tile.buildings.resize(header->count);
+  for (BuildingHistory& b : tile.buildings) {
+    b.floors = r.u16("floors");
+    if (!r.ok()) break;
+    if (b.floors == 0) continue;
+    if (b.floors > kMaxFloors)
+      return Error{prefix + "section HIST near byte " + std::to_string(r.offset()) + ": " + std::to_string(b.floors) +
+                   " floors exceeds the limit"};
+    b.bits = r.u8("bits");
+    r.u8("reserved");
+    b.sampleRateHz = r.f32("sample rate");
+    b.startSeconds = r.f32("start time");
+    b.sampleCount = r.u32("sample count");
+    if (!r.ok()) break;
+    if (b.bits != 8 && b.bits != 16)
+      return Error{prefix + "section HIST near byte " + std::to_string(r.offset()) + ": sample width " +
+                   std::to_string(b.bits)};
+    if (!std::isfinite(b.sampleRateHz) || b.sampleRateHz <= 0.0f || b.sampleRateHz > 10000.0f || b.sampleCount == 0 ||
+        b.sampleCount > kMaxSamples || !std::isfinite(b.startSeconds) || b.startSeconds < 0.0f ||
+        b.startSeconds > 1.0e5f) {
+      return Error{prefix + "section HIST near byte " + std::to_string(r.offset()) + ": invalid sampling"};
+    }
+    for (HistoryDirection* d : {&b.x, &b.y}) {
+      d->modes = r.u8("modes");
+      if (d->modes > kMaxModes)
+        return Error{prefix + "section HIST near byte " + std::to_string(r.offset()) + ": " + std::to_string(d->modes) +
+                     " modes exceeds the limit"};
+      const std::size_t shapeCount = static_cast<std::size_t>(b.floors) * d->modes;
+      const std::size_t sampleCount = static_cast<std::size_t>(d->modes) * b.sampleCount;
+      // Check the bytes are there before allocating.
+      const std::size_t need = shapeCount * 4 + d->modes * 4u + sampleCount * (b.bits / 8u);
+      if (need > r.remaining()) {
+        return Error{prefix + "section HIST near byte " + std::to_string(r.offset()) + ": truncated: a history needs " +
+                     std::to_string(need) + " bytes, " + std::to_string(r.remaining()) + " left"};
+      }
+      d->shapes.resize(shapeCount);
+      for (float& v : d->shapes) v = r.f32("shape");
+      d->scales.resize(d->modes);
+      for (float& v : d->scales) v = r.f32("scale");
+      for (float v : d->shapes) {
+        if (!std::isfinite(v)) return Error{prefix + "section HIST: non-finite mode shape"};
+      }
+      for (float v : d->scales) {
+        if (!std::isfinite(v)) return Error{prefix + "section HIST: non-finite scale"};
+      }
+      d->coordinates.resize(sampleCount);
+      if (b.bits == 8) {
+        for (std::int16_t& v : d->coordinates) v = static_cast<std::int8_t>(r.u8("coordinate"));
+      } else {
+        for (std::int16_t& v : d->coordinates) v = r.i16("coordinate");
+      }
+    }
+  }
+  if (!r.ok()) return Error{prefix + "section HIST: " + r.error()};
+  return tile;
+}
+
+void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX, std::span<float> floorsY) {
+  std::fill(floorsX.begin(), floorsX.end(), 0.0f);
+  std::fill(floorsY.begin(), floorsY.end(), 0.0f);
+  if (h.floors == 0 || h.sampleCount == 0) return;
+  const double position = std::clamp((t - static_cast<double>(h.startSeconds)) * h.sampleRateHz, 0.0,
+                                     static_cast<double>(h.sampleCount - 1));
+  const auto i1 = static_cast<std::uint32_t>(position);
+  const std::uint32_t last = h.sampleCount - 1;
+  const std::uint32_t i0 = i1 > 0 ? i1 - 1 : 0;
+  const std::uint32_t i2 = std::min(i1 + 1, last);
+  const std::uint32_t i3 = std::min(i1 + 2, last);
+  // Uniform Catmull-Rom weights (the cubic through the four nearest samples' tangents): with 8
+  // samples a period it stays within 1 % of a sinusoid, where straight lines need 25.
+  const auto u = static_cast<float>(position - i1);
+  const float u2 = u * u, u3 = u2 * u;
+  const float w0 = 0.5f * (-u3 + 2.0f * u2 - u);
+  const float w1 = 0.5f * (3.0f * u3 - 5.0f * u2 + 2.0f);
+  const float w2 = 0.5f * (-3.0f * u3 + 4.0f * u2 + u);
+  const float w3 = 0.5f * (u3 - u2);
+  const std::size_t floors = std::min<std::size_t>(h.floors, floorsX.size() > 0 ? floorsX.size() - 1 : 0);
+  const std::pair<const HistoryDirection*, std::span<float>> directions[] = {{&h.x, floorsX}, {&h.y, floorsY}};
+  for (const auto& [d, out] : directions) {
+    for (std::size_t k = 0; k < d->modes; ++k) {
+      const std::int16_t* q = d->coordinates.data() + k * h.sampleCount;
+      const float coordinate = (w0 * static_cast<float>(q[i0]) + w1 * static_cast<float>(q[i1]) +
+                                w2 * static_cast<float>(q[i2]) + w3 * static_cast<float>(q[i3])) *
+                               d->scales[k];
+      for (std::size_t f = 0; f < std::min<std::size_t>(floors, out.size() - 1); ++f) {
+        out[f + 1] += d->shapes[f * d->modes + k] * coordinate;
+      }
+    }
+  }
+}
+
+}  // namespace qv

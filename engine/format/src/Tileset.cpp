@@ -1,0 +1,321 @@
+#include "qv/format/Tileset.h"
+
+#include <simdjson.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+
+#include "qv/core/JsonWriter.h"
+
+namespace qv {
+namespace {
+
+constexpr const char* kDamageKeys[6] = {"none", "slight", "moderate", "extensive", "complete", "no_result"};
+
+std::string hex32(std::uint32_t v) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "%08x", v);
+  return buffer;
+}
+
+void writeRect(JsonWriter& w, const Rect& r) {
+  w.beginArray().value(r.minX).value(r.minY).value(r.maxX).value(r.maxY).endArray();
+}
+
+void writeNode(JsonWriter& w, const Tileset& t, std::uint32_t index, int depth) {
+  const TileNode& n = t.nodes[index];
+  w.beginObject();
+  w.field("level", static_cast<unsigned>(n.level)).field("x", n.x).field("y", n.y);
+  w.key("bounds");
+  writeRect(w, n.bounds);
+  w.field("maxHeight", n.maxHeightM);
+  w.field("coarse", n.coarse);
+  w.field("geometricError", n.geometricErrorM);
+  w.field("buildings", n.buildings);
+  w.field("subtreeBuildings", n.subtreeBuildings);
+  w.field("file", n.file).field("bytes", n.bytes).field("crc32", hex32(n.crc32));
+  if (n.response) {
+    w.key("response").beginObject();
+    w.field("summary", n.response->summaryFile).field("summaryBytes", n.response->summaryBytes);
+    w.field("summaryCrc32", hex32(n.response->summaryCrc32));
+    if (!n.response->historyFile.empty()) {
+      w.field("history", n.response->historyFile).field("historyBytes", n.response->historyBytes);
+      w.field("historyCrc32", hex32(n.response->historyCrc32));
+    }
+    w.endObject();
+  }
+  if (!n.children.empty() && depth < 64) {
+    w.key("children").beginArray();
+    for (std::uint32_t c : n.children) {
+      w.breakLine();
+      writeNode(w, t, c, depth + 1);
+    }
+    w.endArray();
+  }
+  w.endObject();
+}
+
+// --- parsing ---------------------------------------------------------------------------------
+
+using simdjson::dom::element;
+using simdjson::dom::object;
+
+struct Parser {
+  std::string prefix;
+  std::string error;
+
+  bool fail(const std::string& what) {
+    if (error.empty()) error = prefix + what;
+    return false;
+  }
+  bool number(const object& o, const char* key, double& out, const std::string& where) {
+    element e;
+    if (o[key].get(e) != simdjson::SUCCESS) return fail(where + ": missing \"" + key + "\"");
+    if (e.get_double().get(out) != simdjson::SUCCESS || !std::isfinite(out)) {
+      return fail(where + ": \"" + key + "\" is not a number");
+    }
+    return true;
+  }
+  bool unsignedNumber(const object& o, const char* key, std::uint64_t& out, const std::string& where) {
+    double v = 0;
+    if (!number(o, key, v, where)) return false;
+    if (v < 0 || v > 9.0e15 || std::floor(v) != v) return fail(where + ": \"" + key + "\" is not a count");
+    out = static_cast<std::uint64_t>(v);
+    return true;
+  }
+  bool text(const object& o, const char* key, std::string& out, const std::string& where, bool required = true) {
+    std::string_view v;
+    const auto r = o[key].get(v);
+    if (r == simdjson::NO_SUCH_FIELD && !required) return true;
+    if (r != simdjson::SUCCESS) return fail(where + ": \"" + key + "\" missing or not a string");
+    out = std::string(v);
+    return true;
+  }
+  bool hex(const object& o, const char* key, std::uint32_t& out, const std::string& where) {
+    std::string s;
+    if (!text(o, key, s, where)) return false;
+    char* end = nullptr;
+    const unsigned long v = std::strtoul(s.c_str(), &end, 16);
+    if (s.empty() || s.size() > 8 || end != s.c_str() + s.size()) return fail(where + ": \"" + key + "\" is not hex");
+    out = static_cast<std::uint32_t>(v);
+    return true;
+  }
+  bool rect(const object& o, const char* key, Rect& out, const std::string& where) {
+    simdjson::dom::array a;
+    if (o[key].get(a) != simdjson::SUCCESS || a.size() != 4)
+      return fail(where + ": \"" + key + "\" must be [minX, minY, maxX, maxY]");
+    double v[4];
+    std::size_t i = 0;
+    for (element e : a) {
+      if (e.get_double().get(v[i]) != simdjson::SUCCESS || !std::isfinite(v[i]) || std::abs(v[i]) > 1e7) {
+        return fail(where + ": \"" + key + "\" holds a non-number");
+      }
+      ++i;
+    }
+    out = Rect{static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]), static_cast<float>(v[3])};
+    if (out.minX > out.maxX || out.minY > out.maxY) return fail(where + ": \"" + key + "\" has min > max");
+    return true;
+  }
+  // Relative paths only: a manifest must not point the viewer or tools outside its directory.
+  bool relativePath(const std::string& path, const std::string& where) {
+    if (path.empty() || path[0] == '/' || path.find("..") != std::string::npos || path.find(':') != std::string::npos ||
+        path.find('\\') != std::string::npos) {
+      return fail(where + ": file \"" + path + "\" is not a relative path inside the city directory");
+    }
+    return true;
+  }
+
+  bool node(const element& e, Tileset& t, int depth, const std::string& where) {
+    if (depth > 40) return fail(where + ": tile tree deeper than 40 levels");
+    if (t.nodes.size() >= 1000000) return fail("more than a million tiles");
+    object o;
+    if (e.get(o) != simdjson::SUCCESS) return fail(where + ": a tile must be an object");
+    TileNode n;
+    std::uint64_t level = 0, x = 0, y = 0, buildings = 0, bytes = 0;
+    double maxHeight = 0, geometricError = 0;
+    if (!unsignedNumber(o, "level", level, where) || !unsignedNumber(o, "x", x, where) ||
+        !unsignedNumber(o, "y", y, where) || !rect(o, "bounds", n.bounds, where) ||
+        !number(o, "maxHeight", maxHeight, where) || !unsignedNumber(o, "buildings", buildings, where) ||
+        !unsignedNumber(o, "subtreeBuildings", n.subtreeBuildings, where) || !text(o, "file", n.file, where) ||
+        !unsignedNumber(o, "bytes", bytes, where) || !hex(o, "crc32", n.crc32, where)) {
+      return false;
+    }
+    if (level > 30 || x >= (1ull << level) || y >= (1ull << level)) return fail(where + ": invalid level/x/y");
+    if (buildings > 0xFFFFFFFFull) return fail(where + ": too many buildings");
+    if (!relativePath(n.file, where)) return false;
+    n.level = static_cast<std::uint8_t>(level);
+    n.x = static_cast<std::uint32_t>(x);
+    n.y = static_cast<std::uint32_t>(y);
+    n.buildings = static_cast<std::uint32_t>(buildings);
+    n.bytes = bytes;
+    n.maxHeightM = static_cast<float>(maxHeight);
+    bool coarse = false;
+    if (o["coarse"].get(coarse) == simdjson::SUCCESS) n.coarse = coarse;
+    if (o["geometricError"].get_double().get(geometricError) == simdjson::SUCCESS && std::isfinite(geometricError)) {
+      n.geometricErrorM = static_cast<float>(geometricError);
+    }
+    object r;
+    if (o["response"].get(r) == simdjson::SUCCESS) {
+      TileResponseFiles files;
+      const std::string rw = where + " response";
+      if (!text(r, "summary", files.summaryFile, rw) || !unsignedNumber(r, "summaryBytes", files.summaryBytes, rw) ||
+          !hex(r, "summaryCrc32", files.summaryCrc32, rw) || !relativePath(files.summaryFile, rw)) {
+        return false;
+      }
+      if (r["history"].error() == simdjson::SUCCESS) {
+        if (!text(r, "history", files.historyFile, rw) || !unsignedNumber(r, "historyBytes", files.historyBytes, rw) ||
+            !hex(r, "historyCrc32", files.historyCrc32, rw) || !relativePath(files.historyFile, rw)) {
+          return false;
+        }
+      }
+      n.response = files;
+    }
+    const auto index = static_cast<std::uint32_t>(t.nodes.size());
+    t.nodes.push_back(n);
+    simdjson::dom::array children;
+    if (o["children"].get(children) == simdjson::SUCCESS) {
+      if (children.size() > 4) return fail(where + ": a quadtree tile has at most 4 children");
+      std::vector<std::uint32_t> childIndices;
+      for (element c : children) {
+        const auto childIndex = static_cast<std::uint32_t>(t.nodes.size());
+        if (!node(c, t, depth + 1, where + "/" + std::to_string(childIndices.size()))) return false;
+        const TileNode& child = t.nodes[childIndex];
+        if (child.level != n.level + 1 || child.x / 2 != n.x || child.y / 2 != n.y) {
+          return fail(where + ": child " + child.key() + " is not a quadtree child of " + n.key());
+        }
+        childIndices.push_back(childIndex);
+      }
+      t.nodes[index].children = std::move(childIndices);
+    }
+    return true;
+  }
+};
+
+}  // namespace
+
+std::string TileNode::key() const {
+  return std::to_string(level) + "/" + std::to_string(x) + "/" + std::to_string(y);
+}
+
+std::string tilesetToJson(const Tileset& t) {
+  JsonWriter w;
+  w.beginObject();
+  w.field("format", kTilesetFormat).field("version", t.version);
+  w.field("generator", t.generator);
+  w.key("origin").beginArray().value(t.originLon).value(t.originLat).endArray();
+  w.key("projection").beginObject();
+  w.field("type", t.projection).field("ellipsoid", "WGS84").field("centralMeridian", t.originLon);
+  w.field("latitudeOfOrigin", t.originLat).field("scaleFactor", 1.0).field("units", "m");
+  w.endObject();
+  w.key("bounds");
+  writeRect(w, t.bounds);
+  w.field("maxHeight", t.maxHeightM);
+  w.field("buildings", t.buildings);
+  w.field("buildingsRevision", t.buildingsRevision);
+  w.key("sources").beginArray();
+  for (const std::string& s : t.sources) w.value(s);
+  w.endArray();
+  if (t.response) {
+    const ResponseInfo& r = *t.response;
+    w.key("response").beginObject();
+    w.field("motion", r.motion).field("scenario", r.scenario).field("method", r.method);
+    w.field("durationSeconds", r.durationSeconds).field("sampleRateHz", r.sampleRateHz);
+    w.field("buildingsRevision", r.buildingsRevision);
+    w.key("damageStates").beginObject();
+    for (int i = 0; i < 6; ++i) w.field(kDamageKeys[i], r.damageStates[i]);
+    w.endObject();
+    w.endObject();
+  }
+  if (!t.nodes.empty()) {
+    w.key("root");
+    writeNode(w, t, 0, 0);
+  }
+  w.endObject();
+  std::string out = w.take();
+  out += '\n';
+  return out;
+}
+
+Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
+  Parser p;
+  p.prefix = std::string(name) + ": ";
+  if (json.size() > (256u << 20)) return Error{p.prefix + "manifest larger than 256 MB"};
+  simdjson::dom::parser parser;
+  element doc;
+  const simdjson::padded_string padded(json.data(), json.size());
+  if (const auto err = parser.parse(padded).get(doc); err != simdjson::SUCCESS) {
+    return Error{p.prefix + "not valid JSON (" + simdjson::error_message(err) + ")"};
+  }
+  object root;
+  if (doc.get(root) != simdjson::SUCCESS) return Error{p.prefix + "the manifest must be a JSON object"};
+  Tileset t;
+  std::string format;
+  if (!p.text(root, "format", format, "manifest")) return Error{p.error};
+  if (format != kTilesetFormat) return Error{p.prefix + "not a QuakeView tileset (format \"" + format + "\")"};
+  double version = 0;
+  if (!p.number(root, "version", version, "manifest")) return Error{p.error};
+  if (version != kTilesetVersion) {
+    return Error{p.prefix + "unsupported tileset version " + std::to_string(static_cast<long long>(version)) +
+                 " (this build reads version " + std::to_string(kTilesetVersion) + ")"};
+  }
+  t.version = kTilesetVersion;
+  p.text(root, "generator", t.generator, "manifest", false);
+  simdjson::dom::array origin;
+  if (root["origin"].get(origin) != simdjson::SUCCESS || origin.size() != 2) {
+    return Error{p.prefix + "\"origin\" must be [lon, lat]"};
+  }
+  if (origin.at(0).get_double().get(t.originLon) != simdjson::SUCCESS ||
+      origin.at(1).get_double().get(t.originLat) != simdjson::SUCCESS || !(std::abs(t.originLon) <= 180.0) ||
+      !(std::abs(t.originLat) <= 85.0)) {
+    return Error{p.prefix + "\"origin\" must hold a longitude in [-180, 180] and a latitude in [-85, 85]"};
+  }
+  object projection;
+  if (root["projection"].get(projection) == simdjson::SUCCESS)
+    p.text(projection, "type", t.projection, "projection", false);
+  double maxHeight = 0;
+  std::uint64_t revision = 1;
+  if (!p.rect(root, "bounds", t.bounds, "manifest") || !p.number(root, "maxHeight", maxHeight, "manifest") ||
+      !p.unsignedNumber(root, "buildings", t.buildings, "manifest")) {
+    return Error{p.error};
+  }
+  if (root["buildingsRevision"].error() == simdjson::SUCCESS &&
+      !p.unsignedNumber(root, "buildingsRevision", revision, "manifest")) {
+    return Error{p.error};
+  }
+  t.buildingsRevision = revision;
+  t.maxHeightM = static_cast<float>(maxHeight);
+  simdjson::dom::array sources;
+  if (root["sources"].get(sources) == simdjson::SUCCESS) {
+    for (element s : sources) {
+      std::string_view v;
+      if (s.get(v) == simdjson::SUCCESS) t.sources.emplace_back(v);
+    }
+  }
+  object response;
+  if (root["response"].get(response) == simdjson::SUCCESS) {
+    ResponseInfo r;
+    std::uint64_t rev = 0;
+    if (!p.text(response, "motion", r.motion, "response") || !p.text(response, "scenario", r.scenario, "response") ||
+        !p.text(response, "method", r.method, "response") ||
+        !p.number(response, "durationSeconds", r.durationSeconds, "response") ||
+        !p.number(response, "sampleRateHz", r.sampleRateHz, "response") ||
+        !p.unsignedNumber(response, "buildingsRevision", rev, "response")) {
+      return Error{p.error};
+    }
+    r.buildingsRevision = rev;
+    object states;
+    if (response["damageStates"].get(states) != simdjson::SUCCESS)
+      return Error{p.prefix + "response: missing damageStates"};
+    for (int i = 0; i < 6; ++i) {
+      if (!p.unsignedNumber(states, kDamageKeys[i], r.damageStates[i], "response damageStates")) return Error{p.error};
+    }
+    t.response = r;
+  }
+  element rootTile;
+  if (root["root"].get(rootTile) != simdjson::SUCCESS) return Error{p.prefix + "missing \"root\" tile"};
+  if (!p.node(rootTile, t, 0, "tile 0/0/0")) return Error{p.error};
+  return t;
+}
+
+}  // namespace qv

@@ -1,0 +1,109 @@
+#include "qv/lod/TileSelector.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+
+namespace qv {
+namespace {
+
+float distanceToBox(const glm::vec3& p, const Box& b) {
+  const float dx = std::max({b.minX - p.x, 0.0f, p.x - b.maxX});
+  const float dy = std::max({b.minY - p.y, 0.0f, p.y - b.maxY});
+  const float dz = std::max({b.minZ - p.z, 0.0f, p.z - b.maxZ});
+  return std::sqrt(dx * dx + dy * dy + dz * dz);
+}
+
+}  // namespace
+
+Box nodeBox(const TileNode& n) {
+  return Box{n.bounds.minX, n.bounds.minY, 0.0f, n.bounds.maxX, n.bounds.maxY, std::max(n.maxHeightM, 1.0f)};
+}
+
+float screenSpaceError(const TileNode& node, const CameraView& view) {
+  if (node.children.empty()) return 0.0f;
+  const float d = distanceToBox(view.eye(), nodeBox(node));
+  return node.geometricErrorM * view.pixelsPerMeterAt(std::max(d, view.nearPlane()));
+}
+
+void selectTiles(const Tileset& t, std::span<const TileState> states, const CameraView& view,
+                 const TileSelectorOptions& options, TileSelection& out) {
+  out.draw.clear();
+  out.wanted.clear();
+  out.used.clear();
+  out.budgetLimited = false;
+  if (t.nodes.empty() || states.size() != t.nodes.size()) return;
+  const Frustum& frustum = view.frustum();
+  auto visible = [&](std::uint32_t i) { return frustum.intersects(nodeBox(t.nodes[i])); };
+  auto state = [&](std::uint32_t i) { return states[i]; };
+  auto ready = [&](std::uint32_t i) { return state(i) == TileState::Loaded || state(i) == TileState::Failed; };
+
+  struct Item {
+    float priority;
+    std::uint32_t node;
+    bool operator<(const Item& o) const { return priority < o.priority; }
+  };
+  auto priorityOf = [&](std::uint32_t i) {
+    const TileNode& n = t.nodes[i];
+    float p = screenSpaceError(n, view);
+    const float distance = distanceToBox(view.eye(), nodeBox(n));
+    // Tiles in the detail radius refine before anything else, nearest first.
+    if (options.detailRadiusM > 0.0f && !n.children.empty() && distance <= options.detailRadiusM) p = 1.0e6f - distance;
+    return p;
+  };
+
+  if (!visible(0)) return;
+  std::priority_queue<Item> queue;
+  std::vector<Item> wanted;
+  std::vector<std::uint32_t> cut;
+  queue.push({priorityOf(0), 0});
+  out.used.push_back(0);
+  if (!ready(0)) wanted.push_back({1.0e9f, 0});
+
+  while (!queue.empty()) {
+    const Item item = queue.top();
+    queue.pop();
+    const std::uint32_t i = item.node;
+    const TileNode& n = t.nodes[i];
+    const bool refine = !n.children.empty() && (item.priority > options.maxScreenSpaceError) && ready(i);
+    if (!refine) {
+      cut.push_back(i);
+      continue;
+    }
+    std::vector<std::uint32_t> children;
+    for (std::uint32_t c : n.children) {
+      if (visible(c)) children.push_back(c);
+    }
+    bool allReady = true;
+    for (std::uint32_t c : children) {
+      if (!ready(c)) {
+        allReady = false;
+        wanted.push_back({item.priority, c});
+      }
+    }
+    // Keep drawing this node until its children can replace it (a failed node cannot be drawn:
+    // go on to its children, which are then wanted).
+    if (!allReady && state(i) == TileState::Loaded) {
+      cut.push_back(i);
+      continue;
+    }
+    if (cut.size() + queue.size() + children.size() > options.maxDrawTiles) {
+      cut.push_back(i);
+      out.budgetLimited = true;
+      continue;
+    }
+    for (std::uint32_t c : children) {
+      out.used.push_back(c);
+      queue.push({priorityOf(c), c});
+    }
+  }
+  for (std::uint32_t i : cut) {
+    if (state(i) == TileState::Loaded) out.draw.push_back(i);
+  }
+  std::stable_sort(wanted.begin(), wanted.end(), [](const Item& a, const Item& b) { return a.priority > b.priority; });
+  for (const Item& w : wanted) {
+    if (state(w.node) == TileState::Unloaded || state(w.node) == TileState::Loading) out.wanted.push_back(w.node);
+  }
+}
+
+}  // namespace qv

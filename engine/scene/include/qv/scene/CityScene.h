@@ -1,0 +1,129 @@
+// CityScene: a prepared city streamed over HTTP and drawn with per-tile merged meshes.
+//
+// Each frame it selects tiles by screen-space error within a draw budget (engine::lod), requests
+// what is missing (a bounded number in flight, most important first, retried with backoff on
+// transient failures), decodes and meshes arrived tiles under a time budget, evicts the least
+// recently used tiles beyond a memory budget, culls buildings against the frustum with each
+// tile's BoxTree, and animates the buildings within the animation radius from their response
+// histories, writing every floor's displacement into the GPU floor table.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "qv/format/CityTile.h"
+#include "qv/format/ResponseTile.h"
+#include "qv/format/Tileset.h"
+#include "qv/geometry/OrbitCamera.h"
+#include "qv/lod/TileSelector.h"
+#include "qv/scene/Fetcher.h"
+#include "qv/scene/FrameStats.h"
+#include "qv/scene/RenderDevice.h"
+
+namespace qv {
+
+struct CitySceneOptions {
+  float maxScreenSpaceError = 12.0f;  ///< device pixels before a coarse tile is refined
+  std::uint32_t maxDrawTiles = 240;   ///< draw-call budget for city tiles
+  std::uint32_t maxRequestsInFlight = 6;
+  std::uint32_t requestTimeoutMs = 20000;
+  float animationRadiusM = 1000.0f;  ///< around the eye (metres); 0 animates nothing
+  std::uint32_t maxAnimatedBuildings = 20000;
+  std::uint64_t memoryBudgetBytes = 512ull << 20;  ///< decoded tiles + GPU meshes + histories
+  double workBudgetMs = 12.0;                      ///< decoding and meshing per frame
+};
+
+struct TileCounts {
+  std::uint32_t loaded = 0;
+  std::uint32_t pending = 0;  ///< wanted by the view and not loaded yet (tiles and response tiers)
+  std::uint32_t failed = 0;
+};
+
+/// A building of the scene: the tile (manifest node index) and its index in that tile's file.
+struct BuildingRef {
+  std::uint32_t node = 0;
+  std::uint32_t index = 0;
+  friend bool operator==(BuildingRef, BuildingRef) = default;
+};
+
+class CityScene {
+ public:
+  using ErrorSink = std::function<void(const std::string&)>;
+
+  /// Starts loading `manifestUrl` (tileset.json); tiles are resolved relative to it.
+  CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifestUrl, CitySceneOptions options,
+            ErrorSink onError);
+  ~CityScene();
+  CityScene(const CityScene&) = delete;
+  CityScene& operator=(const CityScene&) = delete;
+
+  /// One frame: streaming, culling, LOD, animation; appends what to draw to `items`.
+  void update(const CameraView& view, double timeSeconds, FrameTimesMs& times, FrameCounts& counts,
+              std::vector<DrawItem>& items);
+
+  [[nodiscard]] bool manifestLoaded() const { return tileset_.has_value(); }
+  [[nodiscard]] bool manifestFailed() const { return manifestFailed_; }
+  [[nodiscard]] const Tileset* tileset() const { return tileset_ ? &*tileset_ : nullptr; }
+  /// Everything the current view needs has loaded or failed (and no work is queued).
+  [[nodiscard]] bool settled() const { return settled_; }
+  [[nodiscard]] TileCounts tileCounts() const;
+  /// Length of the response histories in seconds (0 without a response).
+  [[nodiscard]] double duration() const;
+  /// A camera that frames the whole city.
+  [[nodiscard]] CameraState overviewCamera(double fovDeg = 45.0) const;
+  /// Bytes held: decoded tiles and histories (CPU) and meshes (GPU).
+  [[nodiscard]] std::uint64_t memoryBytes() const;
+
+  [[nodiscard]] const CitySceneOptions& options() const { return options_; }
+  CitySceneOptions& mutableOptions() { return options_; }
+
+ private:
+  struct LoadedTile;
+  struct TileRuntime;
+  struct Animated;
+
+  void onManifest(FetchResponse response);
+  void request(std::uint32_t node, double now);
+  void onTile(std::uint32_t node, FetchResponse response, double now);
+  void finishTile(std::uint32_t node);  // decode + mesh (time-budgeted)
+  void failTile(std::uint32_t node, const std::string& message, bool transient, double now);
+  void evict(std::uint32_t node);
+  void requestSummary(std::uint32_t node);
+  void requestHistory(std::uint32_t node);
+  void applySummary(std::uint32_t node);
+  void writeBuildingRows(std::uint32_t first, std::uint32_t count);
+  void enforceMemoryBudget();  // evicts what this frame did not use, least recently used first
+  void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
+
+  RenderDevice& device_;
+  Fetcher& fetcher_;
+  std::string manifestUrl_;
+  CitySceneOptions options_;
+  ErrorSink onError_;
+  Fetcher::RequestId manifestRequest_ = 0;
+  std::optional<Tileset> tileset_;
+  bool manifestFailed_ = false;
+  bool settled_ = false;
+  std::vector<std::unique_ptr<TileRuntime>> tiles_;
+  std::vector<TileState> states_;
+  std::vector<std::uint32_t> decodeQueue_;
+  std::uint32_t inFlight_ = 0;
+  std::uint64_t frame_ = 0;
+  double clock_ = 0.0;  // seconds since creation (for retries)
+  TileSelection selection_;
+
+  // GPU tables and their CPU mirrors.
+  std::vector<BuildingGpuRecord> buildingRows_;
+  std::uint32_t dirtyFirst_ = UINT32_MAX, dirtyEnd_ = 0;
+  std::vector<FloorGpuRecord> floorRows_;
+  std::unique_ptr<class RangeAllocator> slots_;
+  std::unique_ptr<class RangeAllocator> floorSlots_;
+  std::vector<std::unique_ptr<Animated>> animated_;
+  std::vector<float> scratchX_, scratchY_;
+};
+
+}  // namespace qv

@@ -1,0 +1,41 @@
+// Asynchronous HTTP GET, as the scene needs it. The browser platform implements it with
+// emscripten_fetch; tests and benchmarks use in-memory or file-backed fakes.
+//
+// Contract: fetch() never calls `done` from inside itself; completions are delivered later, on
+// the frame loop's thread, through poll(). Every request completes exactly once (success, HTTP
+// error, network error or timeout), unless cancelled.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace qv {
+
+struct FetchResponse {
+  int status = 0;                   ///< HTTP status; 0 when the request failed before a response
+  std::vector<std::uint8_t> bytes;  ///< the body (of any status)
+  std::string error;                ///< why it failed, when status is 0 ("timeout", "network error")
+  [[nodiscard]] bool ok() const { return status >= 200 && status < 300; }
+};
+
+class Fetcher {
+ public:
+  using Done = std::function<void(FetchResponse)>;
+  using RequestId = std::uint64_t;
+
+  virtual ~Fetcher() = default;
+  /// Starts a GET of `url` (absolute, or relative to the page). `timeoutMs` 0: no timeout.
+  virtual RequestId fetch(const std::string& url, Done done, std::uint32_t timeoutMs) = 0;
+  /// Drops a request's completion (the request may still run).
+  virtual void cancel(RequestId id) = 0;
+  /// Delivers the completions that arrived since the last poll.
+  virtual void poll() = 0;
+};
+
+/// Resolves `relative` against the URL of the file it appears in (`base`): "a/b/tileset.json" +
+/// "tiles/0.qvt" -> "a/b/tiles/0.qvt". Absolute URLs and paths in `relative` are returned as is.
+std::string resolveUrl(const std::string& base, const std::string& relative);
+
+}  // namespace qv

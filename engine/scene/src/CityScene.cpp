@@ -1,0 +1,683 @@
+#include "qv/scene/CityScene.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <unordered_map>
+
+#include "qv/core/Crc32.h"
+#include "qv/core/RangeAllocator.h"
+#include "qv/spatial/BoxTree.h"
+
+namespace qv {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Rows of the GPU tables: capacity of the index spaces (the device grows textures on demand).
+constexpr std::uint32_t kMaxBuildingSlots = 1u << 21;
+constexpr std::uint32_t kMaxFloorRows = 1u << 22;
+
+std::string hex32(std::uint32_t v) {
+  char buffer[16];
+  std::snprintf(buffer, sizeof buffer, "%08x", v);
+  return buffer;
+}
+
+// HTTP statuses worth retrying soon: the server or the network may recover.
+bool transientStatus(int status) {
+  return status == 0 || status == 408 || status == 429 || status >= 500;
+}
+
+std::uint64_t key(std::uint32_t node, std::uint32_t index) {
+  return (static_cast<std::uint64_t>(node) << 32) | index;
+}
+
+}  // namespace
+
+struct CityScene::LoadedTile {
+  CityTile data;
+  BoxTree tree;
+  std::vector<std::uint32_t> positionOf;  // building index -> position in tree.order()
+  MeshHandle mesh;
+  std::uint32_t slotBase = 0;
+  std::uint64_t cpuBytes = 0;
+  std::uint64_t gpuBytes = 0;
+  glm::vec3 origin{0.0f};
+};
+
+struct CityScene::TileRuntime {
+  Fetcher::RequestId request = 0;
+  std::vector<std::uint8_t> bytes;  // arrived, waiting to be decoded
+  std::unique_ptr<LoadedTile> loaded;
+  std::uint64_t lastUsed = 0;
+  int attempts = 0;
+  double retryAt = 0.0;
+  bool errorShown = false;
+  std::vector<IndexRange> visible;  // this frame's culling result (positions)
+
+  TileState summaryState = TileState::Unloaded;
+  Fetcher::RequestId summaryRequest = 0;
+  std::unique_ptr<ResponseSummaryTile> summary;
+  TileState historyState = TileState::Unloaded;
+  Fetcher::RequestId historyRequest = 0;
+  std::unique_ptr<ResponseHistoryTile> history;
+  std::uint64_t historyBytes = 0;
+  std::uint64_t historyUsed = 0;
+};
+
+struct CityScene::Animated {
+  BuildingRef ref;
+  std::uint32_t slot = 0;
+  std::uint32_t floorBase = 0;
+  std::uint32_t rows = 0;  // storeys + 1
+  std::uint64_t frame = 0;
+};
+
+CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifestUrl, CitySceneOptions options,
+                     ErrorSink onError)
+    : device_(device),
+      fetcher_(fetcher),
+      manifestUrl_(std::move(manifestUrl)),
+      options_(options),
+      onError_(std::move(onError)),
+      slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
+      floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
+  ++inFlight_;
+  manifestRequest_ = fetcher_.fetch(
+      manifestUrl_, [this](FetchResponse r) { onManifest(std::move(r)); }, options_.requestTimeoutMs);
+}
+
+CityScene::~CityScene() {
+  if (manifestRequest_ != 0) fetcher_.cancel(manifestRequest_);
+  for (const auto& t : tiles_) {
+    if (t && t->loaded && t->loaded->mesh) device_.destroyMesh(t->loaded->mesh);
+    if (t && t->request != 0) fetcher_.cancel(t->request);
+    if (t && t->summaryRequest != 0) fetcher_.cancel(t->summaryRequest);
+    if (t && t->historyRequest != 0) fetcher_.cancel(t->historyRequest);
+  }
+}
+
+void CityScene::onManifest(FetchResponse response) {
+  --inFlight_;
+  manifestRequest_ = 0;
+  if (!response.ok()) {
+    manifestFailed_ = true;
+    onError_("The city could not be loaded from " + manifestUrl_ + ": " +
+             (response.status == 0 ? response.error : "HTTP " + std::to_string(response.status)));
+    return;
+  }
+  const std::string_view text(reinterpret_cast<const char*>(response.bytes.data()), response.bytes.size());
+  Result<Tileset> parsed = parseTileset(text, manifestUrl_);
+  if (!parsed.ok()) {
+    manifestFailed_ = true;
+    onError_("The city could not be loaded: " + parsed.error());
+    return;
+  }
+  tileset_ = std::move(parsed).value();
+  tiles_.resize(tileset_->nodes.size());
+  for (auto& t : tiles_) t = std::make_unique<TileRuntime>();
+  states_.assign(tileset_->nodes.size(), TileState::Unloaded);
+  if (tileset_->responseOutOfDate()) {
+    onError_(
+        "The response results are older than the buildings of this city (run quakeview-prep response "
+        "again); colours and motion may not match the buildings.");
+  }
+}
+
+double CityScene::duration() const {
+  return tileset_ && tileset_->response ? tileset_->response->durationSeconds : 0.0;
+}
+
+CameraState CityScene::overviewCamera(double fovDeg) const {
+  CameraState c;
+  c.fovDeg = fovDeg;
+  c.headingDeg = 0.0;
+  c.pitchDeg = 50.0;
+  if (!tileset_) return c;
+  const Rect& b = tileset_->bounds;
+  c.x = b.centerX();
+  c.y = b.centerY();
+  const double size = std::max({static_cast<double>(b.width()), static_cast<double>(b.height()), 200.0});
+  c.distance = size * 0.5 / std::tan(fovDeg * 3.14159265358979 / 360.0) * 1.15;
+  return c;
+}
+
+TileCounts CityScene::tileCounts() const {
+  TileCounts c;
+  for (std::size_t i = 0; i < states_.size(); ++i) {
+    if (states_[i] == TileState::Loaded)
+      ++c.loaded;
+    else if (states_[i] == TileState::Failed)
+      ++c.failed;
+    else if (states_[i] == TileState::Loading)
+      ++c.pending;
+    // Response tiers on their way count too: the view is not complete without them.
+    if (tiles_[i]->summaryState == TileState::Loading) ++c.pending;
+    if (tiles_[i]->historyState == TileState::Loading) ++c.pending;
+  }
+  // Tiles the view wants but has not requested yet (the request limit) are pending as well.
+  for (std::uint32_t i : selection_.wanted) {
+    if (states_[i] == TileState::Unloaded) ++c.pending;
+  }
+  return c;
+}
+
+std::uint64_t CityScene::memoryBytes() const {
+  std::uint64_t total = 0;
+  for (const auto& t : tiles_) {
+    if (t->loaded) total += t->loaded->cpuBytes + t->loaded->gpuBytes;
+    total += t->bytes.size() + t->historyBytes;
+  }
+  return total;
+}
+
+void CityScene::request(std::uint32_t node, double now) {
+  TileRuntime& t = *tiles_[node];
+  if (t.retryAt > now) return;
+  states_[node] = TileState::Loading;
+  ++inFlight_;
+  const std::string url = resolveUrl(manifestUrl_, tileset_->nodes[node].file);
+  t.request = fetcher_.fetch(
+      url, [this, node](FetchResponse r) { onTile(node, std::move(r), clock_); }, options_.requestTimeoutMs);
+}
+
+void CityScene::failTile(std::uint32_t node, const std::string& message, bool transient, double now) {
+  TileRuntime& t = *tiles_[node];
+  ++t.attempts;
+  // Exponential backoff, 1 s doubling to 30 s; a permanent error (404, bad data) waits longest.
+  const double delay = transient ? std::min(30.0, std::pow(2.0, std::min(t.attempts - 1, 5))) : 30.0;
+  t.retryAt = now + delay;
+  states_[node] = TileState::Failed;
+  if (!t.errorShown) {
+    t.errorShown = true;
+    onError_("Tile " + tileset_->nodes[node].key() + " failed: " + message);
+  }
+}
+
+void CityScene::onTile(std::uint32_t node, FetchResponse response, double now) {
+  --inFlight_;
+  TileRuntime& t = *tiles_[node];
+  t.request = 0;
+  const TileNode& n = tileset_->nodes[node];
+  const std::string url = resolveUrl(manifestUrl_, n.file);
+  if (!response.ok()) {
+    const std::string why = response.status == 0 ? response.error : "HTTP " + std::to_string(response.status);
+    failTile(node, url + ": " + why, transientStatus(response.status), now);
+    return;
+  }
+  if (response.bytes.size() != n.bytes || crc32(response.bytes) != n.crc32) {
+    failTile(node,
+             url + ": " + std::to_string(response.bytes.size()) + " bytes with CRC-32 " + hex32(crc32(response.bytes)) +
+                 ", the manifest says " + std::to_string(n.bytes) + " bytes, " + hex32(n.crc32) +
+                 " (truncated, corrupt or stale)",
+             true, now);
+    return;
+  }
+  t.bytes = std::move(response.bytes);
+  decodeQueue_.push_back(node);
+}
+
+void CityScene::finishTile(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  const TileNode& n = tileset_->nodes[node];
+  const std::string url = resolveUrl(manifestUrl_, n.file);
+  std::vector<std::uint8_t> bytes = std::move(t.bytes);
+  t.bytes.clear();
+  Result<CityTile> decoded = decodeCityTile(bytes, url);
+  if (!decoded.ok()) {
+    failTile(node, decoded.error(), false, clock_);
+    return;
+  }
+  if (decoded->buildings.size() != n.buildings) {
+    failTile(node,
+             url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the manifest says " +
+                 std::to_string(n.buildings),
+             false, clock_);
+    return;
+  }
+  auto tile = std::make_unique<LoadedTile>();
+  tile->data = std::move(decoded).value();
+  CityTile& d = tile->data;
+  tile->origin = glm::vec3(static_cast<float>(d.originX), static_cast<float>(d.originY), 0.0f);
+
+  // Boxes per building in the city frame, then the BoxTree's Morton order for slots and mesh.
+  std::vector<Box> boxes(d.buildings.size());
+  for (std::size_t b = 0; b < d.buildings.size(); ++b) {
+    const TileBuilding& tb = d.buildings[b];
+    Box box;
+    for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
+      const TilePart& part = d.parts[p];
+      for (std::uint32_t v = part.firstVertex; v < part.firstVertex + part.vertexCount; ++v) {
+        box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.minHeightM);
+        box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.heightM);
+      }
+    }
+    boxes[b] = box;
+  }
+  tile->tree.build(boxes);
+  const auto& order = tile->tree.order();
+  tile->positionOf.resize(order.size());
+  for (std::uint32_t p = 0; p < order.size(); ++p) tile->positionOf[order[p]] = p;
+
+  const auto count = static_cast<std::uint32_t>(d.buildings.size());
+  const auto slotBase = slots_->allocate(std::max(count, 1u));
+  if (!slotBase) {
+    failTile(node, "too many buildings loaded at once", true, clock_);
+    return;
+  }
+  tile->slotBase = *slotBase;
+  if (buildingRows_.size() < slots_->highWater()) buildingRows_.resize(slots_->highWater());
+
+  // The merged mesh: one vertex ring per floor level for leaves, plain prisms for coarse tiles.
+  MeshData mesh;
+  std::vector<float> levels;
+  std::vector<std::uint32_t> ringEnds, roof;
+  for (std::uint32_t p = 0; p < order.size(); ++p) {
+    const TileBuilding& tb = d.buildings[order[p]];
+    const BuildingAttributes& a = tb.attributes;
+    const float storeyHeight = std::max(a.storeyHeightM(), 0.5f);
+    BuildingGpuRecord& row = buildingRows_[tile->slotBase + p];
+    row = BuildingGpuRecord{};
+    row.storeyHeightMeters = storeyHeight;
+    row.storeys = static_cast<float>(a.storeys);
+    row.baseZ = a.minHeightM;
+    for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
+      const TilePart& part = d.parts[pi];
+      levels.clear();
+      if (!d.coarse) {
+        for (int k = 1; k < a.storeys && k < 1000; ++k) {
+          const float z = a.minHeightM + static_cast<float>(k) * storeyHeight;
+          if (z > part.minHeightM + 0.01f && z < part.heightM - 0.01f) levels.push_back(z);
+        }
+      }
+      ringEnds.clear();
+      std::uint32_t end = 0;
+      for (std::uint32_t r = part.firstRing; r < part.firstRing + part.ringCount; ++r) {
+        end += d.ringVertexCounts[r];
+        ringEnds.push_back(end);
+      }
+      roof.assign(d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle) * 3,
+                  d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle + part.triangleCount) * 3);
+      ExtrusionInput in;
+      in.points = std::span<const glm::vec2>(d.vertices).subspan(part.firstVertex, part.vertexCount);
+      in.ringEnds = ringEnds;
+      in.roofTriangles = roof;
+      in.baseZ = part.minHeightM;
+      in.topZ = part.heightM;
+      in.levels = levels;
+      in.slot = tile->slotBase + p;
+      appendExtrusion(mesh, in);
+    }
+  }
+  tile->mesh = device_.createMesh(mesh);
+  tile->gpuBytes = mesh.vertices.size() * sizeof(BuildingVertex) + mesh.indices.size() * sizeof(std::uint32_t);
+  tile->cpuBytes = d.vertices.size() * sizeof(glm::vec2) + d.roofTriangles.size() * 2 + d.ringVertexCounts.size() * 2 +
+                   d.parts.size() * sizeof(TilePart) + d.buildings.size() * (sizeof(TileBuilding) + 64) +
+                   boxes.size() * (sizeof(Box) * 2 + 12);
+  writeBuildingRows(tile->slotBase, count);
+  t.loaded = std::move(tile);
+  t.lastUsed = frame_;
+  t.attempts = 0;
+  states_[node] = TileState::Loaded;
+  if (tileset_->nodes[node].response) requestSummary(node);
+}
+
+void CityScene::writeBuildingRows(std::uint32_t first, std::uint32_t count) {
+  dirtyFirst_ = std::min(dirtyFirst_, first);
+  dirtyEnd_ = std::max(dirtyEnd_, first + count);
+}
+
+void CityScene::requestSummary(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  const TileNode& n = tileset_->nodes[node];
+  if (!n.response || t.summaryState == TileState::Loading || t.summaryState == TileState::Loaded) return;
+  t.summaryState = TileState::Loading;
+  ++inFlight_;
+  const std::string url = resolveUrl(manifestUrl_, n.response->summaryFile);
+  t.summaryRequest = fetcher_.fetch(
+      url,
+      [this, node, url](FetchResponse r) {
+        --inFlight_;
+        TileRuntime& rt = *tiles_[node];
+        rt.summaryRequest = 0;
+        const TileNode& tn = tileset_->nodes[node];
+        if (!r.ok() || r.bytes.size() != tn.response->summaryBytes || crc32(r.bytes) != tn.response->summaryCrc32) {
+          rt.summaryState = TileState::Failed;
+          onError_("Response summary " + url + " failed: " +
+                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
+                            : std::string("size or checksum differs from the manifest")));
+          return;
+        }
+        auto decoded = decodeResponseSummary(r.bytes, url);
+        if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
+          rt.summaryState = TileState::Failed;
+          onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
+          return;
+        }
+        rt.summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
+        rt.summaryState = TileState::Loaded;
+        applySummary(node);
+      },
+      options_.requestTimeoutMs);
+}
+
+void CityScene::applySummary(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  if (!t.loaded || !t.summary) return;
+  const LoadedTile& tile = *t.loaded;
+  for (std::size_t b = 0; b < t.summary->buildings.size() && b < tile.positionOf.size(); ++b) {
+    const BuildingResponse& r = t.summary->buildings[b];
+    BuildingGpuRecord& row = buildingRows_[tile.slotBase + tile.positionOf[b]];
+    row.peakValue = r.peakDriftRatio;
+    row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
+  }
+  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+}
+
+void CityScene::requestHistory(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  const TileNode& n = tileset_->nodes[node];
+  if (!n.response || n.response->historyFile.empty()) return;
+  if (t.historyState != TileState::Unloaded) return;
+  t.historyState = TileState::Loading;
+  ++inFlight_;
+  const std::string url = resolveUrl(manifestUrl_, n.response->historyFile);
+  t.historyRequest = fetcher_.fetch(
+      url,
+      [this, node, url](FetchResponse r) {
+        --inFlight_;
+        TileRuntime& rt = *tiles_[node];
+        rt.historyRequest = 0;
+        const TileNode& tn = tileset_->nodes[node];
+        if (!r.ok() || r.bytes.size() != tn.response->historyBytes || crc32(r.bytes) != tn.response->historyCrc32) {
+          rt.historyState = TileState::Failed;
+          onError_("Response history " + url + " failed: " +
+                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
+                            : std::string("size or checksum differs from the manifest")));
+          return;
+        }
+        auto decoded = decodeResponseHistory(r.bytes, url);
+        if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
+          rt.historyState = TileState::Failed;
+          onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
+          return;
+        }
+        rt.history = std::make_unique<ResponseHistoryTile>(std::move(decoded).value());
+        std::uint64_t bytes = 0;
+        for (const BuildingHistory& h : rt.history->buildings) {
+          bytes += sizeof(BuildingHistory) + (h.x.coordinates.size() + h.y.coordinates.size()) * 2 +
+                   (h.x.shapes.size() + h.y.shapes.size()) * 4;
+        }
+        rt.historyBytes = bytes;
+        rt.historyState = TileState::Loaded;
+      },
+      options_.requestTimeoutMs);
+}
+
+void CityScene::evict(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  if (t.loaded) {
+    // Buildings of this tile stop animating first (they hold floor rows).
+    for (auto& a : animated_) {
+      if (a && a->ref.node == node) {
+        floorSlots_->release(a->floorBase, a->rows);
+        a.reset();
+      }
+    }
+    animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
+    if (t.loaded->mesh) device_.destroyMesh(t.loaded->mesh);
+    slots_->release(t.loaded->slotBase,
+                    std::max<std::uint32_t>(1, static_cast<std::uint32_t>(t.loaded->positionOf.size())));
+    t.loaded.reset();
+  }
+  t.summary.reset();
+  t.summaryState = TileState::Unloaded;
+  t.history.reset();
+  t.historyBytes = 0;
+  t.historyState = TileState::Unloaded;
+  states_[node] = TileState::Unloaded;
+}
+
+void CityScene::enforceMemoryBudget() {
+  std::uint64_t total = memoryBytes();
+  if (total <= options_.memoryBudgetBytes) return;
+  // Histories outside the animation radius go first (re-fetched when needed), then whole tiles,
+  // least recently used first; nothing the current frame uses is evicted.
+  std::vector<std::uint32_t> candidates;
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
+    if (tiles_[i]->history && tiles_[i]->historyUsed < frame_) {
+      total -= tiles_[i]->historyBytes;
+      tiles_[i]->history.reset();
+      tiles_[i]->historyBytes = 0;
+      tiles_[i]->historyState = TileState::Unloaded;
+      if (total <= options_.memoryBudgetBytes) return;
+    }
+    if (tiles_[i]->loaded && tiles_[i]->lastUsed < frame_ && i != 0) candidates.push_back(i);
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return tiles_[a]->lastUsed < tiles_[b]->lastUsed; });
+  for (std::uint32_t i : candidates) {
+    if (total <= options_.memoryBudgetBytes) break;
+    const std::uint64_t bytes = tiles_[i]->loaded->cpuBytes + tiles_[i]->loaded->gpuBytes + tiles_[i]->historyBytes;
+    evict(i);
+    total -= std::min(total, bytes);
+  }
+}
+
+void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs& times, FrameCounts& counts,
+                       std::vector<DrawItem>& items) {
+  ++frame_;
+  const auto frameStart = Clock::now();
+  fetcher_.poll();
+  if (!tileset_) {
+    settled_ = manifestFailed_;
+    return;
+  }
+  clock_ = static_cast<double>(std::chrono::duration<double>(frameStart.time_since_epoch()).count());
+
+  // LOD: which tiles to draw and to load.
+  auto t0 = Clock::now();
+  TileSelectorOptions selectorOptions;
+  selectorOptions.maxScreenSpaceError = options_.maxScreenSpaceError;
+  selectorOptions.maxDrawTiles = options_.maxDrawTiles;
+  selectorOptions.detailRadiusM = options_.animationRadiusM;
+  selectTiles(*tileset_, states_, view, selectorOptions, selection_);
+  for (std::uint32_t i : selection_.used) tiles_[i]->lastUsed = frame_;
+  for (std::uint32_t i : selection_.wanted) tiles_[i]->lastUsed = frame_;
+  for (std::uint32_t i : selection_.wanted) {
+    if (inFlight_ >= options_.maxRequestsInFlight) break;
+    if (states_[i] == TileState::Unloaded) request(i, clock_);
+  }
+  // Failed tiles the view still uses are retried with backoff (the server may recover).
+  for (std::uint32_t i : selection_.used) {
+    if (inFlight_ >= options_.maxRequestsInFlight) break;
+    if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= clock_) request(i, clock_);
+  }
+  times.lod += msSince(t0);
+
+  // Decode and mesh what arrived, within the time budget (at least one tile per frame).
+  t0 = Clock::now();
+  while (!decodeQueue_.empty()) {
+    const std::uint32_t node = decodeQueue_.front();
+    decodeQueue_.erase(decodeQueue_.begin());
+    finishTile(node);
+    if (msSince(t0) > options_.workBudgetMs) break;
+  }
+  const double streamingMs = msSince(t0);
+
+  // Cull: tile boxes first, then the buildings of partly visible tiles.
+  t0 = Clock::now();
+  const Frustum& frustum = view.frustum();
+  std::uint32_t visibleBuildings = 0;
+  for (std::uint32_t i : selection_.draw) {
+    TileRuntime& t = *tiles_[i];
+    t.visible.clear();
+    if (!t.loaded) continue;
+    const auto n = static_cast<std::uint32_t>(t.loaded->positionOf.size());
+    const Containment c = frustum.classify(nodeBox(tileset_->nodes[i]));
+    if (c == Containment::Outside) continue;
+    if (c == Containment::Inside)
+      t.visible.push_back(IndexRange{0, n, true});
+    else
+      t.loaded->tree.query(frustum, t.visible);
+    for (const IndexRange& r : t.visible) visibleBuildings += r.end - r.begin;
+    items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin});
+  }
+  counts.buildingsVisible += visibleBuildings;
+  times.cull += msSince(t0);
+
+  // Animate.
+  t0 = Clock::now();
+  animate(view.eye(), timeSeconds, counts);
+  times.animate += msSince(t0);
+  t0 = Clock::now();
+  enforceMemoryBudget();
+  const double evictMs = msSince(t0);
+
+  // Upload the changed rows of the building table and the whole used floor table.
+  t0 = Clock::now();
+  if (dirtyFirst_ < dirtyEnd_) {
+    dirtyEnd_ = std::min<std::uint32_t>(dirtyEnd_, static_cast<std::uint32_t>(buildingRows_.size()));
+    device_.writeBuildings(dirtyFirst_, std::span(buildingRows_).subspan(dirtyFirst_, dirtyEnd_ - dirtyFirst_));
+  }
+  dirtyFirst_ = UINT32_MAX;
+  dirtyEnd_ = 0;
+  if (!animated_.empty()) {
+    device_.writeFloors(
+        0, std::span(floorRows_).first(std::min<std::size_t>(floorRows_.size(), floorSlots_->highWater())));
+  }
+  times.upload += msSince(t0) + streamingMs + evictMs;
+
+  // Buildings available for drawing: every building of each maximal loaded subtree.
+  std::uint64_t loaded = 0;
+  std::vector<std::uint32_t> stack = {0};
+  while (!stack.empty()) {
+    const std::uint32_t i = stack.back();
+    stack.pop_back();
+    if (states_[i] == TileState::Loaded) {
+      loaded += tileset_->nodes[i].subtreeBuildings;
+      continue;
+    }
+    for (std::uint32_t c : tileset_->nodes[i].children) stack.push_back(c);
+  }
+  counts.buildingsLoaded += static_cast<std::uint32_t>(loaded);
+
+  bool responsesReady = true;
+  for (std::uint32_t i : selection_.draw) {
+    if (tiles_[i]->summaryState == TileState::Loading) responsesReady = false;
+  }
+  for (const auto& t : tiles_) {
+    if (t->historyState == TileState::Loading) responsesReady = false;
+  }
+  settled_ = selection_.complete() && decodeQueue_.empty() && responsesReady;
+}
+
+void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts) {
+  const float radius = options_.animationRadiusM;
+  struct Candidate {
+    float distance2;
+    std::uint32_t node, index, position;
+  };
+  std::vector<Candidate> candidates;
+  if (radius > 0.0f) {
+    const double r2 = static_cast<double>(radius) * radius;
+    for (std::uint32_t i : selection_.draw) {
+      TileRuntime& t = *tiles_[i];
+      const TileNode& n = tileset_->nodes[i];
+      if (!t.loaded || n.coarse || !n.response || n.response->historyFile.empty()) continue;
+      const float tileDistance =
+          std::max(0.0f, std::hypot(std::max({n.bounds.minX - eye.x, 0.0f, eye.x - n.bounds.maxX}),
+                                    std::max({n.bounds.minY - eye.y, 0.0f, eye.y - n.bounds.maxY}),
+                                    std::max(eye.z - n.maxHeightM, 0.0f)));
+      if (static_cast<double>(tileDistance) > static_cast<double>(radius)) continue;
+      requestHistory(i);
+      t.historyUsed = frame_;
+      if (t.historyState != TileState::Loaded) continue;
+      const LoadedTile& tile = *t.loaded;
+      for (const IndexRange& range : t.visible) {
+        for (std::uint32_t p = range.begin; p < range.end; ++p) {
+          const std::uint32_t b = tile.tree.order()[p];
+          const BuildingAttributes& a = tile.data.buildings[b].attributes;
+          // Distance from the eye to the building's axis at mid-height.
+          const double cx = a.centroidX + tile.data.originX - static_cast<double>(eye.x);
+          const double cy = a.centroidY + tile.data.originY - static_cast<double>(eye.y);
+          const double cz = 0.5 * static_cast<double>(a.heightM + a.minHeightM) - static_cast<double>(eye.z);
+          const double d2 = cx * cx + cy * cy + cz * cz;
+          if (d2 <= r2 && t.history->buildings[b].floors == a.storeys) {
+            candidates.push_back({static_cast<float>(d2), i, b, p});
+          }
+        }
+      }
+    }
+  }
+  if (candidates.size() > options_.maxAnimatedBuildings) {
+    std::nth_element(candidates.begin(),
+                     candidates.begin() + static_cast<std::ptrdiff_t>(options_.maxAnimatedBuildings), candidates.end(),
+                     [](const Candidate& a, const Candidate& b) { return a.distance2 < b.distance2; });
+    candidates.resize(options_.maxAnimatedBuildings);
+  }
+
+  // Keep the floor rows of buildings that stay animated; release the rest; allocate the new.
+  std::unordered_map<std::uint64_t, std::size_t> current;
+  current.reserve(animated_.size());
+  for (std::size_t k = 0; k < animated_.size(); ++k) current[key(animated_[k]->ref.node, animated_[k]->ref.index)] = k;
+  for (const Candidate& c : candidates) {
+    const auto it = current.find(key(c.node, c.index));
+    if (it != current.end()) {
+      animated_[it->second]->frame = frame_;
+      continue;
+    }
+    const LoadedTile& tile = *tiles_[c.node]->loaded;
+    const std::uint32_t rows = tile.data.buildings[c.index].attributes.storeys + 1u;
+    const auto base = floorSlots_->allocate(rows);
+    if (!base) break;
+    auto a = std::make_unique<Animated>();
+    a->ref = {c.node, c.index};
+    a->slot = tile.slotBase + c.position;
+    a->floorBase = *base;
+    a->rows = rows;
+    a->frame = frame_;
+    buildingRows_[a->slot].floorBase = static_cast<float>(*base);
+    writeBuildingRows(a->slot, 1);
+    animated_.push_back(std::move(a));
+  }
+  for (auto& a : animated_) {
+    if (a->frame == frame_) continue;
+    if (tiles_[a->ref.node]->loaded) {
+      buildingRows_[a->slot].floorBase = -1.0f;
+      writeBuildingRows(a->slot, 1);
+    }
+    floorSlots_->release(a->floorBase, a->rows);
+    a.reset();
+  }
+  animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
+  if (floorRows_.size() < floorSlots_->highWater()) floorRows_.resize(floorSlots_->highWater());
+
+  // Every animated building's floors at this time.
+  for (const auto& a : animated_) {
+    const TileRuntime& t = *tiles_[a->ref.node];
+    const BuildingHistory& h = t.history->buildings[a->ref.index];
+    scratchX_.resize(a->rows);
+    scratchY_.resize(a->rows);
+    sampleHistory(h, timeSeconds, scratchX_, scratchY_);
+    const BuildingResponse* summary =
+        t.summary && a->ref.index < t.summary->buildings.size() ? &t.summary->buildings[a->ref.index] : nullptr;
+    for (std::uint32_t k = 0; k < a->rows; ++k) {
+      FloorGpuRecord& r = floorRows_[a->floorBase + k];
+      r.dxMeters = scratchX_[k];
+      r.dyMeters = scratchY_[k];
+      r.peakDriftAbove = 0.0f;
+      if (summary != nullptr && k < summary->storeys)
+        r.peakDriftAbove = t.summary->storeyPeakDrift[summary->firstStorey + k];
+    }
+  }
+  counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
+}
+
+}  // namespace qv

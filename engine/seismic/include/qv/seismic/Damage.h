@@ -1,0 +1,31 @@
+// Structural damage states from peak inter-storey drift, with the Hazus thresholds.
+//
+// Source: Hazus Earthquake Model Technical Manual (FEMA, Hazus 5.1, 2022), Tables 5-9a to 5-9d,
+// "Structural fragility curve parameters": the median average inter-story drift ratio at the
+// threshold of each structural damage state, per model building type and seismic design level
+// (the same values as Hazus-MH 2.1, Tables 5.9a–5.9d). Types not permitted at the high and
+// moderate code levels (C3, URM) use their low-code values; an unknown era uses moderate code.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string_view>
+
+#include "qv/format/BuildingAttributes.h"
+
+namespace qv::seismic {
+
+enum class DamageState : std::uint8_t { None = 0, Slight = 1, Moderate = 2, Extensive = 3, Complete = 4 };
+
+/// "none", "slight", "moderate", "extensive", "complete".
+std::string_view damageStateName(DamageState state);
+
+/// Drift ratios at the thresholds of slight, moderate, extensive and complete damage (ascending).
+/// Unknown types use C1 of the height class of `storeys` (<= 3 low, <= 7 mid, else high).
+std::array<double, 4> hazusDriftThresholds(StructuralType type, CodeEra era, int storeys = 1);
+
+/// The highest state whose threshold `peakDriftRatio` reaches (None below the first, and None when
+/// every threshold is zero: nothing to assess). Monotonic in the drift.
+DamageState classifyDamage(double peakDriftRatio, const std::array<double, 4>& thresholds);
+
+}  // namespace qv::seismic

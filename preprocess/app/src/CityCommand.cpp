@@ -1,0 +1,122 @@
+// quakeview-prep city --input FILE... --out DIR [GeoJSON property options] [--origin LON,LAT]
+#include <chrono>
+#include <cstdio>
+
+#include "Commands.h"
+#include "Summary.h"
+#include "qv/prep/Cli.h"
+#include "qv/prep/Files.h"
+#include "qv/prep/Ingest.h"
+#include "qv/prep/Tiler.h"
+
+namespace qv::prep {
+namespace {
+
+const char* const kUsage =
+    "usage: quakeview-prep city --input FILE... --out DIR [options]\n"
+    "  Reads building footprints (OpenStreetMap .osm, .osm.bz2, .osm.pbf; GeoJSON FeatureCollections\n"
+    "  .geojson/.json), cleans and projects them, infers storeys and seismic attributes, and writes\n"
+    "  the city's tiles to DIR (replacing a previous city there only when everything succeeded).\n"
+    "  --origin LON,LAT            projection centre in degrees (default: the centre of the data)\n"
+    "  --max-leaf-buildings N      buildings per leaf tile at most (default 1000)\n"
+    "  GeoJSON properties (defaults are OSM's keys, as written by `osmium export`):\n"
+    "  --id-property NAME          (id)           --name-property NAME     (name)\n"
+    "  --height-property NAME      (height)       --height-unit m|ft       (m)\n"
+    "  --levels-property NAME      (building:levels)\n"
+    "  --min-height-property NAME  (min_height)   --year-property NAME     (start_date)\n"
+    "  --use-property NAME         (building)\n"
+    "  NYC building footprints: --height-property heightroof --height-unit ft --year-property cnstrct_yr\n";
+
+}  // namespace
+
+int runCity(const CommandArgs& argv) {
+  std::string error;
+  const auto args = Args::parse(argv,
+                                {{"input", true, true},
+                                 {"out"},
+                                 {"origin"},
+                                 {"max-leaf-buildings"},
+                                 {"id-property"},
+                                 {"name-property"},
+                                 {"height-property"},
+                                 {"height-unit"},
+                                 {"levels-property"},
+                                 {"min-height-property"},
+                                 {"year-property"},
+                                 {"use-property"},
+                                 {"help", false}},
+                                error);
+  if (!args || args->has("help")) {
+    if (!args) std::fprintf(stderr, "city: %s\n", error.c_str());
+    std::fputs(kUsage, args ? stdout : stderr);
+    return args ? kExitOk : kExitUsage;
+  }
+  auto usage = [](const std::string& message) {
+    std::fprintf(stderr, "city: %s\n%s", message.c_str(), kUsage);
+    return kExitUsage;
+  };
+  if (!args->positional().empty()) return usage("unexpected argument '" + args->positional()[0] + "'");
+  const std::vector<std::string>& inputs = args->values("input");
+  if (inputs.empty()) return usage("--input FILE... is required");
+  const auto out = args->value("out");
+  if (!out || out->empty()) return usage("--out DIR is required");
+
+  IngestOptions options;
+  if (auto v = args->value("id-property")) options.idProperty = *v;
+  if (auto v = args->value("name-property")) options.nameProperty = *v;
+  if (auto v = args->value("height-property")) options.heightProperty = *v;
+  if (auto v = args->value("height-unit")) {
+    if (*v != "m" && *v != "ft" && *v != "metres" && *v != "meters" && *v != "feet") {
+      return usage("--height-unit must be m or ft");
+    }
+    options.heightUnit = *v;
+  }
+  if (auto v = args->value("levels-property")) options.levelsProperty = *v;
+  if (auto v = args->value("min-height-property")) options.minHeightProperty = *v;
+  if (auto v = args->value("year-property")) options.yearProperty = *v;
+  if (auto v = args->value("use-property")) options.useProperty = *v;
+  if (const auto origin = args->value("origin")) {
+    const auto lonLat = parseNumberList(*origin, 2);
+    if (!lonLat || std::abs((*lonLat)[0]) > 180.0 || std::abs((*lonLat)[1]) > 85.0) {
+      return usage("--origin must be LON,LAT in degrees");
+    }
+    options.originLonLat = std::array<double, 2>{(*lonLat)[0], (*lonLat)[1]};
+  }
+  TilerOptions tiler;
+  tiler.generator = "quakeview-prep city";
+  if (const auto leaf = args->value("max-leaf-buildings")) {
+    const auto v = parseInteger(*leaf);
+    if (!v || *v < 1 || *v > 100000) return usage("--max-leaf-buildings must be from 1 to 100000");
+    tiler.maxBuildingsPerLeaf = static_cast<std::uint32_t>(*v);
+  }
+
+  installInterruptHandler();
+  const auto start = std::chrono::steady_clock::now();
+  IngestStats stats;
+  auto model = readCity(inputs, options, &stats);
+  if (!model.ok()) {
+    std::fprintf(stderr, "city: %s\n", model.error().c_str());
+    return kExitDataError;
+  }
+  if (interrupted()) {
+    std::fprintf(stderr, "city: interrupted; nothing was written\n");
+    return kExitDataError;
+  }
+  const auto report = writeCityTiles(*model, *out, tiler);
+  if (!report.ok()) {
+    std::fprintf(stderr, "city: %s\n", report.error().c_str());
+    return kExitDataError;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  std::printf("city written to %s\n", out->c_str());
+  std::printf(
+      "read        %llu OSM building ways, %llu multipolygons, %llu parts attached (%llu standalone), %llu GeoJSON "
+      "features\n",
+      static_cast<unsigned long long>(stats.osmWays), static_cast<unsigned long long>(stats.osmRelations),
+      static_cast<unsigned long long>(stats.partsAttached), static_cast<unsigned long long>(stats.partsStandalone),
+      static_cast<unsigned long long>(stats.geojsonFeatures));
+  printTilingSummary(stdout, *model, *report, seconds);
+  return kExitOk;
+}
+
+}  // namespace qv::prep

@@ -1,0 +1,33 @@
+#include "CityFiles.h"
+
+#include <cstdio>
+
+#include "qv/core/Crc32.h"
+#include "qv/prep/Files.h"
+
+namespace qv::prep {
+
+Result<Tileset> loadTileset(const std::string& dir) {
+  const std::string path = dir + "/tileset.json";
+  auto text = readTextFile(path, 256ull << 20);
+  if (!text.ok()) return Error{text.error() + " (is " + dir + " a QuakeView city directory?)"};
+  return parseTileset(*text, path);
+}
+
+Result<CityTile> loadCityTile(const std::string& dir, const TileNode& node) {
+  const std::string path = dir + "/" + node.file;
+  auto bytes = readFile(path, 1ull << 31);
+  if (!bytes.ok()) return Error{bytes.error()};
+  if (bytes->size() != node.bytes) {
+    return Error{path + ": " + std::to_string(bytes->size()) + " bytes, the manifest says " +
+                 std::to_string(node.bytes)};
+  }
+  if (const std::uint32_t crc = crc32(*bytes); crc != node.crc32) {
+    char buffer[128];
+    std::snprintf(buffer, sizeof buffer, ": CRC-32 %08x, the manifest says %08x", crc, node.crc32);
+    return Error{path + buffer};
+  }
+  return decodeCityTile(*bytes, path);
+}
+
+}  // namespace qv::prep

@@ -1,0 +1,18 @@
+// Reading a city directory: its manifest and tiles, as the tools see them.
+#pragma once
+
+#include <string>
+
+#include "qv/core/Result.h"
+#include "qv/format/CityTile.h"
+#include "qv/format/Tileset.h"
+
+namespace qv::prep {
+
+/// Reads and validates DIR/tileset.json.
+Result<Tileset> loadTileset(const std::string& dir);
+
+/// Reads and decodes one tile file of a city, checking its size and CRC against the manifest.
+Result<CityTile> loadCityTile(const std::string& dir, const TileNode& node);
+
+}  // namespace qv::prep

@@ -1,0 +1,252 @@
+// quakeview-prep info DIR [--json] [--building ID] [--verify]
+#include <array>
+#include <cstdio>
+#include <map>
+#include <optional>
+
+#include "CityFiles.h"
+#include "Commands.h"
+#include "Summary.h"
+#include "qv/core/JsonWriter.h"
+#include "qv/prep/Cli.h"
+
+namespace qv::prep {
+namespace {
+
+const char* const kUsage =
+    "usage: quakeview-prep info DIR [--json] [--building ID] [--verify]\n"
+    "  Summarizes a city directory: buildings, storeys, tagged and inferred heights, structural\n"
+    "  types, tiles and bytes.\n"
+    "  --json          print the same as one JSON object\n"
+    "  --building ID   print one building (w123, r45, s7, g:12, cj:abc)\n"
+    "  --verify        decode and check every tile; exit 1 naming each bad one\n";
+
+// Upper bounds (exclusive) of the storey histogram's buckets: 1, 2, 3, 4-5, 6-9, 10-19, 20-39, 40+.
+constexpr std::array<int, 8> kStoreyBuckets = {2, 3, 4, 6, 10, 20, 40, 1 << 30};
+
+std::string bucketName(std::size_t i) {
+  const int lo = i == 0 ? 1 : kStoreyBuckets[i - 1];
+  const int hi = kStoreyBuckets[i] - 1;
+  if (i + 1 == kStoreyBuckets.size()) return std::to_string(lo) + "+";
+  if (lo == hi) return std::to_string(lo);
+  return std::to_string(lo) + "-" + std::to_string(hi);
+}
+
+struct CitySummary {
+  std::uint64_t buildings = 0;
+  std::array<std::uint64_t, kStoreyBuckets.size()> storeys{};
+  std::uint64_t heightTagged = 0, heightInferred = 0, storeysTagged = 0, storeysInferred = 0;
+  std::uint64_t critical = 0, lod2 = 0;
+  double totalStoreys = 0;
+  std::map<std::string, std::uint64_t> types, eras, uses;
+};
+
+void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNode& node, const CityTile& tile) {
+  w.beginObject();
+  w.field("id", a.id).field("name", a.name).field("use", a.use).field("address", a.address);
+  w.field("height_m", a.heightM).field("height_source", valueSourceName(a.heightSource));
+  w.field("storeys", static_cast<unsigned>(a.storeys)).field("storeys_source", valueSourceName(a.storeysSource));
+  w.field("min_height_m", a.minHeightM).field("footprint_area_m2", a.footprintAreaM2);
+  w.field("structural_type", structuralTypeCode(a.structuralType));
+  w.field("structural_type_description", structuralTypeDescription(a.structuralType));
+  w.field("code_era", codeEraName(a.codeEra)).field("importance", importanceName(a.importance));
+  w.key("importance_reasons").beginArray();
+  const std::pair<unsigned, const char*> reasons[] = {
+      {kReasonHospital, "hospital"}, {kReasonFireStation, "fire_station"},
+      {kReasonPolice, "police"},     {kReasonSchool, "school"},
+      {kReasonTall, "tall"},         {kReasonComplex, "complex"},
+      {kReasonShelter, "shelter"}};
+  for (const auto& [bit, name] : reasons) {
+    if ((a.importanceReasons & bit) != 0) w.value(name);
+  }
+  w.endArray();
+  w.field("lod", static_cast<unsigned>(a.lod));
+  w.field("start_year", static_cast<int>(a.startYear)).field("material", a.material).field("structure", a.structure);
+  w.field("amenity", a.amenity);
+  w.field("x_m", a.centroidX + tile.originX).field("y_m", a.centroidY + tile.originY);
+  w.field("tile", node.key());
+  w.endObject();
+}
+
+}  // namespace
+
+int runInfo(const CommandArgs& argv) {
+  std::string error;
+  const auto args = Args::parse(argv, {{"json", false}, {"building"}, {"verify", false}, {"help", false}}, error);
+  if (!args || args->has("help")) {
+    if (!args) std::fprintf(stderr, "info: %s\n", error.c_str());
+    std::fputs(kUsage, args ? stdout : stderr);
+    return args ? kExitOk : kExitUsage;
+  }
+  if (args->positional().size() != 1) {
+    std::fprintf(stderr, "info: give exactly one city directory\n%s", kUsage);
+    return kExitUsage;
+  }
+  const std::string dir = args->positional()[0];
+  const bool json = args->has("json");
+  const auto tileset = loadTileset(dir);
+  if (!tileset.ok()) {
+    std::fprintf(stderr, "info: %s\n", tileset.error().c_str());
+    return kExitDataError;
+  }
+  const Tileset& t = *tileset;
+
+  if (args->has("verify")) {
+    std::uint64_t bad = 0, checked = 0;
+    for (const TileNode& node : t.nodes) {
+      ++checked;
+      const auto tile = loadCityTile(dir, node);
+      if (!tile.ok()) {
+        ++bad;
+        std::fprintf(stderr, "BAD %s: %s\n", node.key().c_str(), tile.error().c_str());
+      } else if (tile->buildings.size() != node.buildings) {
+        ++bad;
+        std::fprintf(stderr, "BAD %s: %zu buildings, the manifest says %u\n", node.key().c_str(),
+                     tile->buildings.size(), node.buildings);
+      }
+    }
+    if (bad > 0) {
+      std::fprintf(stderr, "info: %llu of %llu tiles are bad\n", static_cast<unsigned long long>(bad),
+                   static_cast<unsigned long long>(checked));
+      return kExitDataError;
+    }
+    std::printf("ok: %llu tiles verified\n", static_cast<unsigned long long>(checked));
+    return kExitOk;
+  }
+
+  if (const auto id = args->value("building")) {
+    for (const TileNode& node : t.nodes) {
+      if (node.coarse) continue;
+      const auto tile = loadCityTile(dir, node);
+      if (!tile.ok()) {
+        std::fprintf(stderr, "info: %s\n", tile.error().c_str());
+        return kExitDataError;
+      }
+      for (const TileBuilding& b : tile->buildings) {
+        if (b.attributes.id != *id) continue;
+        const BuildingAttributes& a = b.attributes;
+        if (json) {
+          JsonWriter w;
+          writeBuildingJson(w, a, node, *tile);
+          std::printf("%s\n", w.str().c_str());
+        } else {
+          std::printf("%s  %s\n", a.id.c_str(), a.name.empty() ? "(no name)" : a.name.c_str());
+          std::printf("  use %s%s%s\n", a.use.c_str(), a.address.empty() ? "" : ", ", a.address.c_str());
+          std::printf("  height %.1f m (%s), %u storeys (%s), base %.1f m, footprint %.0f m²\n",
+                      static_cast<double>(a.heightM), std::string(valueSourceName(a.heightSource)).c_str(), a.storeys,
+                      std::string(valueSourceName(a.storeysSource)).c_str(), static_cast<double>(a.minHeightM),
+                      static_cast<double>(a.footprintAreaM2));
+          std::printf("  %s (%s), %s, %s, LOD %u, tile %s\n", std::string(structuralTypeCode(a.structuralType)).c_str(),
+                      std::string(structuralTypeDescription(a.structuralType)).c_str(),
+                      std::string(codeEraName(a.codeEra)).c_str(), std::string(importanceName(a.importance)).c_str(),
+                      a.lod, node.key().c_str());
+        }
+        return kExitOk;
+      }
+    }
+    std::fprintf(stderr, "info: no building with id '%s' in %s\n", id->c_str(), dir.c_str());
+    return kExitDataError;
+  }
+
+  CitySummary s;
+  std::uint64_t leaves = 0, bytes = 0;
+  int depth = 0;
+  for (const TileNode& node : t.nodes) {
+    bytes += node.bytes;
+    depth = std::max(depth, static_cast<int>(node.level));
+    if (node.coarse) continue;
+    ++leaves;
+    const auto tile = loadCityTile(dir, node);
+    if (!tile.ok()) {
+      std::fprintf(stderr, "info: %s\n", tile.error().c_str());
+      return kExitDataError;
+    }
+    for (const TileBuilding& b : tile->buildings) {
+      const BuildingAttributes& a = b.attributes;
+      ++s.buildings;
+      std::size_t bucket = 0;
+      while (a.storeys >= kStoreyBuckets[bucket]) ++bucket;
+      ++s.storeys[bucket];
+      s.totalStoreys += a.storeys;
+      (a.heightSource == ValueSource::Tagged ? s.heightTagged : s.heightInferred)++;
+      (a.storeysSource == ValueSource::Tagged ? s.storeysTagged : s.storeysInferred)++;
+      if (a.importance == Importance::Critical) ++s.critical;
+      if (a.lod == 2) ++s.lod2;
+      ++s.types[std::string(structuralTypeCode(a.structuralType))];
+      ++s.eras[std::string(codeEraName(a.codeEra))];
+      ++s.uses[a.use.empty() ? "unknown" : a.use];
+    }
+  }
+  const double meanStoreys = s.buildings > 0 ? s.totalStoreys / static_cast<double>(s.buildings) : 0.0;
+
+  if (json) {
+    JsonWriter w;
+    w.beginObject();
+    w.field("buildings", s.buildings).field("tiles", static_cast<std::uint64_t>(t.nodes.size()));
+    w.field("leaf_tiles", leaves).field("depth", depth).field("bytes", bytes);
+    w.key("origin").beginArray().value(t.originLon).value(t.originLat).endArray();
+    w.field("projection", t.projection);
+    w.key("bounds_m")
+        .beginArray()
+        .value(t.bounds.minX)
+        .value(t.bounds.minY)
+        .value(t.bounds.maxX)
+        .value(t.bounds.maxY)
+        .endArray();
+    w.field("max_height_m", t.maxHeightM).field("mean_storeys", meanStoreys);
+    w.key("storeys_histogram").beginObject();
+    for (std::size_t i = 0; i < kStoreyBuckets.size(); ++i) w.field(bucketName(i), s.storeys[i]);
+    w.endObject();
+    w.key("height_source")
+        .beginObject()
+        .field("tagged", s.heightTagged)
+        .field("inferred", s.heightInferred)
+        .endObject();
+    w.key("storeys_source")
+        .beginObject()
+        .field("tagged", s.storeysTagged)
+        .field("inferred", s.storeysInferred)
+        .endObject();
+    w.key("structural_types").beginObject();
+    for (const auto& [k, v] : s.types) w.field(k, v);
+    w.endObject();
+    w.key("code_eras").beginObject();
+    for (const auto& [k, v] : s.eras) w.field(k, v);
+    w.endObject();
+    w.key("uses").beginObject();
+    for (const auto& [k, v] : s.uses) w.field(k, v);
+    w.endObject();
+    w.field("critical", s.critical).field("lod2", s.lod2);
+    w.field("buildings_revision", t.buildingsRevision);
+    w.key("sources").beginArray();
+    for (const std::string& src : t.sources) w.value(src);
+    w.endArray();
+    w.endObject();
+    std::printf("%s\n", w.str().c_str());
+    return kExitOk;
+  }
+
+  std::printf("city        %s\n", dir.c_str());
+  std::printf("origin      %.6f, %.6f (lon, lat), %s projection\n", t.originLon, t.originLat, t.projection.c_str());
+  std::printf("extent      %.0f m x %.0f m, tallest %.1f m\n", static_cast<double>(t.bounds.width()),
+              static_cast<double>(t.bounds.height()), static_cast<double>(t.maxHeightM));
+  std::printf("buildings   %llu (%llu critical, %llu LOD2), mean %.2f storeys\n",
+              static_cast<unsigned long long>(s.buildings), static_cast<unsigned long long>(s.critical),
+              static_cast<unsigned long long>(s.lod2), meanStoreys);
+  std::printf("storeys    ");
+  for (std::size_t i = 0; i < kStoreyBuckets.size(); ++i) {
+    std::printf(" %s: %llu;", bucketName(i).c_str(), static_cast<unsigned long long>(s.storeys[i]));
+  }
+  std::printf("\nheights     %llu tagged, %llu inferred; storeys %llu tagged, %llu inferred\n",
+              static_cast<unsigned long long>(s.heightTagged), static_cast<unsigned long long>(s.heightInferred),
+              static_cast<unsigned long long>(s.storeysTagged), static_cast<unsigned long long>(s.storeysInferred));
+  std::printf("types      ");
+  for (const auto& [k, v] : s.types) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(v));
+  std::printf("\ncode eras  ");
+  for (const auto& [k, v] : s.eras) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(v));
+  std::printf("\ntiles       %zu (%llu leaves, depth %d), %s\n", t.nodes.size(),
+              static_cast<unsigned long long>(leaves), depth, humanBytes(bytes).c_str());
+  return kExitOk;
+}
+
+}  // namespace qv::prep

@@ -1,0 +1,57 @@
+#include "Summary.h"
+
+namespace qv::prep {
+
+std::string humanBytes(std::uint64_t bytes) {
+  char buffer[32];
+  if (bytes >= 1024ull * 1024 * 1024)
+    std::snprintf(buffer, sizeof buffer, "%.2f GB", static_cast<double>(bytes) / (1024.0 * 1024 * 1024));
+  else if (bytes >= 1024ull * 1024)
+    std::snprintf(buffer, sizeof buffer, "%.1f MB", static_cast<double>(bytes) / (1024.0 * 1024));
+  else if (bytes >= 1024)
+    std::snprintf(buffer, sizeof buffer, "%.1f KB", static_cast<double>(bytes) / 1024.0);
+  else
+    std::snprintf(buffer, sizeof buffer, "%llu B", static_cast<unsigned long long>(bytes));
+  return buffer;
+}
+
+void printTilingSummary(std::FILE* out, const CityModel& model, const TilerReport& report, double seconds,
+                        std::size_t maxWarnings) {
+  std::fprintf(out, "buildings   %llu\n", static_cast<unsigned long long>(report.buildings));
+  std::fprintf(out, "tiles       %llu (%llu leaves, depth %d)\n", static_cast<unsigned long long>(report.tiles),
+               static_cast<unsigned long long>(report.leaves), report.depth);
+  std::fprintf(out, "bytes       %s in all, leaves %s (%s to %s each)\n", humanBytes(report.bytes).c_str(),
+               humanBytes(report.leafBytes).c_str(), humanBytes(report.smallestLeafBytes).c_str(),
+               humanBytes(report.largestLeafBytes).c_str());
+  if (report.buildings > 0) {
+    std::fprintf(out, "per building %.0f B in leaves, %.0f B in all tiles\n",
+                 static_cast<double>(report.leafBytes) / static_cast<double>(report.buildings),
+                 static_cast<double>(report.bytes) / static_cast<double>(report.buildings));
+  }
+  std::fprintf(out, "origin      %.6f, %.6f (lon, lat)\n", model.originLon, model.originLat);
+  if (model.drops.total() > 0) {
+    std::fprintf(out, "dropped     %llu:", static_cast<unsigned long long>(model.drops.total()));
+    for (const auto& [reason, n] : model.drops.byReason) {
+      std::fprintf(out, " %s %llu;", reason.c_str(), static_cast<unsigned long long>(n));
+    }
+    std::fprintf(out, "\n");
+  } else {
+    std::fprintf(out, "dropped     none\n");
+  }
+  if (!model.warningCounts.empty()) {
+    std::fprintf(out, "warnings   ");
+    for (const auto& [what, n] : model.warningCounts) {
+      std::fprintf(out, " %s: %llu;", what.c_str(), static_cast<unsigned long long>(n));
+    }
+    std::fprintf(out, "\n");
+    for (std::size_t i = 0; i < model.warnings.size() && i < maxWarnings; ++i) {
+      std::fprintf(out, "  warning: %s\n", model.warnings[i].c_str());
+    }
+    if (model.warnings.size() > maxWarnings) {
+      std::fprintf(out, "  (%zu more warnings)\n", model.warnings.size() - maxWarnings);
+    }
+  }
+  std::fprintf(out, "time        %.2f s\n", seconds);
+}
+
+}  // namespace qv::prep

@@ -1,0 +1,59 @@
+// File operations of quakeview-prep that never leave half-written output:
+//   - writeFileAtomic writes a sibling temporary file, syncs it and renames it over the target;
+//   - StagingDirectory builds a whole new output directory beside the target and swaps it into
+//     place on commit(), so a failed or interrupted run leaves the previous directory intact;
+//   - Ctrl-C (SIGINT/SIGTERM) sets a flag long loops poll, so they stop and clean up.
+// Every failure is returned as a message naming the path and the system's reason (e.g. "No space
+// left on device").
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "qv/core/Result.h"
+
+namespace qv::prep {
+
+Result<std::vector<std::uint8_t>> readFile(const std::string& path, std::uint64_t maxBytes = 8ull << 30);
+Result<std::string> readTextFile(const std::string& path, std::uint64_t maxBytes = 4ull << 30);
+
+/// Writes `bytes` to `path` through a temporary file in the same directory and a rename.
+Status writeFileAtomic(const std::string& path, std::span<const std::uint8_t> bytes);
+Status writeFileAtomic(const std::string& path, const std::string& text);
+
+/// Creates directories as needed (like mkdir -p).
+Status makeDirectories(const std::string& path);
+
+class StagingDirectory {
+ public:
+  /// Prepares `<target>.tmp-<pid>` beside `target`. Fails when `target` exists and is neither a
+  /// directory holding tileset.json nor empty (we never delete what we did not write).
+  static Result<StagingDirectory> create(const std::string& target);
+  StagingDirectory(StagingDirectory&& other) noexcept;
+  StagingDirectory& operator=(StagingDirectory&&) = delete;
+  StagingDirectory(const StagingDirectory&) = delete;
+  ~StagingDirectory();  ///< removes the staging directory unless committed
+
+  [[nodiscard]] const std::string& path() const { return staging_; }
+  /// Moves the staging directory to the target, replacing a previous city there.
+  Status commit();
+
+ private:
+  StagingDirectory(std::string target, std::string staging)
+      : target_(std::move(target)), staging_(std::move(staging)) {}
+  std::string target_;
+  std::string staging_;
+  bool committed_ = false;
+};
+
+/// Removes a directory tree; quiet when it does not exist.
+void removeTree(const std::string& path);
+
+/// Installs SIGINT/SIGTERM handlers that set the interrupted() flag (once per process).
+void installInterruptHandler();
+/// True after Ctrl-C: long loops stop, clean up and exit with a message.
+bool interrupted();
+
+}  // namespace qv::prep

@@ -1,0 +1,181 @@
+#include "qv/prep/Files.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cerrno>
+#include <csignal>
+#include <cstring>
+#include <filesystem>
+
+namespace qv::prep {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::atomic<bool> gInterrupted{false};
+
+extern "C" void onSignal(int) {
+  gInterrupted.store(true);
+}
+
+std::string systemError(int error) {
+  return std::strerror(error);
+}
+
+Status writeAll(int fd, const std::uint8_t* data, std::size_t size, const std::string& path) {
+  std::size_t done = 0;
+  while (done < size) {
+    const ssize_t n = ::write(fd, data + done, size - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      return Error{"cannot write " + path + ": " + systemError(errno)};
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  return {};
+}
+
+}  // namespace
+
+Result<std::vector<std::uint8_t>> readFile(const std::string& path, std::uint64_t maxBytes) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return Error{"cannot read " + path + ": " + systemError(errno)};
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    return Error{"cannot read " + path + ": not a regular file"};
+  }
+  if (static_cast<std::uint64_t>(st.st_size) > maxBytes) {
+    ::close(fd);
+    return Error{"cannot read " + path + ": " + std::to_string(st.st_size) + " bytes is more than the limit"};
+  }
+  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(st.st_size));
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int e = errno;
+      ::close(fd);
+      return Error{"cannot read " + path + ": " + (n == 0 ? std::string("file shrank while reading") : systemError(e))};
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  return bytes;
+}
+
+Result<std::string> readTextFile(const std::string& path, std::uint64_t maxBytes) {
+  auto bytes = readFile(path, maxBytes);
+  if (!bytes.ok()) return Error{bytes.error()};
+  return std::string(bytes->begin(), bytes->end());
+}
+
+Status writeFileAtomic(const std::string& path, std::span<const std::uint8_t> bytes) {
+  const std::string temporary = path + ".tmp-" + std::to_string(::getpid());
+  const int fd = ::open(temporary.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return Error{"cannot create " + temporary + ": " + systemError(errno)};
+  Status written = writeAll(fd, bytes.data(), bytes.size(), path);
+  if (written.ok() && ::fsync(fd) != 0) written = Error{"cannot write " + path + ": " + systemError(errno)};
+  if (::close(fd) != 0 && written.ok()) written = Error{"cannot write " + path + ": " + systemError(errno)};
+  if (!written.ok()) {
+    ::unlink(temporary.c_str());
+    return written;
+  }
+  if (::rename(temporary.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    ::unlink(temporary.c_str());
+    return Error{"cannot replace " + path + ": " + systemError(e)};
+  }
+  return {};
+}
+
+Status writeFileAtomic(const std::string& path, const std::string& text) {
+  return writeFileAtomic(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
+Status makeDirectories(const std::string& path) {
+  std::error_code ec;
+  fs::create_directories(path, ec);
+  if (ec) return Error{"cannot create directory " + path + ": " + ec.message()};
+  return {};
+}
+
+void removeTree(const std::string& path) {
+  std::error_code ec;
+  fs::remove_all(path, ec);
+}
+
+Result<StagingDirectory> StagingDirectory::create(const std::string& target) {
+  if (target.empty()) return Error{"no output directory given"};
+  std::error_code ec;
+  const fs::path t(target);
+  if (fs::exists(t, ec)) {
+    if (!fs::is_directory(t, ec)) return Error{target + " exists and is not a directory"};
+    const bool isCity = fs::exists(t / "tileset.json", ec);
+    const bool empty = fs::is_empty(t, ec);
+    if (!isCity && !empty) {
+      return Error{target + " exists and is not a QuakeView city directory; remove it or choose another --out"};
+    }
+  }
+  const fs::path parent = t.has_parent_path() ? t.parent_path() : fs::path(".");
+  if (!parent.empty()) {
+    fs::create_directories(parent, ec);
+    if (ec) return Error{"cannot create directory " + parent.string() + ": " + ec.message()};
+  }
+  std::string staging = target;
+  while (!staging.empty() && staging.back() == '/') staging.pop_back();
+  staging += ".tmp-" + std::to_string(::getpid());
+  fs::remove_all(staging, ec);
+  if (!fs::create_directory(staging, ec) || ec) {
+    return Error{"cannot create directory " + staging + ": " + (ec ? ec.message() : std::string("exists"))};
+  }
+  return StagingDirectory(target, staging);
+}
+
+StagingDirectory::StagingDirectory(StagingDirectory&& other) noexcept
+    : target_(std::move(other.target_)), staging_(std::move(other.staging_)), committed_(other.committed_) {
+  other.committed_ = true;  // the moved-from object must not delete anything
+}
+
+StagingDirectory::~StagingDirectory() {
+  if (!committed_) removeTree(staging_);
+}
+
+Status StagingDirectory::commit() {
+  if (committed_) return Error{"staging directory committed twice"};
+  std::error_code ec;
+  std::string target = target_;
+  while (target.size() > 1 && target.back() == '/') target.pop_back();
+  const std::string old = target + ".old-" + std::to_string(::getpid());
+  const bool hadTarget = fs::exists(target, ec);
+  if (hadTarget && ::rename(target.c_str(), old.c_str()) != 0) {
+    return Error{"cannot move the previous " + target + " aside: " + systemError(errno)};
+  }
+  if (::rename(staging_.c_str(), target.c_str()) != 0) {
+    const int e = errno;
+    if (hadTarget) ::rename(old.c_str(), target.c_str());  // put the previous city back
+    return Error{"cannot move the new city into " + target + ": " + systemError(e)};
+  }
+  committed_ = true;
+  if (hadTarget) removeTree(old);
+  return {};
+}
+
+void installInterruptHandler() {
+  struct sigaction action {};
+  action.sa_handler = onSignal;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+bool interrupted() {
+  return gInterrupted.load();
+}
+
+}  // namespace qv::prep

@@ -1,0 +1,116 @@
+// Building attribute rules shared by every path that makes buildings (the OSM and GeoJSON readers,
+// the synthetic city generator): parsing of OSM length/level/date values, normalized use, storey
+// heights and default heights by use, height and storey inference, the HAZUS-style structural
+// type, the design-code era and the importance class. The rules and their sources are documented
+// in docs/attributes.md; the tables there and here must agree (tests/ingest/TestAttributes.cpp).
+//
+// Nothing here throws or allocates beyond the returned strings.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "qv/format/BuildingAttributes.h"
+
+namespace qv::prep {
+
+/// The unit of a plain number in a height value ("30" means 30 m in OSM, 30 ft in NYC's data).
+enum class LengthUnit : std::uint8_t { Meters, Feet };
+
+/// Parses "metres"/"m" and "feet"/"ft" (the --height-unit option); nullopt otherwise.
+std::optional<LengthUnit> parseLengthUnit(std::string_view name);
+
+/// Parses an OSM length to metres: "30", "30.5", "30 m", "30m", "100 ft", "100 feet", "12'",
+/// "12'6\"", "12' 6\"", "1,5" (a decimal comma followed by one or two digits). A plain number is in
+/// `plainUnit`. Returns nullopt for anything else: garbage ("concrete"), several values ("5;6"),
+/// negative or non-finite numbers, thousands separators ("1,500").
+std::optional<double> parseLengthMeters(std::string_view text, LengthUnit plainUnit = LengthUnit::Meters);
+
+/// Parses building:levels / building:min_level: a number >= 0 ("12", "2.5", "-1" for min_level is
+/// accepted by parseMinLevel only). Nullopt for garbage ("concrete", "5;6", "", "12 floors").
+std::optional<double> parseLevels(std::string_view text);
+/// building:min_level may be negative (underground); the caller clamps it to the ground.
+std::optional<double> parseMinLevel(std::string_view text);
+
+/// The construction year of a start_date value: "1931", "1931-05-01", "~1931", "1930s", "c. 1931",
+/// "before 1900", "1930..1931" (the first year). Years outside 1000..2100 and text without a year
+/// give nullopt.
+std::optional<int> parseStartYear(std::string_view text);
+
+/// Normalized use from the building=* value and the amenity tag (docs/attributes.md, "Use"):
+/// "residential", "house", "office", "commercial", "retail", "hotel", "industrial", "warehouse",
+/// "school", "university", "hospital", "fire_station", "police", "religious", "civic",
+/// "transportation", "parking", "sports", "roof", "shed", "service", "construction",
+/// "mobile_home", "other" (a specific building value not in the table) or "unknown"
+/// (building=yes and no telling amenity).
+std::string normalizeUse(std::string_view buildingTag, std::string_view amenity);
+
+/// Typical floor-to-floor height in metres for a normalized use (docs/attributes.md, table
+/// "Storey height by use"; CTBUH height calculator values). Unknown uses get 3.5 m.
+float storeyHeightForUse(std::string_view use);
+
+/// Default number of storeys for a building with neither height nor levels tagged, by use
+/// (docs/attributes.md, table "Default heights").
+int defaultStoreysForUse(std::string_view use);
+/// defaultStoreysForUse(use) × storeyHeightForUse(use), metres.
+float defaultHeightForUse(std::string_view use);
+
+/// Tagged height values of one building or part, already parsed (nullopt = not tagged or garbage).
+struct HeightTags {
+  std::optional<double> heightM;     ///< height
+  std::optional<double> minHeightM;  ///< min_height
+  std::optional<double> levels;      ///< building:levels (counted from the ground, as in S3DB)
+  std::optional<double> minLevel;    ///< building:min_level (levels skipped below this part)
+};
+
+/// Heights and storeys of one building or part, each with where it came from.
+struct ResolvedHeights {
+  float heightM = 0.0f;                ///< top above ground
+  float minHeightM = 0.0f;             ///< bottom above ground, < heightM
+  std::uint16_t storeys = 1;           ///< storeys between minHeightM and heightM, >= 1
+  std::uint16_t levelsFromGround = 1;  ///< storeys from the ground to heightM (S3DB building:levels)
+  ValueSource heightSource = ValueSource::Inferred;
+  ValueSource storeysSource = ValueSource::Inferred;
+};
+
+/// The rules of docs/attributes.md "Storeys and height": height from the tag; else levels × storey
+/// height of the use; else `fallbackHeightM` when given (a part without heights inherits its
+/// building's), else the default of the use. Storeys from levels − min_level; else
+/// round((height − min height) / storey height), at least 1. min height from min_height, else
+/// min_level × storey height, else 0; a min height at or above the height is ignored (0).
+ResolvedHeights resolveHeights(const HeightTags& tags, std::string_view use,
+                               std::optional<double> fallbackHeightM = std::nullopt);
+
+/// HAZUS model building type (docs/attributes.md "Structural type"), first matching rule wins:
+/// building:structure, then building:material (masonry of 8+ storeys is taken as cladding of a
+/// frame), then use × storeys × construction year. `storeys` <= 0 means unknown (then estimated
+/// from heightM at 3.5 m a storey); `startYear` 0 means unknown. Height class: steel and concrete
+/// L 1–3, M 4–7, H 8+; URM L 1–2, M 3+; RM1 L 1–3, M 4+.
+StructuralType inferStructuralType(std::string_view use, float heightM, int storeys, std::string_view material,
+                                   std::string_view structure, int startYear);
+
+/// HAZUS design level from the construction year (docs/attributes.md "Code era"): before 1941
+/// pre-code, 1941–1975 low-code, 1976–1994 moderate-code, 1995 on high-code; 0 (or a year before
+/// 1000) gives Unknown.
+CodeEra inferCodeEra(int startYear);
+
+/// Height above which a building is critical for being very tall, metres.
+inline constexpr float kTallBuildingHeightM = 100.0f;
+
+/// Sets attributes.importance and importanceReasons from use, amenity and heightM: hospitals and
+/// clinics, fire stations, police, schools/universities, emergency shelters and town halls,
+/// buildings taller than 100 m, and buildings assembled from parts (`hasParts`) are critical.
+void classifyImportance(BuildingAttributes& attributes, bool hasParts);
+
+/// Fills structuralType, codeEra and importance of attributes whose use, heightM, storeys,
+/// material, structure, startYear and amenity are set (the last step of every building path).
+void inferSeismicAttributes(BuildingAttributes& attributes, bool hasParts);
+
+/// "350 5th Avenue, 10118 New York" from addr:housenumber, addr:street, addr:postcode, addr:city;
+/// missing pieces are left out ("5th Avenue", "350 5th Avenue, New York"); empty when all are.
+std::string formatAddress(std::string_view houseNumber, std::string_view street, std::string_view postcode,
+                          std::string_view city);
+
+}  // namespace qv::prep

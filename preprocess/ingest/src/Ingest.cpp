@@ -1,0 +1,596 @@
+// readCity: reads every input into raw features (degrees, kept tags), then projects, cleans, parses
+// the tags, attaches building:part features to their outlines and makes the CityModel.
+// Projection and cleaning run on a few threads (each feature is independent); everything that
+// decides between features (ids, parts) runs after, in input order, so the result is deterministic.
+#include "qv/prep/Ingest.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <filesystem>
+#include <limits>
+#include <new>
+#include <system_error>
+#include <thread>
+#include <unordered_map>
+
+#include "RawCity.h"
+#include "qv/prep/Attributes.h"
+#include "qv/prep/Cleaning.h"
+#include "qv/prep/Projection.h"
+
+namespace qv::prep {
+namespace {
+
+using detail::FeatureKind;
+using detail::RawCity;
+using detail::RawFeature;
+using detail::WarningLog;
+
+constexpr double kMaxSpanDegrees = 10.0;  ///< a city (or a few merged) fits in this
+constexpr double kMaxHeightM = 1000.0;    ///< taller values are typos (the tallest building is 828 m)
+constexpr double kMaxLevels = 300.0;      ///< more storeys than any building has: a typo
+constexpr double kGridCellM = 64.0;       ///< cell size of the outline index used to find parts' owners
+constexpr std::size_t kFeaturesPerThreadMin = 512;
+constexpr std::size_t kPointsPerThreadMin = 4096;
+
+const std::string kHeightKey = "height";
+const std::string kMinHeightKey = "min_height";
+const std::string kLevelsKey = "building:levels";
+const std::string kStartDateKey = "start_date";
+
+enum class InputKind : std::uint8_t { Osm, GeoJson, Unknown };
+
+InputKind inputKind(const std::string& path) {
+  std::string name = std::filesystem::path(path).filename().string();
+  std::transform(name.begin(), name.end(), name.begin(),
+                 [](char c) { return c >= 'A' && c <= 'Z' ? static_cast<char>(c - 'A' + 'a') : c; });
+  auto endsWith = [&](std::string_view suffix) { return name.ends_with(suffix); };
+  if (endsWith(".osm") || endsWith(".osm.bz2") || endsWith(".osm.gz") || endsWith(".pbf") || endsWith(".o5m") ||
+      endsWith(".opl"))
+    return InputKind::Osm;
+  if (endsWith(".geojson") || endsWith(".json")) return InputKind::GeoJson;
+  return InputKind::Unknown;
+}
+
+struct Bounds {
+  double minX = std::numeric_limits<double>::infinity();
+  double minY = std::numeric_limits<double>::infinity();
+  double maxX = -std::numeric_limits<double>::infinity();
+  double maxY = -std::numeric_limits<double>::infinity();
+  void add(glm::dvec2 p) {
+    minX = std::min(minX, p.x);
+    minY = std::min(minY, p.y);
+    maxX = std::max(maxX, p.x);
+    maxY = std::max(maxY, p.y);
+  }
+  void add(const Bounds& b) {
+    minX = std::min(minX, b.minX);
+    minY = std::min(minY, b.minY);
+    maxX = std::max(maxX, b.maxX);
+    maxY = std::max(maxY, b.maxY);
+  }
+  [[nodiscard]] bool empty() const { return !(minX <= maxX); }
+  [[nodiscard]] bool contains(glm::dvec2 p) const { return p.x >= minX && p.x <= maxX && p.y >= minY && p.y <= maxY; }
+};
+
+struct Polygon {
+  std::vector<glm::dvec2> points;
+  std::vector<std::uint32_t> ringEnds;
+  double areaM2 = 0.0;
+  glm::dvec2 centroid{0.0, 0.0};
+};
+
+/// One feature after projection, cleaning and tag parsing.
+struct Prepared {
+  std::vector<Polygon> polygons;  ///< empty: dropped
+  Bounds box;
+  double areaM2 = 0.0;
+  glm::dvec2 centroid{0.0, 0.0};
+  HeightTags heights;
+  std::string use;
+  float roofHeightM = 0.0f;
+  int startYear = 0;
+};
+
+struct WorkerOutput {
+  DropCounts drops;
+  WarningLog warnings;
+};
+
+/// Parses the kept tags of one feature, warning (object, tag, value) about garbage.
+void parseTags(const RawFeature& feature, Prepared& out, WarningLog& warnings) {
+  const detail::RawTags& tags = feature.tags;
+  auto warn = [&](const std::string& kind, const std::string& key, const std::string& value, const std::string& what) {
+    warnings.add(kind, feature.id + ": " + key + "=" + value + " " + what);
+  };
+  // Warnings name the key as it appears in the input (GeoJSON property names are configurable);
+  // the warning kinds keep the OSM names so that counts add up across formats.
+  const IngestOptions* names = feature.propertyNames;
+  const std::string& heightKey = names != nullptr ? names->heightProperty : kHeightKey;
+  const std::string& minHeightKey = names != nullptr ? names->minHeightProperty : kMinHeightKey;
+  const std::string& levelsKey = names != nullptr ? names->levelsProperty : kLevelsKey;
+  const std::string& yearKey = names != nullptr ? names->yearProperty : kStartDateKey;
+  auto length = [&](const std::string& kind, const std::string& key, const std::string& value,
+                    double maxM) -> std::optional<double> {
+    if (value.empty()) return std::nullopt;
+    const std::optional<double> m = parseLengthMeters(value, feature.plainUnit);
+    if (!m) {
+      warn(kind + " not a length", key, value, "is not a length; inferred instead");
+      return std::nullopt;
+    }
+    if (*m > maxM) {
+      warn(kind + " out of range", key, value, "is out of range; inferred instead");
+      return std::nullopt;
+    }
+    return m;
+  };
+  out.heights.heightM = length(kHeightKey, heightKey, tags.height, kMaxHeightM);
+  if (out.heights.heightM && *out.heights.heightM <= 0.0) {
+    warn("height out of range", heightKey, tags.height, "is not above the ground; inferred instead");
+    out.heights.heightM.reset();
+  }
+  out.heights.minHeightM = length(kMinHeightKey, minHeightKey, tags.minHeight, kMaxHeightM);
+  if (out.heights.heightM && out.heights.minHeightM && *out.heights.minHeightM >= *out.heights.heightM) {
+    warn("min_height not below height", minHeightKey, tags.minHeight,
+         "is not below " + heightKey + "=" + tags.height + "; the part stands on the ground");
+    out.heights.minHeightM.reset();
+  }
+  if (!tags.levels.empty()) {
+    const std::optional<double> levels = parseLevels(tags.levels);
+    if (!levels) {
+      warn("building:levels not a number", levelsKey, tags.levels, "is not a number; storeys inferred instead");
+    } else if (*levels > kMaxLevels) {
+      warn("building:levels out of range", levelsKey, tags.levels, "is out of range; storeys inferred instead");
+    } else {
+      out.heights.levels = levels;
+    }
+  }
+  if (!tags.minLevel.empty()) {
+    const std::optional<double> minLevel = parseMinLevel(tags.minLevel);
+    if (!minLevel || *minLevel > kMaxLevels) {
+      warn("building:min_level not a number", "building:min_level", tags.minLevel, "is not a number; ignored");
+    } else {
+      out.heights.minLevel = minLevel;
+    }
+  }
+  if (const auto roof = length("roof:height", "roof:height", tags.roofHeight, kMaxHeightM))
+    out.roofHeightM = static_cast<float>(*roof);
+  if (!tags.startDate.empty()) {
+    if (const std::optional<int> year = parseStartYear(tags.startDate)) {
+      out.startYear = *year;
+    } else {
+      warn("start_date not a year", yearKey, tags.startDate, "has no year; the code era is unknown");
+    }
+  }
+  out.use = feature.kind == FeatureKind::Building ? normalizeUse(tags.building, tags.amenity)
+                                                  : normalizeUse(tags.buildingPart, tags.amenity);
+}
+
+/// Cleans and parses one feature (its points already projected in `table`).
+void prepareFeature(RawFeature& feature, const std::vector<glm::dvec2>& table, Prepared& out, WorkerOutput& worker) {
+  std::uint32_t ring = 0;
+  for (const std::uint32_t polygonEnd : feature.polygonEnds) {
+    Polygon polygon;
+    const std::uint32_t first = ring == 0 ? 0 : feature.ringEnds[ring - 1];
+    const std::uint32_t last = polygonEnd == 0 ? 0 : feature.ringEnds[polygonEnd - 1];
+    polygon.points.resize(last - first);
+    for (std::uint32_t i = first; i < last; ++i) polygon.points[i - first] = table[feature.points[i]];
+    for (std::uint32_t r = ring; r < polygonEnd; ++r) polygon.ringEnds.push_back(feature.ringEnds[r] - first);
+    ring = polygonEnd;
+    if (const std::string reason = cleanPolygon(polygon.points, polygon.ringEnds, &worker.drops); !reason.empty()) {
+      worker.drops.add(reason);
+      continue;
+    }
+    polygon.areaM2 = polygonArea(polygon.points, polygon.ringEnds);
+    polygon.centroid = polygonCentroid(polygon.points, polygon.ringEnds);
+    for (std::uint32_t i = 0; i < polygon.ringEnds[0]; ++i) out.box.add(polygon.points[i]);
+    out.polygons.push_back(std::move(polygon));
+  }
+  feature.points = {};  // the polygons hold the geometry from here on
+  if (out.polygons.empty()) return;
+  glm::dvec2 moment{0.0, 0.0};
+  for (const Polygon& polygon : out.polygons) {
+    out.areaM2 += polygon.areaM2;
+    moment += polygon.centroid * polygon.areaM2;
+  }
+  out.centroid = out.areaM2 > 0.0 ? moment / out.areaM2 : out.polygons[0].centroid;
+  parseTags(feature, out, worker.warnings);
+}
+
+/// Runs work(t, chunks) for t in [0, chunks) on up to `maxThreads` threads, the calling thread
+/// included; chunks = min(maxThreads, max(1, wanted)). Returns chunks. If the system refuses a
+/// thread, the calling thread runs that chunk itself. An exception thrown by a chunk (bad_alloc)
+/// is rethrown here after every thread has joined.
+template <typename Work>
+unsigned parallelChunks(unsigned maxThreads, std::size_t wanted, const Work& work) {
+  const auto chunks = static_cast<unsigned>(std::clamp<std::size_t>(wanted, 1, std::max(1u, maxThreads)));
+  std::vector<std::exception_ptr> errors(chunks);
+  auto guarded = [&](unsigned t) {
+    try {
+      work(t, chunks);
+    } catch (...) {
+      errors[t] = std::current_exception();
+    }
+  };
+  std::vector<std::thread> pool;
+  unsigned started = 1;
+  try {
+    for (unsigned t = 1; t < chunks; ++t) {
+      pool.emplace_back(guarded, t);
+      ++started;
+    }
+  } catch (const std::system_error&) {
+    // No more threads: this thread does the remaining chunks.
+  }
+  guarded(0u);
+  for (std::thread& thread : pool) thread.join();
+  for (unsigned t = started; t < chunks; ++t) guarded(t);
+  for (const std::exception_ptr& error : errors) {
+    if (error) std::rethrow_exception(error);
+  }
+  return chunks;
+}
+
+/// Outlines indexed by the grid cells their bounds cover.
+class OutlineGrid {
+ public:
+  void insert(std::uint32_t feature, const Bounds& box) {
+    const auto [x0, y0] = cell({box.minX, box.minY});
+    const auto [x1, y1] = cell({box.maxX, box.maxY});
+    for (std::int64_t y = y0; y <= y1; ++y) {
+      for (std::int64_t x = x0; x <= x1; ++x) cells_[key(x, y)].push_back(feature);
+    }
+  }
+  [[nodiscard]] const std::vector<std::uint32_t>* at(glm::dvec2 p) const {
+    const auto [x, y] = cell(p);
+    const auto it = cells_.find(key(x, y));
+    return it == cells_.end() ? nullptr : &it->second;
+  }
+
+ private:
+  static std::pair<std::int64_t, std::int64_t> cell(glm::dvec2 p) {
+    return {static_cast<std::int64_t>(std::floor(p.x / kGridCellM)),
+            static_cast<std::int64_t>(std::floor(p.y / kGridCellM))};
+  }
+  static std::uint64_t key(std::int64_t x, std::int64_t y) {
+    return (static_cast<std::uint64_t>(x) << 32) ^ (static_cast<std::uint64_t>(y) & 0xffffffffULL);
+  }
+  std::unordered_map<std::uint64_t, std::vector<std::uint32_t>> cells_;
+};
+
+std::uint16_t clampStoreys(double storeys) {
+  return static_cast<std::uint16_t>(std::clamp(std::round(storeys), 1.0, 999.0));
+}
+
+/// The BuildingAttributes fields that come straight from the kept tags.
+void fillIdentity(const RawFeature& feature, const Prepared& prepared, BuildingAttributes& a) {
+  const detail::RawTags& tags = feature.tags;
+  a.id = feature.id;
+  a.name = tags.name;
+  a.use = prepared.use;
+  a.address = formatAddress(tags.houseNumber, tags.street, tags.postcode, tags.city);
+  a.material = tags.material;
+  a.structure = tags.structure;
+  a.amenity = tags.amenity;
+  a.startYear = static_cast<std::int16_t>(prepared.startYear);
+  a.lod = 1;
+  a.footprintAreaM2 = static_cast<float>(prepared.areaM2);
+  a.centroidX = prepared.centroid.x;
+  a.centroidY = prepared.centroid.y;
+}
+
+void addParts(Prepared& prepared, const RawFeature& feature, const ResolvedHeights& heights,
+              const std::string& sourceId, Building& building) {
+  for (Polygon& polygon : prepared.polygons) {
+    BuildingPart part;
+    part.points = std::move(polygon.points);
+    part.ringEnds = std::move(polygon.ringEnds);
+    part.minHeightM = heights.minHeightM;
+    part.heightM = heights.heightM;
+    part.roofShape = feature.tags.roofShape;
+    part.roofHeightM = prepared.roofHeightM;
+    part.sourceId = sourceId;
+    building.parts.push_back(std::move(part));
+  }
+}
+
+/// A building drawn from its own footprint (a plain outline, or a part without an outline).
+Building makeSimpleBuilding(const RawFeature& feature, Prepared& prepared) {
+  Building building;
+  BuildingAttributes& a = building.attributes;
+  fillIdentity(feature, prepared, a);
+  const ResolvedHeights h = resolveHeights(prepared.heights, a.use);
+  a.heightM = h.heightM;
+  a.minHeightM = h.minHeightM;
+  a.storeys = h.storeys;
+  a.heightSource = h.heightSource;
+  a.storeysSource = h.storeysSource;
+  addParts(prepared, feature, h, feature.kind == FeatureKind::Part ? feature.id : std::string(), building);
+  inferSeismicAttributes(a, false);
+  return building;
+}
+
+/// A building whose geometry is its parts (Simple 3D Buildings): the outline gives identity,
+/// footprint and defaults; heights are the parts'.
+Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, const std::vector<std::uint32_t>& partIds,
+                               std::deque<RawFeature>& features, std::vector<Prepared>& preparedParts) {
+  Building building;
+  BuildingAttributes& a = building.attributes;
+  fillIdentity(outline, prepared, a);
+  float top = 0.0f;
+  float bottom = std::numeric_limits<float>::infinity();
+  ValueSource topSource = ValueSource::Inferred;
+  std::optional<double> maxLevels = prepared.heights.levels;
+  std::string tallestMaterial;
+  std::string tallestStructure;
+  for (const std::uint32_t p : partIds) {
+    Prepared& part = preparedParts[p];
+    const std::string& partUse = part.use == "unknown" ? a.use : part.use;
+    const ResolvedHeights h = resolveHeights(part.heights, partUse, prepared.heights.heightM);
+    if (h.heightM > top) {
+      top = h.heightM;
+      topSource = h.heightSource;
+      tallestMaterial = features[p].tags.material;
+      tallestStructure = features[p].tags.structure;
+    }
+    bottom = std::min(bottom, h.minHeightM);
+    if (h.storeysSource == ValueSource::Tagged && part.heights.levels)
+      maxLevels = std::max(maxLevels.value_or(0.0), *part.heights.levels);
+    addParts(part, features[p], h, features[p].id, building);
+  }
+  a.heightM = top;
+  a.minHeightM = std::isfinite(bottom) ? bottom : 0.0f;
+  a.heightSource =
+      topSource == ValueSource::Tagged || prepared.heights.heightM ? ValueSource::Tagged : ValueSource::Inferred;
+  const double storeyM = storeyHeightForUse(a.use);
+  if (maxLevels && *maxLevels > 0.0) {
+    // Levels count from the ground (S3DB); a building floating above it starts that many higher.
+    const double levelsBelow = std::round(a.minHeightM / storeyM);
+    a.storeys = clampStoreys(*maxLevels - levelsBelow);
+    a.storeysSource = ValueSource::Tagged;
+  } else {
+    a.storeys = clampStoreys((a.heightM - a.minHeightM) / storeyM);
+    a.storeysSource = ValueSource::Inferred;
+  }
+  if (a.material.empty()) a.material = tallestMaterial;
+  if (a.structure.empty()) a.structure = tallestStructure;
+  inferSeismicAttributes(a, true);
+  return building;
+}
+
+std::string describeDrops(const DropCounts& drops) {
+  std::string text;
+  for (const auto& [reason, n] : drops.byReason) {
+    if (!text.empty()) text += ", ";
+    text += reason + " " + std::to_string(n);
+  }
+  return text.empty() ? "none" : text;
+}
+
+std::string joinPaths(const std::vector<std::string>& paths) {
+  std::string text;
+  for (const std::string& p : paths) {
+    if (!text.empty()) text += ", ";
+    text += p;
+  }
+  return text;
+}
+
+Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, const IngestOptions& options,
+                                  IngestStats* statsOut) {
+  using Clock = std::chrono::steady_clock;
+  const auto started = Clock::now();
+  IngestStats stats;
+  if (inputPaths.empty()) return fail("no input files");
+  const std::optional<LengthUnit> plainUnit = parseLengthUnit(options.heightUnit);
+  if (!plainUnit) return fail("height unit \"" + options.heightUnit + "\" is neither \"m\" nor \"ft\"");
+  if (options.originLonLat) {
+    const auto [lon, lat] = *options.originLonLat;
+    if (!validLonLat(lon, lat) || std::abs(lat) >= 90.0)
+      return fail("origin " + std::to_string(lon) + "," + std::to_string(lat) +
+                  " is not a longitude,latitude in degrees");
+  }
+
+  // ---- Read every input into raw features.
+  RawCity raw;
+  std::size_t geojsonOrdinal = 0;
+  for (const std::string& path : inputPaths) {
+    std::error_code ec;
+    const auto status = std::filesystem::status(path, ec);
+    if (ec || !std::filesystem::exists(status)) return fail(path + ": no such file");
+    if (std::filesystem::is_directory(status)) return fail(path + ": is a directory, not a file");
+    Status read;
+    switch (inputKind(path)) {
+      case InputKind::Osm:
+        read = detail::readOsmFile(path, raw, stats);
+        break;
+      case InputKind::GeoJson:
+        read = detail::readGeoJsonFile(path, options, *plainUnit, geojsonOrdinal++, raw, stats);
+        break;
+      case InputKind::Unknown:
+        return fail(path + ": unknown input format (expected .osm, .osm.bz2, .osm.gz, .osm.pbf, .geojson or .json)");
+    }
+    if (!read) return fail(read.error());
+  }
+  const auto readDone = Clock::now();
+  stats.readSeconds = std::chrono::duration<double>(readDone - started).count();
+
+  std::deque<RawFeature>& features = raw.features;
+  if (features.empty()) {
+    return fail("no buildings in " + joinPaths(inputPaths) + " (read " + std::to_string(stats.osmWays) +
+                " building ways, " + std::to_string(stats.osmRelations) + " building relations, " +
+                std::to_string(stats.geojsonFeatures) + " GeoJSON features; dropped: " + describeDrops(raw.drops) +
+                ")");
+  }
+
+  // ---- Bounds in degrees, sanity of the coordinates, the projection.
+  std::vector<glm::dvec2>& points = raw.points.points;
+  Bounds lonLat;
+  for (const glm::dvec2& p : points) lonLat.add(p);
+  if (lonLat.empty()) return fail("no building geometry in " + joinPaths(inputPaths));
+  if (lonLat.maxX - lonLat.minX > kMaxSpanDegrees || lonLat.maxY - lonLat.minY > kMaxSpanDegrees) {
+    std::size_t west = 0;
+    std::size_t east = 0;
+    std::size_t south = 0;
+    std::size_t north = 0;
+    for (std::size_t i = 0; i < features.size(); ++i) {
+      for (const std::uint32_t index : features[i].points) {
+        const glm::dvec2 p = points[index];
+        if (p.x == lonLat.minX) west = i;
+        if (p.x == lonLat.maxX) east = i;
+        if (p.y == lonLat.minY) south = i;
+        if (p.y == lonLat.maxY) north = i;
+      }
+    }
+    return fail("the buildings span " + std::to_string(lonLat.maxX - lonLat.minX) + " degrees of longitude and " +
+                std::to_string(lonLat.maxY - lonLat.minY) +
+                " of latitude (more than a city's 10): absurd coordinates in the extreme buildings " +
+                features[west].id + " (west), " + features[east].id + " (east), " + features[south].id + " (south), " +
+                features[north].id + " (north)");
+  }
+  const double originLon = options.originLonLat ? (*options.originLonLat)[0] : 0.5 * (lonLat.minX + lonLat.maxX);
+  const double originLat = options.originLonLat ? (*options.originLonLat)[1] : 0.5 * (lonLat.minY + lonLat.maxY);
+  if (std::abs(originLon - lonLat.minX) > kMaxSpanDegrees || std::abs(originLon - lonLat.maxX) > kMaxSpanDegrees ||
+      std::abs(originLat - lonLat.minY) > kMaxSpanDegrees || std::abs(originLat - lonLat.maxY) > kMaxSpanDegrees) {
+    return fail("origin " + std::to_string(originLon) + "," + std::to_string(originLat) +
+                " is more than 10 degrees from the buildings");
+  }
+  const CityProjection projection(originLon, originLat);
+
+  // ---- Project every point once, then clean and parse every feature (independent: a few threads).
+  const unsigned maxThreads =
+      options.threads > 0 ? options.threads : std::min(4u, std::max(1u, std::thread::hardware_concurrency()));
+  parallelChunks(maxThreads, points.size() / kPointsPerThreadMin, [&](unsigned t, unsigned chunks) {
+    const std::size_t end = points.size() * (t + 1) / chunks;
+    for (std::size_t i = points.size() * t / chunks; i < end; ++i)
+      points[i] = projection.forward(points[i].x, points[i].y);
+  });
+  stats.points = points.size();
+  std::vector<Prepared> prepared(features.size());
+  std::vector<WorkerOutput> workers(maxThreads);
+  const unsigned featureChunks =
+      parallelChunks(maxThreads, features.size() / kFeaturesPerThreadMin, [&](unsigned t, unsigned chunks) {
+        const std::size_t end = features.size() * (t + 1) / chunks;
+        for (std::size_t i = features.size() * t / chunks; i < end; ++i)
+          prepareFeature(features[i], points, prepared[i], workers[t]);
+      });
+  workers.resize(featureChunks);
+  CityModel model;
+  model.originLon = originLon;
+  model.originLat = originLat;
+  model.sources = inputPaths;
+  model.drops = raw.drops;
+  WarningLog warnings = raw.warnings;
+  for (const WorkerOutput& w : workers) {
+    for (const auto& [reason, n] : w.drops.byReason) model.drops.add(reason, n);
+    warnings.append(w.warnings);
+  }
+
+  // ---- Ids: the first building of an id wins (an object in two merged extracts is one building).
+  std::unordered_map<std::string_view, std::uint32_t> byId;
+  byId.reserve(features.size());
+  for (std::uint32_t i = 0; i < features.size(); ++i) {
+    if (prepared[i].polygons.empty()) continue;
+    if (!byId.emplace(features[i].id, i).second) {
+      model.drops.add("duplicate-id");
+      prepared[i].polygons.clear();
+    }
+  }
+
+  // ---- Parts to outlines: type=building relations first, then containment of an interior point.
+  constexpr std::uint32_t kNone = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> owner(features.size(), kNone);
+  std::vector<std::vector<std::uint32_t>> partsOf(features.size());
+  auto kept = [&](std::uint32_t i, FeatureKind kind) {
+    return features[i].kind == kind && !prepared[i].polygons.empty();
+  };
+  auto findKept = [&](const std::string& id, FeatureKind kind) -> std::uint32_t {
+    const auto it = byId.find(id);
+    return it != byId.end() && kept(it->second, kind) ? it->second : kNone;
+  };
+  for (const detail::BuildingGroup& group : raw.groups) {
+    const std::uint32_t outline = findKept(group.outlineId, FeatureKind::Building);
+    if (outline == kNone) continue;
+    for (const std::string& partId : group.partIds) {
+      const std::uint32_t part = findKept(partId, FeatureKind::Part);
+      if (part == kNone || owner[part] != kNone) continue;
+      owner[part] = outline;
+      ++stats.partsAttachedByRelation;
+    }
+  }
+  OutlineGrid grid;
+  bool anyPart = false;
+  for (std::uint32_t i = 0; i < features.size(); ++i) {
+    if (kept(i, FeatureKind::Building)) grid.insert(i, prepared[i].box);
+    anyPart = anyPart || kept(i, FeatureKind::Part);
+  }
+  for (std::uint32_t i = 0; anyPart && i < features.size(); ++i) {
+    if (!kept(i, FeatureKind::Part) || owner[i] != kNone) continue;
+    const auto largest = std::max_element(prepared[i].polygons.begin(), prepared[i].polygons.end(),
+                                          [](const Polygon& a, const Polygon& b) { return a.areaM2 < b.areaM2; });
+    const std::optional<glm::dvec2> inside = interiorPoint(largest->points, largest->ringEnds);
+    if (!inside) continue;
+    const std::vector<std::uint32_t>* candidates = grid.at(*inside);
+    if (candidates == nullptr) continue;
+    double bestArea = std::numeric_limits<double>::infinity();
+    for (const std::uint32_t c : *candidates) {
+      if (!prepared[c].box.contains(*inside) || prepared[c].areaM2 >= bestArea) continue;
+      for (const Polygon& polygon : prepared[c].polygons) {
+        if (pointInPolygon(*inside, polygon.points, polygon.ringEnds)) {
+          owner[i] = c;
+          bestArea = prepared[c].areaM2;
+          break;
+        }
+      }
+    }
+  }
+  for (std::uint32_t i = 0; i < features.size(); ++i) {
+    if (owner[i] != kNone) partsOf[owner[i]].push_back(i);
+  }
+
+  // ---- Buildings, in input order.
+  model.buildings.reserve(byId.size());
+  for (std::uint32_t i = 0; i < features.size(); ++i) {
+    if (prepared[i].polygons.empty()) continue;
+    if (features[i].kind == FeatureKind::Building) {
+      if (partsOf[i].empty()) {
+        model.buildings.push_back(makeSimpleBuilding(features[i], prepared[i]));
+      } else {
+        stats.partsAttached += partsOf[i].size();
+        model.buildings.push_back(makeBuildingWithParts(features[i], prepared[i], partsOf[i], features, prepared));
+      }
+    } else if (owner[i] == kNone) {
+      ++stats.partsStandalone;
+      model.buildings.push_back(makeSimpleBuilding(features[i], prepared[i]));
+    }
+  }
+  model.warnings = std::move(warnings.messages);
+  model.warningCounts = std::move(warnings.counts);
+  stats.buildings = model.buildings.size();
+  stats.buildSeconds = std::chrono::duration<double>(Clock::now() - readDone).count();
+  if (statsOut != nullptr) *statsOut = stats;
+  if (model.buildings.empty()) {
+    return fail("no building left in " + joinPaths(inputPaths) +
+                " after cleaning (dropped: " + describeDrops(model.drops) + ")");
+  }
+  return model;
+}
+
+}  // namespace
+
+Result<CityModel> readCity(const std::vector<std::string>& inputPaths, const IngestOptions& options,
+                           IngestStats* stats) {
+  // The readers catch libosmium's and the file system's exceptions with their file and position;
+  // what is left (out of memory in the standard library) must not escape either.
+  try {
+    return readCityOrThrow(inputPaths, options, stats);
+  } catch (const std::bad_alloc&) {
+    return fail("out of memory reading the city (" + joinPaths(inputPaths) + ")");
+  } catch (const std::exception& e) {
+    return fail("reading the city failed (" + joinPaths(inputPaths) + "): " + e.what());
+  }
+}
+
+}  // namespace qv::prep

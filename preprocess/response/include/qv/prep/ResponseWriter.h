@@ -1,0 +1,68 @@
+// Writing a city's response: per-building results (computed by the MDOF solver or imported from
+// another solver) become response summary tiles for every tile and history tiles for the leaves,
+// in a new folder `response-<n>/`, then the manifest is replaced (the commit point) and the
+// previous response folder removed. A failure before the manifest is replaced leaves the city as
+// it was.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "qv/core/Result.h"
+#include "qv/format/CityTile.h"
+#include "qv/format/ResponseTile.h"
+#include "qv/format/Tileset.h"
+
+namespace qv::prep {
+
+/// The result of one building, as the writer needs it.
+struct BuildingResult {
+  BuildingResponse summary;            ///< firstStorey is ignored (the writer lays storeys out)
+  std::vector<float> storeyPeakDrift;  ///< summary.storeys values, ground up
+  BuildingHistory history;             ///< floors == 0 when there is no history
+};
+
+struct ResponseWriteReport {
+  std::uint64_t summaryBytes = 0;
+  std::uint64_t historyBytes = 0;
+  std::uint64_t damage[6] = {0, 0, 0, 0, 0, 0};  ///< none … complete, no_result
+  std::string folder;                            ///< response-<n>
+};
+
+class ResponseWriter {
+ public:
+  /// Prepares a new response folder in `cityDir` for `tileset` (the manifest as read).
+  static Result<std::unique_ptr<ResponseWriter>> create(const std::string& cityDir, const Tileset& tileset);
+  /// Removes the new folder unless commit() succeeded.
+  ~ResponseWriter();
+  ResponseWriter(const ResponseWriter&) = delete;
+  ResponseWriter& operator=(const ResponseWriter&) = delete;
+
+  /// Writes the history and summary tiles of leaf `node` from `results` (one per building of the
+  /// leaf, in file order; thread-safe across different leaves) and remembers the summaries for
+  /// the inner tiles.
+  Status writeLeaf(std::uint32_t node, const CityTile& tile, std::vector<BuildingResult>& results);
+
+  /// Writes the inner tiles' summaries (by building id from the leaves), then the manifest with
+  /// `info`, and removes the previous response folder. Call once, after every leaf.
+  Result<ResponseWriteReport> commit(ResponseInfo info);
+
+  [[nodiscard]] const std::string& folder() const { return folder_; }
+
+ private:
+  ResponseWriter(std::string cityDir, Tileset tileset, std::string folder);
+  std::string cityDir_;
+  Tileset tileset_;
+  std::string folder_;
+  std::vector<std::string> previousFolders_;
+  std::mutex mutex_;
+  std::map<std::string, std::pair<BuildingResponse, std::vector<float>>> byId_;
+  ResponseWriteReport report_;
+  bool committed_ = false;
+};
+
+}  // namespace qv::prep

@@ -1,0 +1,156 @@
+#include "qv/prep/ResponseWriter.h"
+
+#include <dirent.h>
+
+#include <cstdlib>
+
+#include "qv/core/Crc32.h"
+#include "qv/prep/Files.h"
+
+namespace qv::prep {
+namespace {
+
+std::string tileStem(const TileNode& n) {
+  return std::to_string(n.level) + "-" + std::to_string(n.x) + "-" + std::to_string(n.y);
+}
+
+// Existing response-<n> folders of a city.
+std::vector<std::pair<int, std::string>> responseFolders(const std::string& dir) {
+  std::vector<std::pair<int, std::string>> out;
+  DIR* d = opendir(dir.c_str());
+  if (d == nullptr) return out;
+  while (const dirent* e = readdir(d)) {
+    const std::string name = e->d_name;
+    if (name.rfind("response-", 0) != 0) continue;
+    char* end = nullptr;
+    const long n = std::strtol(name.c_str() + 9, &end, 10);
+    if (end != nullptr && *end == '\0' && n > 0) out.emplace_back(static_cast<int>(n), name);
+  }
+  closedir(d);
+  return out;
+}
+
+std::size_t damageIndex(DamageState s) {
+  return s == DamageState::NoResult ? 5 : static_cast<std::size_t>(s);
+}
+
+}  // namespace
+
+ResponseWriter::ResponseWriter(std::string cityDir, Tileset tileset, std::string folder)
+    : cityDir_(std::move(cityDir)), tileset_(std::move(tileset)), folder_(std::move(folder)) {}
+
+ResponseWriter::~ResponseWriter() {
+  if (!committed_) removeTree(cityDir_ + "/" + folder_);
+}
+
+Result<std::unique_ptr<ResponseWriter>> ResponseWriter::create(const std::string& cityDir, const Tileset& tileset) {
+  int next = 1;
+  std::vector<std::string> previous;
+  for (const auto& [n, name] : responseFolders(cityDir)) {
+    next = std::max(next, n + 1);
+    previous.push_back(name);
+  }
+  const std::string folder = "response-" + std::to_string(next);
+  if (const Status s = makeDirectories(cityDir + "/" + folder); !s.ok()) return Error{s.error()};
+  std::unique_ptr<ResponseWriter> w(new ResponseWriter(cityDir, tileset, folder));
+  w->previousFolders_ = std::move(previous);
+  w->report_.folder = folder;
+  return w;
+}
+
+Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::vector<BuildingResult>& results) {
+  if (node >= tileset_.nodes.size() || results.size() != tile.buildings.size()) {
+    return Error{"internal: results do not match tile " + std::to_string(node)};
+  }
+  const TileNode& n = tileset_.nodes[node];
+  ResponseSummaryTile summary;
+  ResponseHistoryTile history;
+  history.durationSeconds = 0.0f;
+  for (std::size_t b = 0; b < results.size(); ++b) {
+    BuildingResult& r = results[b];
+    BuildingResponse s = r.summary;
+    if (s.source == ResponseSource::None) {
+      s.storeys = 0;
+      s.damage = DamageState::NoResult;
+    }
+    s.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
+    for (std::uint16_t k = 0; k < s.storeys; ++k) {
+      summary.storeyPeakDrift.push_back(k < r.storeyPeakDrift.size() ? r.storeyPeakDrift[k] : 0.0f);
+    }
+    summary.buildings.push_back(s);
+    if (r.history.sampleCount > 0 && r.history.sampleRateHz > 0.0f) {
+      history.durationSeconds =
+          std::max(history.durationSeconds, static_cast<float>(r.history.sampleCount - 1) / r.history.sampleRateHz);
+    }
+    history.buildings.push_back(std::move(r.history));
+  }
+  const std::vector<std::uint8_t> summaryBytes = encodeResponseSummary(summary);
+  const std::vector<std::uint8_t> historyBytes = encodeResponseHistory(history);
+  TileResponseFiles files;
+  files.summaryFile = folder_ + "/" + tileStem(n) + ".qvs";
+  files.summaryBytes = summaryBytes.size();
+  files.summaryCrc32 = crc32(summaryBytes);
+  files.historyFile = folder_ + "/" + tileStem(n) + ".qvh";
+  files.historyBytes = historyBytes.size();
+  files.historyCrc32 = crc32(historyBytes);
+  if (Status s = writeFileAtomic(cityDir_ + "/" + files.summaryFile, summaryBytes); !s.ok()) return s;
+  if (Status s = writeFileAtomic(cityDir_ + "/" + files.historyFile, historyBytes); !s.ok()) return s;
+
+  const std::lock_guard lock(mutex_);
+  tileset_.nodes[node].response = files;
+  report_.summaryBytes += summaryBytes.size();
+  report_.historyBytes += historyBytes.size();
+  for (std::size_t b = 0; b < tile.buildings.size(); ++b) {
+    const BuildingResponse& s = summary.buildings[b];
+    ++report_.damage[damageIndex(s.damage)];
+    std::vector<float> storeys(summary.storeyPeakDrift.begin() + s.firstStorey,
+                               summary.storeyPeakDrift.begin() + s.firstStorey + s.storeys);
+    byId_[tile.buildings[b].attributes.id] = {s, std::move(storeys)};
+  }
+  return {};
+}
+
+Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
+  // Inner tiles: the same buildings as their leaves, found by id (the coarse tiles keep the ids).
+  for (std::uint32_t i = 0; i < tileset_.nodes.size(); ++i) {
+    TileNode& n = tileset_.nodes[i];
+    if (n.children.empty()) {
+      if (!n.response) return Error{"internal: leaf " + n.key() + " has no response"};
+      continue;
+    }
+    auto bytes = readFile(cityDir_ + "/" + n.file);
+    if (!bytes.ok()) return Error{bytes.error()};
+    auto tile = decodeCityTile(*bytes, cityDir_ + "/" + n.file);
+    if (!tile.ok()) return Error{tile.error()};
+    ResponseSummaryTile summary;
+    for (const TileBuilding& b : tile->buildings) {
+      BuildingResponse s;
+      const auto it = byId_.find(b.attributes.id);
+      if (it != byId_.end()) {
+        s = it->second.first;
+        s.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
+        summary.storeyPeakDrift.insert(summary.storeyPeakDrift.end(), it->second.second.begin(),
+                                       it->second.second.end());
+      }
+      summary.buildings.push_back(s);
+    }
+    const auto encoded = encodeResponseSummary(summary);
+    TileResponseFiles files;
+    files.summaryFile = folder_ + "/" + tileStem(n) + ".qvs";
+    files.summaryBytes = encoded.size();
+    files.summaryCrc32 = crc32(encoded);
+    if (Status s = writeFileAtomic(cityDir_ + "/" + files.summaryFile, encoded); !s.ok()) return Error{s.error()};
+    n.response = files;
+    report_.summaryBytes += encoded.size();
+  }
+  info.buildingsRevision = tileset_.buildingsRevision;
+  for (int k = 0; k < 6; ++k) info.damageStates[k] = report_.damage[k];
+  tileset_.response = info;
+  if (interrupted()) return Error{"interrupted; the city's previous response is unchanged"};
+  if (Status s = writeFileAtomic(cityDir_ + "/tileset.json", tilesetToJson(tileset_)); !s.ok()) return Error{s.error()};
+  committed_ = true;
+  for (const std::string& old : previousFolders_) removeTree(cityDir_ + "/" + old);
+  return report_;
+}
+
+}  // namespace qv::prep

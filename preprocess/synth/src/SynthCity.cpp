@@ -1,0 +1,283 @@
+#include "qv/prep/SynthCity.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "qv/prep/Attributes.h"
+
+namespace qv::prep {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Street grid: blocks of 100 m × 64 m (long side east-west) between 18 m streets and 30 m avenues.
+constexpr double kBlockWidth = 100.0;
+constexpr double kBlockDepth = 64.0;
+constexpr double kStreet = 18.0;
+constexpr double kAvenue = 30.0;
+constexpr double kPitchX = kBlockWidth + kAvenue;
+constexpr double kPitchY = kBlockDepth + kStreet;
+
+std::uint64_t splitmix(std::uint64_t& x) {
+  std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+std::uint64_t rotl(std::uint64_t x, int k) {
+  return (x << k) | (x >> (64 - k));
+}
+
+// Block (i, j) of the square spiral around the centre, in the order the city grows.
+void spiral(std::uint64_t index, long& i, long& j) {
+  if (index == 0) {
+    i = j = 0;
+    return;
+  }
+  // Ring r holds 8r blocks, starting after (2r-1)² earlier ones.
+  const auto r = static_cast<long>(std::ceil((std::sqrt(static_cast<double>(index) + 1.0) - 1.0) / 2.0));
+  const long side = 2 * r;
+  const long first = (2 * r - 1) * (2 * r - 1);
+  const long k = static_cast<long>(index) - first;
+  if (k < side) {
+    i = r;
+    j = -r + 1 + k;
+  } else if (k < 2 * side) {
+    i = r - 1 - (k - side);
+    j = r;
+  } else if (k < 3 * side) {
+    i = -r;
+    j = r - 1 - (k - 2 * side);
+  } else {
+    i = -r + 1 + (k - 3 * side);
+    j = -r;
+  }
+}
+
+struct Lot {
+  double x0, y0, x1, y1;  // axis-aligned lot rectangle
+};
+
+std::string ordinal(long n) {
+  const long lastTwo = n % 100;
+  const char* suffix = "th";
+  if (lastTwo < 11 || lastTwo > 13) {
+    if (n % 10 == 1)
+      suffix = "st";
+    else if (n % 10 == 2)
+      suffix = "nd";
+    else if (n % 10 == 3)
+      suffix = "rd";
+  }
+  return std::to_string(n) + suffix;
+}
+
+// Counter-clockwise rectangle.
+void addRect(std::vector<glm::dvec2>& pts, double x0, double y0, double x1, double y1) {
+  pts.insert(pts.end(), {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
+}
+
+}  // namespace
+
+SynthRandom::SynthRandom(std::uint64_t seed) {
+  std::uint64_t x = seed;
+  for (std::uint64_t& s : s_) s = splitmix(x);
+}
+
+std::uint64_t SynthRandom::next() {
+  const std::uint64_t result = rotl(s_[1] * 5, 7) * 9;
+  const std::uint64_t t = s_[1] << 17;
+  s_[2] ^= s_[0];
+  s_[3] ^= s_[1];
+  s_[1] ^= s_[2];
+  s_[0] ^= s_[3];
+  s_[2] ^= t;
+  s_[3] = rotl(s_[3], 45);
+  return result;
+}
+
+double SynthRandom::uniform() {
+  return static_cast<double>(next() >> 11) * 0x1.0p-53;
+}
+
+double SynthRandom::uniform(double lo, double hi) {
+  return lo + (hi - lo) * uniform();
+}
+
+double SynthRandom::normal() {
+  const double u1 = std::max(uniform(), 1e-300);
+  const double u2 = uniform();
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * kPi * u2);
+}
+
+CityModel generateSynthCity(const SynthCityOptions& options) {
+  CityModel model;
+  model.originLon = options.originLon;
+  model.originLat = options.originLat;
+  model.sources = {"synth-city --buildings " + std::to_string(options.buildings) + " --seed " +
+                   std::to_string(options.seed)};
+  model.buildings.reserve(static_cast<std::size_t>(options.buildings));
+  SynthRandom rng(options.seed);
+
+  // The tall core scales with the city: its radius holds about 4 % of the buildings.
+  const double cityRadius = std::sqrt(static_cast<double>(options.buildings) / 12.0 * kPitchX * kPitchY / kPi);
+  const double coreRadius = std::max(300.0, 0.2 * cityRadius);
+
+  std::uint64_t made = 0;
+  for (std::uint64_t blockIndex = 0; made < options.buildings; ++blockIndex) {
+    long bi = 0, bj = 0;
+    spiral(blockIndex, bi, bj);
+    const double bx = static_cast<double>(bi) * kPitchX - kBlockWidth / 2;
+    const double by = static_cast<double>(bj) * kPitchY - kBlockDepth / 2;
+    const double blockCentreDistance = std::hypot(bx + kBlockWidth / 2, by + kBlockDepth / 2);
+    const double coreness = std::exp(-std::pow(blockCentreDistance / coreRadius, 2.0));  // 1 in the core
+    // A few blocks are parks (no buildings) outside the core.
+    if (blockIndex > 0 && rng.chance(0.04 * (1.0 - coreness))) continue;
+
+    // Lots: two rows back to back, frontages 14–34 m (wider in the core).
+    std::vector<Lot> lots;
+    for (int row = 0; row < 2; ++row) {
+      const double y0 = by + row * kBlockDepth / 2;
+      double x = bx;
+      while (x < bx + kBlockWidth - 8.0) {
+        double w = rng.uniform(14.0, 24.0 + 10.0 * coreness);
+        if (bx + kBlockWidth - (x + w) < 10.0) w = bx + kBlockWidth - x;
+        lots.push_back({x, y0, x + w, y0 + kBlockDepth / 2});
+        x += w;
+      }
+    }
+    // Occasionally a whole half-block becomes one courtyard building.
+    const bool courtyardBlock = rng.chance(0.06 + 0.06 * coreness);
+
+    for (std::size_t li = 0; li < lots.size() && made < options.buildings; ++li) {
+      Lot lot = lots[li];
+      bool courtyard = false;
+      if (courtyardBlock && li == 0) {
+        // Merge the first row's lots into one.
+        std::size_t last = li;
+        while (last + 1 < lots.size() && lots[last + 1].y0 == lot.y0) ++last;
+        lot.x1 = lots[last].x1;
+        li = last;
+        courtyard = true;
+      }
+      Building b;
+      BuildingAttributes& a = b.attributes;
+      a.id = "s" + std::to_string(made + 1);
+      const double setback = rng.uniform(0.5, 3.0);
+      const double x0 = lot.x0 + 0.6, x1 = lot.x1 - 0.6;
+      const double y0 = lot.y0 + (lot.y0 > by ? 1.0 : setback);
+      const double y1 = lot.y1 - (lot.y0 > by ? setback : 1.0);
+
+      // Storeys: lognormal whose median falls from ~14 in the core to ~3 at the edge, plus a
+      // heavy tail of towers in the core (docs/synth-city.md).
+      const double median = 4.6 + 12.0 * coreness;
+      double storeys = median * std::exp(0.5 * rng.normal());
+      if (rng.chance(0.03 + 0.10 * coreness)) storeys *= rng.uniform(2.0, 6.0);
+      const int s = std::clamp(static_cast<int>(std::lround(storeys)), 1, 110);
+
+      // Use by place and size.
+      const double u = rng.uniform();
+      if (u < 0.004)
+        a.use = "hospital";
+      else if (u < 0.006)
+        a.use = "fire_station";
+      else if (u < 0.016)
+        a.use = "school";
+      else if (coreness > 0.5)
+        a.use = u < 0.7 ? "office" : (u < 0.85 ? "retail" : "residential");
+      else if (u < 0.06)
+        a.use = "industrial";
+      else if (u < 0.16)
+        a.use = "retail";
+      else if (u < 0.22 && s <= 2)
+        a.use = "house";
+      else
+        a.use = "residential";
+      if (a.use == "hospital")
+        a.name = "Synthetic Hospital " + std::to_string(made + 1);
+      else if (a.use == "school")
+        a.name = "Synthetic School " + std::to_string(made + 1);
+      else if (a.use == "fire_station")
+        a.name = "Fire Station " + std::to_string(made + 1);
+      a.amenity = a.use == "hospital" || a.use == "school" || a.use == "fire_station" ? a.use : "";
+      // Addresses on the east-west streets: "1204 North 13th Street". Streets are numbered north and
+      // south of the centre line; house numbers grow by 100 per block away from the centre.
+      const long street = bj * 2 + (lot.y0 > by ? 1 : 0);
+      const long number =
+          std::labs(bi) * 100 + static_cast<long>(std::lround((lot.x0 - bx) / 4.0)) * 2 + (bi < 0 ? 1 : 2);
+      a.address =
+          std::to_string(number) + (street >= 0 ? " North " : " South ") + ordinal(std::labs(street) + 1) + " Street";
+
+      const float storeyHeight = storeyHeightForUse(a.use);
+      a.storeys = static_cast<std::uint16_t>(s);
+      a.heightM = static_cast<float>(s) * storeyHeight * static_cast<float>(rng.uniform(0.97, 1.05));
+      a.heightSource = ValueSource::Tagged;
+      a.storeysSource = ValueSource::Tagged;
+      // Older stock in the middle of the city, newer at its edge, then materials by era and size.
+      const double year =
+          std::clamp(1965.0 + 35.0 * (1.0 - coreness) * rng.uniform(-0.5, 1.5) + 28.0 * rng.normal(), 1850.0, 2024.0);
+      a.startYear = static_cast<std::int16_t>(std::lround(year));
+      if (a.use == "house" && rng.chance(0.7))
+        a.material = "wood";
+      else if (s <= 5 && a.startYear < 1935 && rng.chance(0.6))
+        a.material = "brick";
+      else if (s >= 8 && rng.chance(0.45))
+        a.material = "steel";
+      else if (s >= 4)
+        a.material = "concrete";
+
+      BuildingPart part;
+      part.heightM = a.heightM;
+      const double w = x1 - x0, d = y1 - y0;
+      const double shape = rng.uniform();
+      if (courtyard && w > 30.0 && d > 18.0) {
+        addRect(part.points, x0, y0, x1, y1);
+        const double m = std::min(w, d) * 0.28;
+        // The courtyard, clockwise.
+        part.points.insert(part.points.end(), {{x0 + m, y0 + m}, {x0 + m, y1 - m}, {x1 - m, y1 - m}, {x1 - m, y0 + m}});
+        part.ringEnds = {4, 8};
+      } else if (shape < 0.22 && w > 12.0 && d > 14.0) {
+        // An L: the rectangle minus a corner notch at the back.
+        const double nx = w * rng.uniform(0.35, 0.6), ny = d * rng.uniform(0.35, 0.6);
+        const bool front = lot.y0 > by;  // the back of the lot faces the block's middle
+        if (!front) {
+          part.points = {{x0, y0}, {x1, y0}, {x1, y1 - ny}, {x1 - nx, y1 - ny}, {x1 - nx, y1}, {x0, y1}};
+        } else {
+          part.points = {{x0, y0}, {x1 - nx, y0}, {x1 - nx, y0 + ny}, {x1, y0 + ny}, {x1, y1}, {x0, y1}};
+        }
+        part.ringEnds = {6};
+      } else {
+        addRect(part.points, x0, y0, x1, y1);
+        part.ringEnds = {4};
+      }
+      double area = 0.0;
+      double cx = 0.0, cy = 0.0;
+      std::uint32_t begin = 0;
+      for (std::uint32_t end : part.ringEnds) {
+        for (std::uint32_t i = begin; i < end; ++i) {
+          const glm::dvec2 p = part.points[i];
+          const glm::dvec2 q = part.points[i + 1 < end ? i + 1 : begin];
+          const double c = p.x * q.y - q.x * p.y;
+          area += c;
+          cx += (p.x + q.x) * c;
+          cy += (p.y + q.y) * c;
+        }
+        begin = end;
+      }
+      area *= 0.5;
+      a.footprintAreaM2 = static_cast<float>(area);
+      a.centroidX = cx / (6.0 * area);
+      a.centroidY = cy / (6.0 * area);
+      b.parts.push_back(std::move(part));
+      inferSeismicAttributes(a, false);
+      model.buildings.push_back(std::move(b));
+      ++made;
+    }
+  }
+  return model;
+}
+
+}  // namespace qv::prep

@@ -1,0 +1,48 @@
+// Cuts a CityModel into the quadtree of binary city tiles the viewer streams, and writes the
+// city directory: tiles/<level>-<x>-<y>.qvt and tileset.json (written last: the manifest is the
+// commit point). Leaves hold a bounded number of buildings at full detail; every inner tile holds
+// a coarse prism of every building below it, so the far city draws from a few inner tiles
+// (hierarchical LOD, as in 3D Tiles' REPLACE refinement).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "qv/core/Result.h"
+#include "qv/format/Tileset.h"
+#include "qv/prep/CityModel.h"
+
+namespace qv::prep {
+
+struct TilerOptions {
+  std::uint32_t maxBuildingsPerLeaf = 1000;  ///< split a node holding more
+  std::size_t maxLeafBytes = 150 * 1024;     ///< split a node whose leaf tile would be larger
+  unsigned threads = 0;                      ///< 0: all cores
+  std::string generator = "quakeview-prep";
+  std::uint64_t buildingsRevision = 1;
+  bool showProgress = true;
+};
+
+struct TilerReport {
+  std::uint64_t buildings = 0;
+  std::uint64_t tiles = 0;
+  std::uint64_t leaves = 0;
+  std::uint64_t bytes = 0;      ///< all tile files
+  std::uint64_t leafBytes = 0;  ///< leaf tiles only
+  std::uint64_t largestLeafBytes = 0;
+  std::uint64_t smallestLeafBytes = 0;
+  int depth = 0;
+  std::uint64_t triangulationDrops = 0;
+  Tileset tileset;  ///< the manifest as written
+};
+
+/// Writes the city into a new directory `outDir` (staged beside it and swapped in at the end;
+/// a failure or Ctrl-C leaves any previous city there untouched). Buildings whose roof cannot be
+/// triangulated are dropped and counted in `model.drops` ("triangulation-failed").
+Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, const TilerOptions& options);
+
+/// Tile file name of a node: "tiles/<level>-<x>-<y>.qvt".
+std::string tileFileName(int level, std::uint32_t x, std::uint32_t y);
+
+}  // namespace qv::prep

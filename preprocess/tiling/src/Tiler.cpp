@@ -1,0 +1,381 @@
+#include "qv/prep/Tiler.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <functional>
+#include <mutex>
+#include <thread>
+
+#include "qv/core/Crc32.h"
+#include "qv/format/CityTile.h"
+#include "qv/prep/Cli.h"
+#include "qv/prep/Files.h"
+#include "qv/prep/Simplify.h"
+#include "qv/prep/Triangulate.h"
+
+namespace qv::prep {
+namespace {
+
+constexpr int kMaxDepth = 16;
+constexpr double kMinCellSize = 20.0;  // metres: never split finer than a building
+
+struct BuildingInfo {
+  double minX, minY, maxX, maxY;                  // footprint bounds
+  double cx, cy;                                  // centroid (assignment to quadtree cells)
+  std::size_t leafBytes;                          // estimated size in a leaf tile
+  std::vector<std::vector<std::uint32_t>> roofs;  // per part
+  bool valid = true;
+};
+
+struct Node {
+  int level = 0;
+  std::uint32_t x = 0, y = 0;
+  double cellMinX = 0, cellMinY = 0, cellSize = 0;
+  std::vector<std::uint32_t> buildings;  // subtree members
+  std::vector<std::size_t> children;     // indices into the node list
+  bool leaf() const { return children.empty(); }
+  // Results.
+  std::string file;
+  std::uint64_t bytes = 0;
+  std::uint32_t crc = 0;
+  float geometricError = 0.0f;
+  Rect bounds;
+  float maxHeight = 0.0f;
+};
+
+std::size_t stringsBytes(const BuildingAttributes& a) {
+  return 7 + a.id.size() + a.name.size() + a.use.size() + a.address.size() + a.material.size() + a.structure.size() +
+         a.amenity.size();
+}
+
+void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body) {
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < count; i = next++) {
+      if (interrupted()) return;
+      body(i);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+bool isConvex(const std::vector<glm::dvec2>& ring) {
+  const std::size_t n = ring.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const glm::dvec2 a = ring[i], b = ring[(i + 1) % n], c = ring[(i + 2) % n];
+    if ((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x) < 0.0) return false;
+  }
+  return true;
+}
+
+// Tile origin and quantization extent covering a set of buildings.
+void frame(const std::vector<BuildingInfo>& info, const std::vector<std::uint32_t>& members, CityTile& tile,
+           Rect& bounds) {
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  for (std::uint32_t b : members) {
+    minX = std::min(minX, info[b].minX);
+    minY = std::min(minY, info[b].minY);
+    maxX = std::max(maxX, info[b].maxX);
+    maxY = std::max(maxY, info[b].maxY);
+  }
+  tile.originX = std::floor(minX);
+  tile.originY = std::floor(minY);
+  tile.extent = static_cast<float>(std::max(maxX - tile.originX, maxY - tile.originY) + 0.01);
+  bounds = Rect{static_cast<float>(minX), static_cast<float>(minY), static_cast<float>(maxX), static_cast<float>(maxY)};
+}
+
+void addAttributes(CityTile& tile, const Building& b, std::uint16_t partCount, bool coarse) {
+  TileBuilding tb;
+  tb.attributes = b.attributes;
+  tb.attributes.centroidX = b.attributes.centroidX - tile.originX;
+  tb.attributes.centroidY = b.attributes.centroidY - tile.originY;
+  if (coarse) {
+    // Far-view tiles carry what drawing and picking need; the leaf has the rest.
+    tb.attributes.name.clear();
+    tb.attributes.address.clear();
+    tb.attributes.material.clear();
+    tb.attributes.structure.clear();
+    tb.attributes.amenity.clear();
+  }
+  tb.firstPart = static_cast<std::uint32_t>(tile.parts.size()) - partCount;
+  tb.partCount = partCount;
+  tile.buildings.push_back(std::move(tb));
+}
+
+CityTile leafTile(const CityModel& model, const std::vector<BuildingInfo>& info, const Node& node, Rect& bounds) {
+  CityTile tile;
+  frame(info, node.buildings, tile, bounds);
+  for (std::uint32_t bi : node.buildings) {
+    const Building& b = model.buildings[bi];
+    std::uint16_t parts = 0;
+    for (std::size_t pi = 0; pi < b.parts.size(); ++pi) {
+      const BuildingPart& part = b.parts[pi];
+      const auto& roof = info[bi].roofs[pi];
+      if (roof.empty()) continue;
+      TilePart tp;
+      tp.ringCount = static_cast<std::uint16_t>(part.ringEnds.size());
+      tp.triangleCount = static_cast<std::uint32_t>(roof.size() / 3);
+      tp.minHeightM = part.minHeightM;
+      tp.heightM = part.heightM;
+      tp.roofHeightM = part.roofHeightM;
+      tp.roofShape = parseRoofShape(part.roofShape);
+      std::uint32_t begin = 0;
+      for (std::uint32_t end : part.ringEnds) {
+        tile.ringVertexCounts.push_back(static_cast<std::uint16_t>(end - begin));
+        begin = end;
+      }
+      for (const glm::dvec2& p : part.points) {
+        tile.vertices.emplace_back(static_cast<float>(p.x - tile.originX), static_cast<float>(p.y - tile.originY));
+      }
+      for (std::uint32_t i : roof) tile.roofTriangles.push_back(static_cast<std::uint16_t>(i));
+      tile.parts.push_back(tp);
+      ++parts;
+    }
+    addAttributes(tile, b, parts, false);
+  }
+  return tile;
+}
+
+CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& info, const Node& node, Rect& bounds,
+                    float& geometricError) {
+  CityTile tile;
+  tile.coarse = true;
+  frame(info, node.buildings, tile, bounds);
+  // Simplify to about 1/400 of the cell: at the distance where the tile is drawn, that is well
+  // under a pixel of the screen-space error budget.
+  const double tolerance = node.cellSize / 400.0;
+  double worst = 0.0;
+  std::vector<std::uint32_t> fan;
+  for (std::uint32_t bi : node.buildings) {
+    const Building& b = model.buildings[bi];
+    // The largest part's outer ring stands for the building; the prism spans all parts' heights.
+    std::size_t largest = 0;
+    double largestArea = -1.0;
+    float base = 1e30f, top = 0.0f;
+    for (std::size_t pi = 0; pi < b.parts.size(); ++pi) {
+      const BuildingPart& p = b.parts[pi];
+      if (info[bi].roofs[pi].empty()) continue;
+      const std::uint32_t outerEnd = p.ringEnds.empty() ? 0 : p.ringEnds[0];
+      const double area = std::abs(signedArea(std::span(p.points).first(outerEnd)));
+      if (area > largestArea) {
+        largestArea = area;
+        largest = pi;
+      }
+      base = std::min(base, p.minHeightM);
+      top = std::max(top, p.heightM);
+    }
+    if (largestArea < 0.0) continue;
+    const BuildingPart& p = b.parts[largest];
+    double error = 0.0;
+    std::vector<glm::dvec2> ring = coarseOutline(std::span(p.points).first(p.ringEnds[0]), tolerance, error);
+    if (ring.size() < 3) continue;
+    std::vector<std::uint32_t> triangles;
+    if (isConvex(ring)) {
+      for (std::uint32_t i = 1; i + 1 < ring.size(); ++i) triangles.insert(triangles.end(), {0, i, i + 1});
+    } else {
+      const std::uint32_t end = static_cast<std::uint32_t>(ring.size());
+      if (!triangulatePolygon(ring, std::span(&end, 1), triangles)) continue;
+    }
+    worst = std::max(worst, error);
+    TilePart tp;
+    tp.ringCount = 1;
+    tp.triangleCount = static_cast<std::uint32_t>(triangles.size() / 3);
+    tp.minHeightM = base;
+    tp.heightM = top;
+    tile.ringVertexCounts.push_back(static_cast<std::uint16_t>(ring.size()));
+    for (const glm::dvec2& q : ring) {
+      tile.vertices.emplace_back(static_cast<float>(q.x - tile.originX), static_cast<float>(q.y - tile.originY));
+    }
+    for (std::uint32_t i : triangles) tile.roofTriangles.push_back(static_cast<std::uint16_t>(i));
+    tile.parts.push_back(tp);
+    addAttributes(tile, b, 1, true);
+  }
+  geometricError = static_cast<float>(std::min(worst, node.cellSize / 8.0));
+  return tile;
+}
+
+}  // namespace
+
+std::string tileFileName(int level, std::uint32_t x, std::uint32_t y) {
+  return "tiles/" + std::to_string(level) + "-" + std::to_string(x) + "-" + std::to_string(y) + ".qvt";
+}
+
+Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, const TilerOptions& options) {
+  const unsigned threads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  if (model.buildings.empty()) return Error{"no buildings to write"};
+
+  auto staging = StagingDirectory::create(outDir);
+  if (!staging.ok()) return Error{staging.error()};
+  if (auto s = makeDirectories(staging->path() + "/tiles"); !s.ok()) return Error{s.error()};
+
+  // 1. Per-building bounds, size estimates and roof triangulations (in parallel).
+  const std::size_t n = model.buildings.size();
+  std::vector<BuildingInfo> info(n);
+  {
+    Progress progress("triangulating roofs", n);
+    std::atomic<std::size_t> done{0};
+    parallelFor(n, threads, [&](std::size_t i) {
+      const Building& b = model.buildings[i];
+      BuildingInfo& bi = info[i];
+      bi.minX = bi.minY = 1e300;
+      bi.maxX = bi.maxY = -1e300;
+      bi.leafBytes = 40 + stringsBytes(b.attributes);
+      bi.roofs.resize(b.parts.size());
+      bool anyPart = false;
+      for (std::size_t pi = 0; pi < b.parts.size(); ++pi) {
+        const BuildingPart& p = b.parts[pi];
+        for (const glm::dvec2& q : p.points) {
+          bi.minX = std::min(bi.minX, q.x);
+          bi.minY = std::min(bi.minY, q.y);
+          bi.maxX = std::max(bi.maxX, q.x);
+          bi.maxY = std::max(bi.maxY, q.y);
+        }
+        if (p.points.size() > 65535 || p.ringEnds.size() > 65535) continue;
+        if (triangulatePolygon(p.points, p.ringEnds, bi.roofs[pi])) anyPart = true;
+        bi.leafBytes += 20 + p.ringEnds.size() * 2 + p.points.size() * 4 + bi.roofs[pi].size() * 2;
+      }
+      bi.valid = anyPart && bi.minX <= bi.maxX;
+      bi.cx = b.attributes.centroidX;
+      bi.cy = b.attributes.centroidY;
+      if (!std::isfinite(bi.cx) || !std::isfinite(bi.cy)) {
+        bi.cx = 0.5 * (bi.minX + bi.maxX);
+        bi.cy = 0.5 * (bi.minY + bi.maxY);
+      }
+      const std::size_t d = ++done;
+      if (d % 1024 == 0) progress.update(d);
+    });
+  }
+  if (interrupted()) return Error{"interrupted; nothing was written"};
+  TilerReport report;
+  std::vector<std::uint32_t> kept;
+  kept.reserve(n);
+  for (std::uint32_t i = 0; i < n; ++i) {
+    if (info[i].valid)
+      kept.push_back(i);
+    else
+      ++report.triangulationDrops;
+  }
+  if (report.triangulationDrops > 0) model.drops.add("triangulation-failed", report.triangulationDrops);
+  if (kept.empty()) return Error{"no building could be triangulated"};
+
+  // 2. The quadtree over the centroids: a square root cell around all footprints.
+  double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+  for (std::uint32_t i : kept) {
+    minX = std::min(minX, info[i].minX);
+    minY = std::min(minY, info[i].minY);
+    maxX = std::max(maxX, info[i].maxX);
+    maxY = std::max(maxY, info[i].maxY);
+  }
+  std::vector<Node> nodes(1);
+  nodes[0].cellSize = std::max({maxX - minX, maxY - minY, kMinCellSize}) * 1.0001;
+  nodes[0].cellMinX = 0.5 * (minX + maxX) - 0.5 * nodes[0].cellSize;
+  nodes[0].cellMinY = 0.5 * (minY + maxY) - 0.5 * nodes[0].cellSize;
+  nodes[0].buildings = kept;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    std::size_t bytes = 0;
+    for (std::uint32_t b : nodes[i].buildings) bytes += info[b].leafBytes;
+    const bool split = (nodes[i].buildings.size() > options.maxBuildingsPerLeaf || bytes > options.maxLeafBytes) &&
+                       nodes[i].level < kMaxDepth && nodes[i].cellSize / 2 >= kMinCellSize;
+    if (!split) continue;
+    const Node parent = nodes[i];
+    std::vector<std::uint32_t> quadrant[4];
+    const double half = parent.cellSize / 2;
+    for (std::uint32_t b : parent.buildings) {
+      const int qx = info[b].cx >= parent.cellMinX + half ? 1 : 0;
+      const int qy = info[b].cy >= parent.cellMinY + half ? 1 : 0;
+      quadrant[qy * 2 + qx].push_back(b);
+    }
+    for (int q = 0; q < 4; ++q) {
+      if (quadrant[q].empty()) continue;
+      Node child;
+      child.level = parent.level + 1;
+      child.x = parent.x * 2 + static_cast<std::uint32_t>(q % 2);
+      child.y = parent.y * 2 + static_cast<std::uint32_t>(q / 2);
+      child.cellSize = half;
+      child.cellMinX = parent.cellMinX + half * (q % 2);
+      child.cellMinY = parent.cellMinY + half * (q / 2);
+      child.buildings = std::move(quadrant[q]);
+      nodes[i].children.push_back(nodes.size());
+      nodes.push_back(std::move(child));
+    }
+  }
+
+  // 3. Build, encode and write every tile (in parallel).
+  std::mutex errorMutex;
+  std::string firstError;
+  {
+    Progress progress("writing tiles", nodes.size());
+    std::atomic<std::size_t> done{0};
+    parallelFor(nodes.size(), threads, [&](std::size_t i) {
+      Node& node = nodes[i];
+      CityTile tile = node.leaf() ? leafTile(model, info, node, node.bounds)
+                                  : coarseTile(model, info, node, node.bounds, node.geometricError);
+      const std::vector<std::uint8_t> bytes = encodeCityTile(tile);
+      node.file = tileFileName(node.level, node.x, node.y);
+      node.bytes = bytes.size();
+      node.crc = crc32(bytes);
+      for (std::uint32_t b : node.buildings)
+        node.maxHeight = std::max(node.maxHeight, model.buildings[b].attributes.heightM);
+      if (const Status s = writeFileAtomic(staging->path() + "/" + node.file, bytes); !s.ok()) {
+        const std::lock_guard lock(errorMutex);
+        if (firstError.empty()) firstError = s.error();
+      }
+      progress.update(++done);
+    });
+  }
+  if (interrupted()) return Error{"interrupted; the previous output (if any) is unchanged"};
+  if (!firstError.empty()) return Error{firstError};
+
+  // 4. The manifest, last.
+  Tileset& t = report.tileset;
+  t.generator = options.generator;
+  t.originLon = model.originLon;
+  t.originLat = model.originLat;
+  t.projection = model.projection;
+  t.buildings = kept.size();
+  t.buildingsRevision = options.buildingsRevision;
+  t.sources = model.sources;
+  t.bounds = nodes[0].bounds;
+  t.maxHeightM = nodes[0].maxHeight;
+  t.nodes.resize(nodes.size());
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    const Node& node = nodes[i];
+    TileNode& tn = t.nodes[i];
+    tn.level = static_cast<std::uint8_t>(node.level);
+    tn.x = node.x;
+    tn.y = node.y;
+    tn.bounds = node.bounds;
+    tn.maxHeightM = node.maxHeight;
+    tn.coarse = !node.leaf();
+    tn.geometricErrorM = node.geometricError;
+    tn.buildings = static_cast<std::uint32_t>(node.buildings.size());
+    tn.subtreeBuildings = node.buildings.size();
+    tn.file = node.file;
+    tn.bytes = node.bytes;
+    tn.crc32 = node.crc;
+    for (std::size_t c : node.children) tn.children.push_back(static_cast<std::uint32_t>(c));
+    report.bytes += node.bytes;
+    report.depth = std::max(report.depth, node.level);
+    if (node.leaf()) {
+      ++report.leaves;
+      report.leafBytes += node.bytes;
+      report.largestLeafBytes = std::max(report.largestLeafBytes, node.bytes);
+      report.smallestLeafBytes =
+          report.smallestLeafBytes == 0 ? node.bytes : std::min(report.smallestLeafBytes, node.bytes);
+    }
+  }
+  report.tiles = nodes.size();
+  report.buildings = kept.size();
+  if (const Status s = writeFileAtomic(staging->path() + "/tileset.json", tilesetToJson(t)); !s.ok()) {
+    return Error{s.error()};
+  }
+  if (interrupted()) return Error{"interrupted; the previous output (if any) is unchanged"};
+  if (const Status s = staging->commit(); !s.ok()) return Error{s.error()};
+  return report;
+}
+
+}  // namespace qv::prep

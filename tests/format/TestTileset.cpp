@@ -1,0 +1,112 @@
+#include <catch2/catch.hpp>
+
+#include "qv/format/Tileset.h"
+
+using namespace qv;
+
+namespace {
+
+Tileset sample() {
+  Tileset t;
+  t.generator = "test";
+  t.originLon = -74.0;
+  t.originLat = 40.71;
+  t.bounds = Rect{-500, -400, 500, 400};
+  t.maxHeightM = 443.2f;
+  t.buildings = 3;
+  t.sources = {"a.osm"};
+  TileNode root;
+  root.bounds = t.bounds;
+  root.coarse = true;
+  root.geometricErrorM = 4.0f;
+  root.buildings = 3;
+  root.subtreeBuildings = 3;
+  root.file = "tiles/0-0-0.qvt";
+  root.bytes = 1000;
+  root.crc32 = 0xdeadbeef;
+  root.children = {1};
+  TileNode leaf;
+  leaf.level = 1;
+  leaf.x = 1;
+  leaf.y = 0;
+  leaf.bounds = Rect{0, -400, 500, 0};
+  leaf.maxHeightM = 443.2f;
+  leaf.buildings = 3;
+  leaf.subtreeBuildings = 3;
+  leaf.file = "tiles/1-1-0.qvt";
+  leaf.bytes = 5000;
+  leaf.crc32 = 7;
+  leaf.response = TileResponseFiles{"response/1-1-0.qvs", 10, 1, "response/1-1-0.qvh", 20, 2};
+  t.nodes = {root, leaf};
+  ResponseInfo r;
+  r.motion = "TAK000.AT2";
+  r.method = "MDOF shear building, Bouc-Wen";
+  r.durationSeconds = 40.96;
+  r.sampleRateHz = 25;
+  r.buildingsRevision = 1;
+  r.damageStates[0] = 1;
+  r.damageStates[3] = 2;
+  t.response = r;
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("The manifest round-trips through JSON", "[format][tileset]") {
+  const Tileset t = sample();
+  const std::string json = tilesetToJson(t);
+  CHECK(json.find("\"format\":\"quakeview-tileset\",\"version\":1") != std::string::npos);
+  CHECK(json.find("\"origin\":[-74,40.71]") != std::string::npos);
+  CHECK(json.find("\"crc32\":\"deadbeef\"") != std::string::npos);
+  const auto parsed = parseTileset(json, "tileset.json");
+  REQUIRE(parsed.ok());
+  const Tileset& p = *parsed;
+  CHECK(p.originLon == -74.0);
+  CHECK(p.originLat == 40.71);
+  CHECK(p.buildings == 3);
+  CHECK(p.maxHeightM == 443.2f);
+  REQUIRE(p.nodes.size() == 2);
+  CHECK(p.nodes[0].children == std::vector<std::uint32_t>{1});
+  CHECK(p.nodes[0].coarse);
+  CHECK(p.nodes[0].crc32 == 0xdeadbeefu);
+  CHECK(p.nodes[1].key() == "1/1/0");
+  REQUIRE(p.nodes[1].response.has_value());
+  CHECK(p.nodes[1].response->historyFile == "response/1-1-0.qvh");
+  REQUIRE(p.response.has_value());
+  CHECK(p.response->damageStates[3] == 2);
+  CHECK_FALSE(p.responseOutOfDate());
+  CHECK(tilesetToJson(p) == json);
+}
+
+TEST_CASE("A response computed for older buildings is reported out of date", "[format][tileset]") {
+  Tileset t = sample();
+  t.buildingsRevision = 2;
+  CHECK(t.responseOutOfDate());
+}
+
+TEST_CASE("Malformed manifests are rejected with a specific message", "[format][tileset]") {
+  auto errorOf = [](const std::string& json) {
+    const auto r = parseTileset(json, "city/tileset.json");
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().rfind("city/tileset.json: ", 0) == 0);
+    return r.error();
+  };
+  const std::string good = tilesetToJson(sample());
+  CHECK(errorOf("{not json").find("not valid JSON") != std::string::npos);
+  CHECK(errorOf("[1,2]").find("must be a JSON object") != std::string::npos);
+  std::string other = good;
+  other.replace(other.find("quakeview-tileset"), 17, "something-else-xx");
+  CHECK(errorOf(other).find("not a QuakeView tileset") != std::string::npos);
+  std::string v2 = good;
+  v2.replace(v2.find("\"version\":1"), 11, "\"version\":2");
+  CHECK(errorOf(v2).find("unsupported tileset version 2") != std::string::npos);
+  std::string escape = good;
+  escape.replace(escape.find("tiles/1-1-0.qvt"), 15, "../../etc/passw");
+  CHECK(errorOf(escape).find("is not a relative path inside the city directory") != std::string::npos);
+  std::string badChild = good;
+  badChild.replace(badChild.find("\"level\":1"), 9, "\"level\":2");
+  CHECK(errorOf(badChild).find("is not a quadtree child") != std::string::npos);
+  std::string badOrigin = good;
+  badOrigin.replace(badOrigin.find("[-74,40.71]"), 11, "[-74,140.7]");
+  CHECK(errorOf(badOrigin).find("\"origin\" must hold") != std::string::npos);
+}

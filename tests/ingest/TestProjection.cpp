@@ -1,0 +1,81 @@
+// The city frame: transverse Mercator with true metres near the city.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include <GeographicLib/Geodesic.hpp>
+#include <glm/geometric.hpp>
+
+#include "IngestTestData.h"
+#include "qv/prep/Projection.h"
+
+using namespace qv::prep;
+using namespace qv::prep::test;
+
+namespace {
+
+double geodesicMeters(double lon1, double lat1, double lon2, double lat2) {
+  double meters = 0.0;
+  GeographicLib::Geodesic::WGS84().Inverse(lat1, lon1, lat2, lon2, meters);
+  return meters;
+}
+
+}  // namespace
+
+TEST_CASE("The projection round-trips and puts the origin at (0, 0)", "[ingest][projection]") {
+  const CityProjection projection(-73.997, 40.727);
+  const glm::dvec2 origin = projection.forward(-73.997, 40.727);
+  CHECK(origin.x == Approx(0.0).margin(1e-9));
+  CHECK(origin.y == Approx(0.0).margin(1e-9));
+  for (const auto& [lon, lat] :
+       {std::pair{-74.0170, 40.7033}, std::pair{-73.9630, 40.7590}, std::pair{-73.99, 40.75}}) {
+    const glm::dvec2 xy = projection.forward(lon, lat);
+    const auto back = projection.reverse(xy);
+    CHECK(back[0] == Approx(lon).margin(1e-11));  // 1e-11 degrees is about a micrometre
+    CHECK(back[1] == Approx(lat).margin(1e-11));
+  }
+  // x grows east, y north.
+  CHECK(projection.forward(-73.99, 40.727).x > 0.0);
+  CHECK(projection.forward(-73.997, 40.75).y > 0.0);
+}
+
+TEST_CASE("Projected distances are true metres (geodesic within 0.05 %)", "[ingest][projection]") {
+  // Across the whole of the Lower Manhattan file: the Battery to 59th Street and the Hudson to
+  // the East River, with the origin at the centre of the data.
+  const CityProjection projection(-73.997, 40.727);
+  const std::pair<double, double> a{-74.0170, 40.7033};
+  const std::pair<double, double> b{-73.9630, 40.7590};
+  const double planar = glm::length(projection.forward(b.first, b.second) - projection.forward(a.first, a.second));
+  const double geodesic = geodesicMeters(a.first, a.second, b.first, b.second);
+  CHECK(std::abs(planar - geodesic) / geodesic < 0.0005);
+  // Plain (Web) Mercator would be off by 1 / cos(latitude): 32 % here.
+  const double mercatorScale = 1.0 / std::cos(40.73 * M_PI / 180.0);
+  CHECK(mercatorScale > 1.3);
+}
+
+TEST_CASE("Building centroids of the PBF keep their geodesic distance", "[ingest][projection][data]") {
+  const Ingested& in = manhattanSouth();
+  REQUIRE(in.model.ok());
+  const qv::prep::CityModel& model = *in.model;
+  // The origin is the centre of the data's bounds (lon -74.031..-73.963, lat 40.695..40.759).
+  CHECK(model.originLon == Approx(-73.997).margin(0.005));
+  CHECK(model.originLat == Approx(40.727).margin(0.005));
+  CHECK(model.projection == "transverse-mercator");
+  const CityProjection projection(model.originLon, model.originLat);
+  // The Empire State Building (Midtown) and the Battery Maritime Building (the southern tip),
+  // about 5.5 km apart.
+  const qv::prep::Building* esb = findBuilding(model, "w34633854");
+  const qv::prep::Building* battery = findBuilding(model, "w169362470");
+  REQUIRE(esb != nullptr);
+  REQUIRE(battery != nullptr);
+  const glm::dvec2 p{esb->attributes.centroidX, esb->attributes.centroidY};
+  const glm::dvec2 q{battery->attributes.centroidX, battery->attributes.centroidY};
+  const auto pl = projection.reverse(p);
+  const auto ql = projection.reverse(q);
+  const double geodesic = geodesicMeters(pl[0], pl[1], ql[0], ql[1]);
+  CHECK(geodesic > 5000.0);
+  CHECK(std::abs(glm::length(p - q) - geodesic) / geodesic < 0.0005);
+  // And the ESB's centroid lies where its nodes are: 34th Street and Fifth Avenue.
+  CHECK(pl[0] == Approx(-73.9857).margin(0.0005));
+  CHECK(pl[1] == Approx(40.7484).margin(0.0005));
+}

@@ -1,0 +1,169 @@
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include "qv/seismic/BuildingModel.h"
+#include "qv/seismic/GroundMotionReader.h"
+#include "qv/seismic/ResponseSolver.h"
+
+using namespace qv;
+using namespace qv::seismic;
+
+namespace {
+
+const std::string kRecords = std::string(QUAKEVIEW_SHARED_DATA_DIR) + "/ground-motions/";
+
+GroundMotion record(const char* file) {
+  GroundMotionReadOptions o;
+  o.units = AccelerationUnit::G;
+  o.timeStepS = 0.02;
+  auto m = readGroundMotionFile(kRecords + file, o);
+  REQUIRE(m.ok());
+  return std::move(m).value();
+}
+
+// A mix of storey counts, types and eras (batches with padding).
+std::vector<ShearBuilding> cityBlock() {
+  struct Spec {
+    StructuralType type;
+    CodeEra era;
+    int storeys;
+    float height;
+  };
+  const Spec specs[] = {
+      {StructuralType::W1, CodeEra::PreCode, 1, 3.0f},    {StructuralType::C1L, CodeEra::LowCode, 3, 9.5f},
+      {StructuralType::S1M, CodeEra::HighCode, 6, 22.0f}, {StructuralType::C2M, CodeEra::ModerateCode, 5, 16.0f},
+      {StructuralType::URML, CodeEra::PreCode, 2, 7.0f},  {StructuralType::S2H, CodeEra::ModerateCode, 12, 44.0f},
+      {StructuralType::C1H, CodeEra::HighCode, 9, 30.0f}, {StructuralType::W2, CodeEra::HighCode, 2, 8.0f},
+      {StructuralType::RM1M, CodeEra::LowCode, 4, 13.0f}, {StructuralType::PC1, CodeEra::ModerateCode, 1, 7.0f},
+      {StructuralType::S1L, CodeEra::PreCode, 3, 11.0f},
+  };
+  std::vector<ShearBuilding> out;
+  int id = 0;
+  for (const Spec& s : specs) {
+    BuildingAttributes a;
+    a.id = "b" + std::to_string(id++);
+    a.structuralType = s.type;
+    a.codeEra = s.era;
+    a.storeys = static_cast<std::uint16_t>(s.storeys);
+    a.heightM = s.height;
+    a.footprintAreaM2 = 300.0f;
+    auto m = buildingModelFromAttributes(a);
+    REQUIRE(m.ok());
+    out.push_back(std::move(m).value());
+  }
+  return out;
+}
+
+std::vector<BuildingShaking> shakingFor(std::size_t count) {
+  std::vector<BuildingShaking> out;
+  for (std::size_t i = 0; i < count; ++i)
+    out.push_back({0.8 + 0.05 * static_cast<double>(i), 0.1 * static_cast<double>(i % 4)});
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("The batched solver matches the reference solver for a batch mixing storey counts", "[seismic][batch]") {
+  const auto buildings = cityBlock();
+  const auto shaking = shakingFor(buildings.size());
+  const GroundMotion x = record("tabasFN.txt");
+  const GroundMotion y = record("tabasFP.txt");
+
+  for (const Precision precision : {Precision::Double, Precision::Float}) {
+    CAPTURE(precision == Precision::Double ? "double" : "float");
+    ResponseOptions options;
+    options.precision = precision;
+    options.driftRatios = true;
+    options.fixedSubsteps = 4;  // the reference uses the same steps (the batch otherwise takes its largest need)
+    const auto responses = solveResponses(buildings, shaking, x, &y, options);
+    REQUIRE(responses.ok());
+    // Tight for double (the same equations to convergence); float within its rounding.
+    const double tolerance = precision == Precision::Double ? 1e-7 : 2e-3;
+    bool yielded = false;
+    for (std::size_t b = 0; b < buildings.size(); ++b) {
+      CAPTURE(b);
+      const BuildingResponse& r = (*responses)[b];
+      REQUIRE(r.hasY);
+      REQUIRE(r.storeys == buildings[b].storeys());
+      CHECK(r.nonConvergedSteps == 0);
+      for (int direction = 0; direction < 2; ++direction) {
+        ReferenceOptions ro;
+        ro.scale = shaking[b].scale;
+        ro.delaySeconds = shaking[b].delaySeconds;
+        ro.frameCount = r.frames;
+        ro.substeps = 4;  // the batch's time axis covers the largest delay of the call
+        const auto ref = solveReference(buildings[b], direction == 0 ? x : y, ro);
+        REQUIRE(ref.ok());
+        const DirectionResponse& d = direction == 0 ? r.x : r.y;
+        REQUIRE(ref->frames == r.frames);
+        double worst = 0.0;
+        for (std::size_t k = 0; k < ref->floorDisplacementM.size(); ++k) {
+          worst = std::fmax(worst, std::fabs(d.floorDisplacementM[k] - ref->floorDisplacementM[k]));
+        }
+        CHECK(worst <= tolerance * ref->peakRoofDisplacementM + 1e-9);
+        CHECK(d.peakRoofDisplacementM == Approx(ref->peakRoofDisplacementM).epsilon(tolerance));
+        CHECK(d.peakBaseShearN == Approx(ref->peakBaseShearN).epsilon(tolerance));
+        CHECK(d.peakFloorAccelerationMps2 ==
+              Approx(ref->peakFloorAccelerationMps2).epsilon(precision == Precision::Double ? 1e-6 : 5e-3));
+        for (std::size_t i = 0; i < r.storeys; ++i) {
+          CHECK(d.peakDriftRatio[i] == Approx(ref->peakDriftRatio[i]).epsilon(tolerance));
+          const double hysteresisYield = buildings[b].hysteresis[i].yieldDisplacementM;
+          yielded = yielded || ref->peakDriftM[i] > 2.0 * hysteresisYield;
+        }
+        // Drift histories are the floor displacement differences over the height.
+        const std::size_t f = r.frames / 2;
+        const double h0 = buildings[b].storeyHeightM[0];
+        CHECK(d.driftRatio[f * r.storeys] == Approx(d.floorDisplacementM[f * r.storeys] / h0).epsilon(1e-5));
+      }
+      const float expectedMax = std::max(*std::max_element(r.x.peakDriftRatio.begin(), r.x.peakDriftRatio.end()),
+                                         *std::max_element(r.y.peakDriftRatio.begin(), r.y.peakDriftRatio.end()));
+      CHECK(r.maxDriftRatio == expectedMax);
+      CHECK(r.damage == classifyDamage(r.maxDriftRatio, buildings[b].damageDriftThresholds));
+    }
+    CHECK(yielded);  // the comparison covers the nonlinear range
+  }
+}
+
+TEST_CASE("Shaking before the arrival is zero and the streaming sink sees every building once", "[seismic][batch]") {
+  const auto buildings = cityBlock();
+  std::vector<BuildingShaking> shaking(buildings.size(), BuildingShaking{1.0, 0.0});
+  shaking[3].delaySeconds = 2.0;
+  const GroundMotion x = record("tabasFN.txt");
+  ResponseOptions options;
+  ResponseSolver solver(options);
+  std::vector<int> seen(buildings.size(), 0);
+  std::vector<float> delayedRoof;
+  const Status s = solver.solve(buildings, shaking, x, nullptr, [&](std::size_t index, const BuildingResponse& r) {
+    ++seen[index];
+    CHECK_FALSE(r.hasY);
+    CHECK(r.frames == 2501 + 100);
+    if (index == 3) delayedRoof.assign(r.x.floorDisplacementM.begin(), r.x.floorDisplacementM.end());
+  });
+  REQUIRE(s.ok());
+  for (const int n : seen) CHECK(n == 1);
+  REQUIRE(delayedRoof.size() == 2601 * 5);
+  for (std::size_t f = 0; f <= 100; ++f) CHECK(delayedRoof[f * 5 + 4] == 0.0f);
+  CHECK(delayedRoof[150 * 5 + 4] != 0.0f);
+  CHECK(solver.stats().steps > 0);
+  CHECK(solver.stats().nonConvergedSteps == 0);
+}
+
+TEST_CASE("The batched solver rejects what it cannot solve", "[seismic][batch]") {
+  auto buildings = cityBlock();
+  const GroundMotion x = record("tabasFN.txt");
+  std::vector<BuildingShaking> shaking(buildings.size());
+  buildings[2].damping = Damping::modal(0.05);
+  auto r = solveResponses(buildings, shaking, x, nullptr);
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error() == "building 2: the city solver needs Rayleigh damping");
+  buildings = cityBlock();
+  buildings[1].hysteresis[0].exponent = 3.0;
+  r = solveResponses(buildings, shaking, x, nullptr);
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().rfind("building 1: the city solver needs Bouc-Wen n = 1 or 2", 0) == 0);
+  shaking.pop_back();
+  CHECK_FALSE(solveResponses(cityBlock(), shaking, x, nullptr).ok());
+}

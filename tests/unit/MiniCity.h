@@ -1,0 +1,229 @@
+// A small city built in memory with the real codecs (a coarse root over four leaves, with
+// response summaries and histories), served by a fake fetcher: scene tests run natively and in
+// WASM without files or a server.
+#pragma once
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "qv/core/Crc32.h"
+#include "qv/format/CityTile.h"
+#include "qv/format/ResponseTile.h"
+#include "qv/format/Tileset.h"
+#include "qv/scene/Fetcher.h"
+
+namespace qv::test {
+
+/// Serves URLs from memory; completions arrive on poll(), as from a real network.
+class FakeFetcher final : public Fetcher {
+ public:
+  std::map<std::string, std::vector<std::uint8_t>> files;
+  std::map<std::string, int> statusOverride;  ///< url -> HTTP status to answer instead
+  std::vector<std::string> requested;
+
+  RequestId fetch(const std::string& url, Done done, std::uint32_t) override {
+    requested.push_back(url);
+    const RequestId id = next_++;
+    queue_.push_back({id, url, std::move(done)});
+    return id;
+  }
+  void cancel(RequestId id) override {
+    for (auto& q : queue_) {
+      if (q.id == id) q.done = nullptr;
+    }
+  }
+  void poll() override {
+    std::vector<Queued> now;
+    now.swap(queue_);
+    for (Queued& q : now) {
+      if (!q.done) continue;
+      FetchResponse r;
+      const auto s = statusOverride.find(q.url);
+      const auto f = files.find(q.url);
+      if (s != statusOverride.end()) {
+        r.status = s->second;
+      } else if (f == files.end()) {
+        r.status = 404;
+      } else {
+        r.status = 200;
+        r.bytes = f->second;
+      }
+      q.done(std::move(r));
+    }
+  }
+  [[nodiscard]] std::size_t count(const std::string& url) const {
+    std::size_t n = 0;
+    for (const auto& u : requested) n += u == url ? 1u : 0u;
+    return n;
+  }
+
+ private:
+  struct Queued {
+    RequestId id;
+    std::string url;
+    Done done;
+  };
+  std::vector<Queued> queue_;
+  RequestId next_ = 1;
+};
+
+struct MiniCity {
+  static constexpr int kSide = 8;  ///< 8 × 8 buildings, 40 m apart, centred on the origin
+  static constexpr int kStoreys = 5;
+  static constexpr float kStoreyHeight = 3.5f;
+  Tileset tileset;
+  std::map<std::string, std::vector<std::uint8_t>> files;  ///< relative path -> bytes
+
+  /// Roof amplitude (m) and period (s) of building (i, j): every building moves differently.
+  static double amplitude(int i, int j) { return 0.05 + 0.01 * i + 0.002 * j; }
+  static double period(int i, int j) { return 0.6 + 0.1 * j + 0.03 * i; }
+  static double roofX(int i, int j, double t) {
+    return amplitude(i, j) * std::sin(2.0 * 3.14159265358979 * t / period(i, j));
+  }
+
+  explicit MiniCity(bool withResponse = true) {
+    const std::string prefix = "city/";
+    tileset.generator = "test";
+    tileset.originLon = -74.0;
+    tileset.originLat = 40.7;
+    tileset.maxHeightM = kStoreys * kStoreyHeight;
+    tileset.buildings = kSide * kSide;
+    if (withResponse) {
+      ResponseInfo r;
+      r.motion = "test sines";
+      r.method = "test";
+      r.durationSeconds = 10.0;
+      r.sampleRateHz = 50.0;
+      r.buildingsRevision = 1;
+      tileset.response = r;
+    }
+    // Leaves: quadrants of the grid; the root holds everything coarse.
+    std::vector<std::vector<std::pair<int, int>>> quadrants(4);
+    for (int i = 0; i < kSide; ++i) {
+      for (int j = 0; j < kSide; ++j)
+        quadrants[(j >= kSide / 2 ? 2u : 0u) + (i >= kSide / 2 ? 1u : 0u)].push_back({i, j});
+    }
+    std::vector<std::pair<int, int>> all;
+    for (const auto& q : quadrants) all.insert(all.end(), q.begin(), q.end());
+    tileset.nodes.push_back(makeNode(0, 0, 0, all, true, withResponse, prefix));
+    for (int q = 0; q < 4; ++q) {
+      tileset.nodes.push_back(makeNode(1, static_cast<std::uint32_t>(q % 2), static_cast<std::uint32_t>(q / 2),
+                                       quadrants[static_cast<std::size_t>(q)], false, withResponse, prefix));
+      tileset.nodes[0].children.push_back(static_cast<std::uint32_t>(q + 1));
+    }
+    tileset.bounds = tileset.nodes[0].bounds;
+    const std::string json = tilesetToJson(tileset);
+    files[prefix + "tileset.json"] = std::vector<std::uint8_t>(json.begin(), json.end());
+  }
+
+  void serve(FakeFetcher& f) const {
+    for (const auto& [path, bytes] : files) f.files[path] = bytes;
+  }
+
+  static double centreX(int i) { return (i - kSide / 2 + 0.5) * 40.0; }
+  static double centreY(int j) { return (j - kSide / 2 + 0.5) * 40.0; }
+
+ private:
+  TileNode makeNode(std::uint8_t level, std::uint32_t x, std::uint32_t y, const std::vector<std::pair<int, int>>& cells,
+                    bool coarse, bool withResponse, const std::string& prefix) {
+    CityTile tile;
+    tile.coarse = coarse;
+    double minX = 1e9, minY = 1e9, maxX = -1e9, maxY = -1e9;
+    for (const auto& [i, j] : cells) {
+      minX = std::min(minX, centreX(i) - 10);
+      minY = std::min(minY, centreY(j) - 10);
+      maxX = std::max(maxX, centreX(i) + 10);
+      maxY = std::max(maxY, centreY(j) + 10);
+    }
+    tile.originX = minX;
+    tile.originY = minY;
+    tile.extent = static_cast<float>(std::max(maxX - minX, maxY - minY));
+    ResponseSummaryTile summary;
+    ResponseHistoryTile history;
+    history.durationSeconds = 10.0f;
+    for (const auto& [i, j] : cells) {
+      const float cx = static_cast<float>(centreX(i) - minX), cy = static_cast<float>(centreY(j) - minY);
+      tile.vertices.insert(tile.vertices.end(),
+                           {{cx - 10, cy - 10}, {cx + 10, cy - 10}, {cx + 10, cy + 10}, {cx - 10, cy + 10}});
+      tile.ringVertexCounts.push_back(4);
+      tile.roofTriangles.insert(tile.roofTriangles.end(), {0, 1, 2, 0, 2, 3});
+      TilePart part;
+      part.ringCount = 1;
+      part.triangleCount = 2;
+      part.heightM = kStoreys * kStoreyHeight;
+      tile.parts.push_back(part);
+      TileBuilding b;
+      b.partCount = 1;
+      b.attributes.id = "s" + std::to_string(i * kSide + j + 1);
+      b.attributes.use = "office";
+      b.attributes.heightM = part.heightM;
+      b.attributes.storeys = kStoreys;
+      b.attributes.footprintAreaM2 = 400.0f;
+      b.attributes.centroidX = cx;
+      b.attributes.centroidY = cy;
+      tile.buildings.push_back(b);
+
+      BuildingResponse r;
+      r.source = ResponseSource::Model;
+      r.storeys = kStoreys;
+      r.damage = static_cast<DamageState>((i + j) % 5);
+      r.peakRoofDisplacementM = static_cast<float>(amplitude(i, j));
+      r.peakDriftRatio = static_cast<float>(amplitude(i, j) / (kStoreys * kStoreyHeight));
+      r.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
+      for (int s = 0; s < kStoreys; ++s)
+        summary.storeyPeakDrift.push_back(r.peakDriftRatio * (1.0f + 0.1f * static_cast<float>(s)));
+      summary.buildings.push_back(r);
+
+      BuildingHistory h;
+      h.floors = kStoreys;
+      h.sampleRateHz = 50.0f;
+      h.sampleCount = 501;
+      h.x.modes = 1;
+      h.x.scales = {static_cast<float>(amplitude(i, j) / 30000.0)};
+      for (int f = 1; f <= kStoreys; ++f) h.x.shapes.push_back(static_cast<float>(f) / kStoreys);
+      for (std::uint32_t s = 0; s < h.sampleCount; ++s) {
+        h.x.coordinates.push_back(static_cast<std::int16_t>(
+            std::lround(30000.0 * std::sin(2.0 * 3.14159265358979 * (s / 50.0) / period(i, j)))));
+      }
+      history.buildings.push_back(h);
+    }
+    TileNode n;
+    n.level = level;
+    n.x = x;
+    n.y = y;
+    n.bounds =
+        Rect{static_cast<float>(minX), static_cast<float>(minY), static_cast<float>(maxX), static_cast<float>(maxY)};
+    n.maxHeightM = kStoreys * kStoreyHeight;
+    n.coarse = coarse;
+    n.geometricErrorM = coarse ? 20.0f : 0.0f;
+    n.buildings = static_cast<std::uint32_t>(cells.size());
+    n.subtreeBuildings = cells.size();
+    n.file = "tiles/" + std::to_string(level) + "-" + std::to_string(x) + "-" + std::to_string(y) + ".qvt";
+    const auto bytes = encodeCityTile(tile);
+    n.bytes = bytes.size();
+    n.crc32 = crc32(bytes);
+    files[prefix + n.file] = bytes;
+    if (withResponse) {
+      TileResponseFiles rf;
+      rf.summaryFile = "response/" + std::to_string(level) + "-" + std::to_string(x) + "-" + std::to_string(y) + ".qvs";
+      const auto sb = encodeResponseSummary(summary);
+      rf.summaryBytes = sb.size();
+      rf.summaryCrc32 = crc32(sb);
+      files[prefix + rf.summaryFile] = sb;
+      if (!coarse) {
+        rf.historyFile =
+            "response/" + std::to_string(level) + "-" + std::to_string(x) + "-" + std::to_string(y) + ".qvh";
+        const auto hb = encodeResponseHistory(history);
+        rf.historyBytes = hb.size();
+        rf.historyCrc32 = crc32(hb);
+        files[prefix + rf.historyFile] = hb;
+      }
+      n.response = rf;
+    }
+    return n;
+  }
+};
+
+}  // namespace qv::test

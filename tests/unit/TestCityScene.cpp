@@ -1,0 +1,261 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "MiniCity.h"
+#include "qv/scene/NullRenderDevice.h"
+#include "qv/scene/Viewer.h"
+
+using namespace qv;
+using test::FakeFetcher;
+using test::MiniCity;
+
+namespace {
+
+// A device that keeps what it is sent, so tests can look at the GPU tables.
+class RecordingDevice final : public RenderDevice {
+ public:
+  std::map<std::uint32_t, BuildingGpuRecord> buildings;  // slot -> row
+  std::vector<FloorGpuRecord> floors;
+  std::map<std::uint32_t, std::map<std::uint32_t, glm::vec2>> slotCentres;  // mesh -> slot -> local centre
+  std::vector<DrawItem> lastItems;
+  NullRenderDevice counter;
+
+  MeshHandle createMesh(const MeshData& mesh) override {
+    const MeshHandle h = counter.createMesh(mesh);
+    std::map<std::uint32_t, std::pair<glm::vec2, int>> acc;
+    for (const BuildingVertex& v : mesh.vertices) {
+      auto& a = acc[v.slot];
+      a.first += glm::vec2(v.x, v.y);
+      a.second += 1;
+    }
+    for (const auto& [slot, a] : acc) slotCentres[h.id][slot] = a.first / static_cast<float>(a.second);
+    return h;
+  }
+  void destroyMesh(MeshHandle m) override {
+    counter.destroyMesh(m);
+    slotCentres.erase(m.id);
+  }
+  std::size_t meshTriangles(MeshHandle m) const override { return counter.meshTriangles(m); }
+  void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> r) override {
+    counter.writeBuildings(first, r);
+    for (std::size_t i = 0; i < r.size(); ++i) buildings[first + static_cast<std::uint32_t>(i)] = r[i];
+  }
+  void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> r) override {
+    counter.writeFloors(first, r);
+    if (floors.size() < first + r.size()) floors.resize(first + r.size());
+    std::copy(r.begin(), r.end(), floors.begin() + static_cast<std::ptrdiff_t>(first));
+  }
+  void render(const FrameUniforms& u, std::span<const DrawItem> items) override {
+    counter.render(u, items);
+    lastItems.assign(items.begin(), items.end());
+  }
+  DeviceFrameStats lastFrameStats() const override { return counter.lastFrameStats(); }
+  std::size_t gpuBytes() const override { return counter.gpuBytes(); }
+
+  /// World centre of every drawn slot.
+  std::map<std::uint32_t, glm::vec2> drawnSlots() const {
+    std::map<std::uint32_t, glm::vec2> out;
+    for (const DrawItem& item : lastItems) {
+      const auto it = slotCentres.find(item.mesh.id);
+      if (it == slotCentres.end()) continue;
+      for (const auto& [slot, c] : it->second) out[slot] = c + glm::vec2(item.origin.x, item.origin.y);
+    }
+    return out;
+  }
+};
+
+void runFrames(Viewer& viewer, int frames, double dt = 1.0 / 60.0) {
+  for (int i = 0; i < frames; ++i) viewer.frame(dt);
+}
+
+// The grid cell (i, j) whose building has its centre at `world`.
+std::pair<int, int> cellOf(glm::vec2 world) {
+  const int i = static_cast<int>(std::lround(world.x / 40.0 - 0.5 + MiniCity::kSide / 2));
+  const int j = static_cast<int>(std::lround(world.y / 40.0 - 0.5 + MiniCity::kSide / 2));
+  return {i, j};
+}
+
+}  // namespace
+
+TEST_CASE("A streamed city loads coarse tiles first and refines where the camera needs detail", "[scene][city]") {
+  MiniCity city;
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  // Far away: the coarse root suffices.
+  viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 5);
+  REQUIRE(viewer.city()->manifestLoaded());
+  CHECK(viewer.settled());
+  CHECK(fetcher.count("city/tiles/0-0-0.qvt") == 1);
+  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 0);
+  CHECK(device.lastItems.size() == 1);
+  CHECK(viewer.stats().latest.buildingsLoaded == 64);
+  CHECK(viewer.stats().latest.buildingsVisible == 64);
+  const auto tiles = viewer.city()->tileCounts();
+  CHECK(tiles.loaded == 1);
+
+  // Close to the south-west quadrant: its leaf replaces the root there; the rest stays coarse
+  // until its leaves arrive, and the drawn set never overlaps.
+  viewer.setCamera(CameraState{-80.0, -80.0, 150.0, 0.0, 45.0, 45.0});
+  viewer.frame(1.0 / 60.0);
+  CHECK_FALSE(viewer.settled());
+  runFrames(viewer, 10);
+  CHECK(viewer.settled());
+  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 1);
+  CHECK(viewer.city()->tileCounts().loaded >= 2);
+  // Every building drawn at most once.
+  const auto drawn = device.drawnSlots();
+  std::set<std::pair<int, int>> cells;
+  for (const auto& [slot, centre] : drawn) {
+    CHECK(cells.insert(cellOf(centre)).second);
+  }
+  // The summary tier colours the buildings: damage states from the response.
+  int withDamage = 0;
+  for (const auto& [slot, row] : device.buildings) withDamage += row.damageState >= 0.0f ? 1 : 0;
+  CHECK(withDamage > 0);
+}
+
+TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {
+  MiniCity city;
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 1000.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  viewer.pause();
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  CHECK(viewer.stats().latest.buildingsAnimated == 64);
+  CHECK(viewer.duration() == 10.0);
+
+  for (double t : {0.37, 2.5, 7.91}) {
+    REQUIRE(viewer.setTime(t));
+    viewer.frame(1.0 / 60.0);
+    std::set<long> distinct;
+    int checked = 0;
+    for (const auto& [slot, centre] : device.drawnSlots()) {
+      const BuildingGpuRecord& row = device.buildings.at(slot);
+      REQUIRE(row.floorBase >= 0.0f);
+      const auto [i, j] = cellOf(centre);
+      const auto base = static_cast<std::size_t>(row.floorBase);
+      const double expectedRoof = MiniCity::roofX(i, j, t);
+      // Linear interpolation of 50 Hz samples and 16-bit quantization: well within 2 %.
+      CHECK(device.floors[base + MiniCity::kStoreys].dxMeters ==
+            Approx(expectedRoof).margin(0.02 * MiniCity::amplitude(i, j)));
+      CHECK(device.floors[base].dxMeters == 0.0f);  // the ground does not move relative to itself
+      CHECK(device.floors[base + 2].dxMeters ==
+            Approx(expectedRoof * 2.0 / 5.0).margin(0.02 * MiniCity::amplitude(i, j)));
+      CHECK(device.floors[base + 1].peakDriftAbove > 0.0f);
+      distinct.insert(std::lround(device.floors[base + MiniCity::kStoreys].dxMeters * 1e5));
+      ++checked;
+    }
+    CHECK(checked == 64);
+    CHECK(distinct.size() > 50);  // buildings do not move in lockstep
+  }
+
+  // Paused: the displacements stay as they are from frame to frame.
+  const auto before = device.floors;
+  runFrames(viewer, 3);
+  CHECK(device.floors.size() == before.size());
+  for (std::size_t k = 0; k < before.size(); ++k) CHECK(device.floors[k].dxMeters == before[k].dxMeters);
+
+  // Outside the radius nothing animates, and rows are released.
+  CitySceneOptions& live = viewer.city()->mutableOptions();
+  live.animationRadiusM = 0.0f;
+  viewer.frame(1.0 / 60.0);
+  CHECK(viewer.stats().latest.buildingsAnimated == 0);
+  for (const auto& [slot, centre] : device.drawnSlots()) CHECK(device.buildings.at(slot).floorBase == -1.0f);
+}
+
+TEST_CASE("A corrupt tile and a missing tile are reported while the rest renders", "[scene][city][errors]") {
+  MiniCity city;
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  fetcher.files["city/tiles/1-1-0.qvt"][100] ^= 0xFF;  // corrupt
+  fetcher.files.erase("city/tiles/1-0-1.qvt");         // missing
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 1000.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 20);
+  CHECK(viewer.settled());
+  const auto& errors = viewer.errors();
+  REQUIRE(errors.size() >= 2);
+  bool corrupt = false, missing = false;
+  for (const std::string& e : errors) {
+    if (e.find("Tile 1/1/0 failed") != std::string::npos && e.find("truncated, corrupt or stale") != std::string::npos)
+      corrupt = true;
+    if (e.find("Tile 1/0/1 failed") != std::string::npos && e.find("HTTP 404") != std::string::npos) missing = true;
+  }
+  CHECK(corrupt);
+  CHECK(missing);
+  CHECK(viewer.city()->tileCounts().failed == 2);
+  // The two good leaves are drawn (32 buildings) and the failed quadrants leave holes, no overlap.
+  CHECK(device.drawnSlots().size() == 32);
+  // Errors are reported once, not every frame, even while retries happen.
+  const std::size_t count = errors.size();
+  runFrames(viewer, 30);
+  CHECK(viewer.errors().size() == count);
+}
+
+TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed", "[scene][city][memory]") {
+  MiniCity city;
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 100.0f;
+  options.memoryBudgetBytes = 1;  // everything not in use this frame goes
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.setCamera(CameraState{-80.0, -80.0, 120.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 15);
+  INFO("tiles loaded " << viewer.city()->tileCounts().loaded << " pending " << viewer.city()->tileCounts().pending
+                       << " failed " << viewer.city()->tileCounts().failed << " requests " << fetcher.requested.size());
+  REQUIRE(viewer.settled());
+  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 1);
+  // Fly to the opposite corner: the first leaf is no longer used and is evicted.
+  viewer.setCamera(CameraState{80.0, 80.0, 120.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 15);
+  CHECK(viewer.settled());
+  // Back again: it is requested a second time.
+  viewer.setCamera(CameraState{-80.0, -80.0, 120.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 15);
+  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 2);
+  CHECK(viewer.stats().latest.buildingsVisible > 0);
+}
+
+TEST_CASE("A manifest that cannot be loaded is an error, not a hang", "[scene][city][errors]") {
+  FakeFetcher fetcher;
+  fetcher.files["bad/tileset.json"] = {'{', 'x'};
+  NullRenderDevice device;
+  Viewer viewer(device);
+  viewer.openCity("missing/tileset.json", fetcher);
+  runFrames(viewer, 3);
+  CHECK(viewer.settled());
+  REQUIRE(viewer.errors().size() == 1);
+  CHECK(viewer.errors()[0].find("missing/tileset.json: HTTP 404") != std::string::npos);
+  Viewer other(device);
+  other.openCity("bad/tileset.json", fetcher);
+  runFrames(other, 3);
+  CHECK(other.settled());
+  REQUIRE(other.errors().size() == 1);
+  CHECK(other.errors()[0].find("not valid JSON") != std::string::npos);
+}
