@@ -14,6 +14,9 @@
 //   worldToScreen(x, y, z) [px, py] CSS pixels of a city-frame point, or null.
 //   setCamera(c)  any subset of getCamera()'s fields; false when a value was invalid.
 //   setTime(s), time(), duration(), play(), pause(), playing()
+//   pick(x, y), building(id), select(id), selection()   picking and the selected building
+//   setFilters({minDamage, use, criticalOnly}), filters(), search(query), filteredList(limit),
+//   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
 //              render, total}, drawCalls, triangles}, each but seconds/frames as {median, p95};
 //              null until the flight ends (benchDone: a Promise of it).
@@ -104,6 +107,56 @@
     pause() { if (engine) engine._qv_pause(); },
     playing() { return !!engine && engine._qv_playing() === 1; },
     benchResult: null,
+
+    // Picking and inspection. A building object: {id, name, use, address, x, y, heightM,
+    // heightSource, storeys, storeysSource, structuralType, codeEra, importance, lod, damageState,
+    // peakDriftRatio: [per storey], peakRoofDisplacementM, pgaG} (x, y: the footprint centre in
+    // metres east and north of the tileset origin, the frame of getCamera()).
+    pick(x, y) {
+      if (!engine) return null;
+      return JSON.parse(engine.UTF8ToString(engine._qv_pick(Number(x), Number(y))));
+    },
+    building(id) {
+      if (!engine || typeof id !== 'string') return null;
+      return JSON.parse(engine.ccall('qv_building', 'string', ['string'], [id]));
+    },
+    select(id) {
+      if (!engine || typeof id !== 'string') return false;
+      return engine.ccall('qv_select', 'number', ['string'], [id]) === 1;
+    },
+    selection() {
+      const id = callString('qv_selection');
+      return id ? id : null;
+    },
+    // Extensions: fly to the selection; filters; search; the filtered list and its export.
+    flyToSelection() { return !!engine && engine._qv_fly_to_selection() === 1; },
+    setFilters(f) {
+      if (!engine || !f || typeof f !== 'object') return false;
+      const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
+      let minDamage = -1;
+      if (typeof f.minDamage === 'number') minDamage = f.minDamage;
+      else if (typeof f.minDamage === 'string') minDamage = states.indexOf(f.minDamage);
+      return engine.ccall('qv_set_filters', 'number', ['number', 'string', 'number'],
+        [minDamage, typeof f.use === 'string' ? f.use : '', f.criticalOnly ? 1 : 0]) === 1;
+    },
+    filters() {
+      const text = callString('qv_filters_json');
+      return text ? JSON.parse(text) : null;
+    },
+    search(query, limit = 20) {
+      if (!engine || typeof query !== 'string') return [];
+      return JSON.parse(engine.ccall('qv_search', 'string', ['string', 'number'], [query, limit]));
+    },
+    searchReady() { return !!engine && engine._qv_search_ready() === 1; },
+    filteredList(limit = 100) {
+      if (!engine) return null;
+      return JSON.parse(engine.UTF8ToString(engine._qv_filtered_json(limit)));
+    },
+    // Downloads the filtered list ("csv" or "geojson") as the panel's Export buttons do; returns it.
+    exportList(format = 'csv') {
+      if (!engine) return '';
+      return engine.ccall('qv_export', 'string', ['string'], [format]);
+    },
   };
   Object.defineProperty(window, 'quakeview', { value: api, writable: false, configurable: false });
   let resolveBench;
@@ -128,6 +181,39 @@
   else args.push('--data', params.get('data') || 'data/default/tileset.json');
   if (params.get('aa') === '0') args.push('--no-antialias');
   if (params.get('bench')) args.push('--bench', params.get('bench'));
+
+  // The shareable view lives in the URL hash: #cam=x,y,distance,heading,pitch,fov&t=seconds
+  // &sel=id&f=minDamage,use,critical. The engine validates every value (a malformed one falls
+  // back to the default with a message).
+  const hash = new URLSearchParams(window.location.hash.replace(/^#/, ''));
+  if (hash.get('cam')) args.push('--camera', hash.get('cam'));
+  if (hash.get('t')) args.push('--time', hash.get('t'));
+  if (hash.get('sel')) args.push('--select', hash.get('sel'));
+  if (hash.get('f')) args.push('--filters', hash.get('f'));
+
+  function viewHash() {
+    const c = api.getCamera();
+    if (!c) return null;
+    const round = (v, d) => Number(v.toFixed(d));
+    const parts = ['cam=' + [round(c.x, 1), round(c.y, 1), round(c.distance, 1), round(c.headingDeg, 1),
+      round(c.pitchDeg, 1), round(c.fovDeg, 1)].join(',')];
+    parts.push('t=' + round(api.time(), 2));
+    const sel = api.selection();
+    if (sel) parts.push('sel=' + encodeURIComponent(sel));
+    const f = api.filters();
+    if (f && (f.minDamage || f.use || f.criticalOnly)) {
+      const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
+      const d = f.minDamage ? states.indexOf(f.minDamage) : '';
+      parts.push('f=' + [d, f.use, f.criticalOnly ? 1 : ''].join(','));
+    }
+    return parts.join('&');
+  }
+  function keepHash() {
+    const h = viewHash();
+    if (h !== null && '#' + h !== window.location.hash) {
+      history.replaceState(null, '', window.location.pathname + window.location.search + '#' + h);
+    }
+  }
 
   // Download the .wasm ourselves to show progress, then hand the bytes to the engine.
   async function fetchWasm(url) {
@@ -170,6 +256,8 @@
         ready() {
           loading.hidden = true;
           resolveReady();
+          // From now on the URL follows the view, so it can be shared at any moment.
+          setInterval(keepHash, 500);
         },
         fatal,
         benchDone(json) {

@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include "MiniCity.h"
 #include "qv/scene/NullRenderDevice.h"
 #include "qv/ui/ControlPanel.h"
 #include "qv/ui/TextMirror.h"
@@ -25,15 +26,29 @@ struct HeadlessImGui {
   ~HeadlessImGui() { ImGui::DestroyContext(); }
 };
 
-std::string drawPanel(Viewer& viewer, TextMirror& mirror) {
-  ControlPanel panel;
+struct RecordingHost final : UiHost {
+  std::vector<std::string> urls;
+  std::vector<std::pair<std::string, std::string>> downloads;  // file name, content
+  void openUrl(const std::string& url) override { urls.push_back(url); }
+  void download(const std::string& name, const std::string&, const std::string& content) override {
+    downloads.emplace_back(name, content);
+  }
+};
+
+std::string drawPanel(Viewer& viewer, TextMirror& mirror, ControlPanel& panel, RecordingHost& host) {
   ImGui::NewFrame();
   mirror.beginFrame();
   ui::Widgets w(mirror);
-  panel.draw(viewer, w, MemoryInfo{5u * 1024u * 1024u, 64u * 1024u * 1024u});
+  panel.draw(viewer, w, MemoryInfo{5u * 1024u * 1024u, 64u * 1024u * 1024u}, host);
   ImGui::Render();
   mirror.endFrame();
   return mirror.text();
+}
+
+std::string drawPanel(Viewer& viewer, TextMirror& mirror) {
+  ControlPanel panel;
+  RecordingHost host;
+  return drawPanel(viewer, mirror, panel, host);
 }
 
 }  // namespace
@@ -48,15 +63,18 @@ TEST_CASE("The control panel's text mirror shows what the panel says", "[ui]") {
   const std::string text = drawPanel(viewer, mirror);
   CHECK(text.find("== QuakeView ==") != std::string::npos);
   CHECK(text.find("FPS: 50.0") != std::string::npos);
-  CHECK(text.find("[Pause]") != std::string::npos);
-  CHECK(text.find("draw calls 7") != std::string::npos);
-  CHECK(text.find("memory: 5.0 MB live, 64.0 MB reserved") != std::string::npos);
+  CHECK(text.find("[Pause (Space)]") != std::string::npos);
+  CHECK(text.find("v Animation") != std::string::npos);
+  CHECK(text.find("> Performance") != std::string::npos);  // collapsed until opened
+  CHECK(text.find("== Map ==") != std::string::npos);
+  CHECK(text.find("North arrow: view heading 30°") != std::string::npos);
+  CHECK(text.find("Scale: ") != std::string::npos);
   CHECK(text.find("== Errors ==") == std::string::npos);
 
   viewer.pause();
   viewer.reportError("tile 0/0/0 failed: HTTP 404");
   const std::string after = drawPanel(viewer, mirror);
-  CHECK(after.find("[Play]") != std::string::npos);
+  CHECK(after.find("[Play (Space)]") != std::string::npos);
   CHECK(after.find("== Errors ==\ntile 0/0/0 failed: HTTP 404") != std::string::npos);
 }
 
@@ -64,4 +82,59 @@ TEST_CASE("Labels mirror only their visible part", "[ui]") {
   CHECK(ui::visibleLabel("Play##transport") == "Play");
   CHECK(ui::visibleLabel("Speed") == "Speed");
   CHECK(ui::format("%d storeys, %.1f m", 102, 443.2) == "102 storeys, 443.2 m");
+}
+
+TEST_CASE("Selecting a building shows its inspection window and exports list the filtered buildings", "[ui][city]") {
+  HeadlessImGui imgui;
+  test::MiniCity city;
+  test::FakeFetcher fetcher;
+  city.serve(fetcher);
+  NullRenderDevice device;
+  Viewer viewer(device);
+  viewer.openCity("city/tileset.json", fetcher);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  for (int i = 0; i < 20; ++i) viewer.frame(1.0 / 60.0);
+  REQUIRE(viewer.settled());
+  TextMirror mirror;
+  ControlPanel panel;
+  RecordingHost host;
+
+  CHECK_FALSE(viewer.select("no-such-building"));
+  REQUIRE(viewer.select("s10"));
+  for (int i = 0; i < 5; ++i) viewer.frame(1.0 / 60.0);
+  std::string text = drawPanel(viewer, mirror, panel, host);
+  text = drawPanel(viewer, mirror, panel, host);  // the motion series arrives with the history
+  CHECK(text.find("== Building s10 ==") != std::string::npos);
+  CHECK(text.find("Use: office") != std::string::npos);
+  CHECK(text.find("Height: 17.5 m (inferred from storeys and use)") != std::string::npos);
+  CHECK(text.find("Storeys: 5 (inferred from height and use)") != std::string::npos);
+  CHECK(text.find("Damage state: ") != std::string::npos);
+  CHECK(text.find("Roof displacement over time: peak ") != std::string::npos);
+  CHECK(text.find("Peak drift per storey (ground to roof): largest") != std::string::npos);
+  CHECK(text.find("OpenStreetMap") == std::string::npos);  // a synthetic id has no OSM object
+
+  // Feet on request.
+  viewer.setShowFeet(true);
+  text = drawPanel(viewer, mirror, panel, host);
+  CHECK(text.find("Height: 57 ft (inferred from storeys and use)") != std::string::npos);
+
+  // The export writes the filtered list (every building when no filter is set) with lon/lat.
+  BuildingFilters f;
+  f.minDamage = 3;  // extensive or worse
+  viewer.city()->setFilters(f);
+  const std::string csv = panel.exportList(viewer, "csv", host);
+  REQUIRE(host.downloads.size() == 1);
+  CHECK(host.downloads[0].first == "quakeview-buildings.csv");
+  std::size_t rows = 0;
+  for (char c : csv) rows += c == '\n' ? 1u : 0u;
+  std::size_t expected = 0;
+  for (int i = 0; i < test::MiniCity::kSide; ++i) {
+    for (int j = 0; j < test::MiniCity::kSide; ++j) expected += (i + j) % 5 >= 3 ? 1u : 0u;
+  }
+  CHECK(rows == expected + 1);  // the header row
+  CHECK(csv.rfind("id,name,address,use,importance,damage_state", 0) == 0);
+  CHECK(csv.find(",-74.0") != std::string::npos);  // longitudes near the origin
+  const std::string geojson = panel.exportList(viewer, "geojson", host);
+  CHECK(geojson.find("\"type\":\"FeatureCollection\"") != std::string::npos);
 }

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cctype>
+#include <cmath>
 #include <cstdlib>
 
 namespace qv {
@@ -63,6 +65,31 @@ int imguiIndexForCode(const std::string& code) {
 
 }  // namespace
 
+std::optional<BuildingFilters> parseFilters(const std::string& text) {
+  if (text.size() > 100) return std::nullopt;
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  while (true) {
+    const auto comma = text.find(',', start);
+    parts.push_back(text.substr(start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  if (parts.size() != 3) return std::nullopt;
+  BuildingFilters f;
+  if (!parts[0].empty()) {
+    if (parts[0].size() != 1 || parts[0][0] < '0' || parts[0][0] > '4') return std::nullopt;
+    f.minDamage = parts[0][0] - '0';
+  }
+  for (char c : parts[1]) {
+    if (!(std::islower(static_cast<unsigned char>(c)) || c == '_')) return std::nullopt;
+  }
+  f.use = parts[1];
+  if (!parts[2].empty() && parts[2] != "0" && parts[2] != "1") return std::nullopt;
+  f.criticalOnly = parts[2] == "1";
+  return f;
+}
+
 AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std::string>& errors) {
   AppOptions options;
   for (std::size_t i = 0; i < args.size(); ++i) {
@@ -78,6 +105,52 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
       options.dataUrl = args[++i];
     } else if (a == "--no-antialias") {
       options.antialias = false;
+    } else if (a == "--camera" && hasValue) {
+      // x,y,distance,headingDeg,pitchDeg[,fovDeg] from the URL hash.
+      const std::string& text = args[++i];
+      std::vector<double> v;
+      bool valid = true;
+      std::size_t start = 0;
+      while (valid && v.size() < 7) {
+        const auto comma = text.find(',', start);
+        const std::string piece = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+        char* end = nullptr;
+        const double number = std::strtod(piece.c_str(), &end);
+        valid = !piece.empty() && end == piece.c_str() + piece.size() && std::isfinite(number);
+        v.push_back(number);
+        if (comma == std::string::npos) break;
+        start = comma + 1;
+      }
+      valid = valid && (v.size() == 5 || v.size() == 6);
+      CameraState c;
+      if (valid) c = CameraState{v[0], v[1], v[2], v[3], v[4], v.size() == 6 ? v[5] : 45.0};
+      CameraState checked = c;
+      if (!valid || !sanitizeCamera(checked, c)) {
+        errors.push_back("The camera in the link (" + text + ") is not valid; showing the default view.");
+      } else {
+        options.camera = checked;
+      }
+    } else if (a == "--time" && hasValue) {
+      const std::string& v = args[++i];
+      char* end = nullptr;
+      const double t = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !std::isfinite(t) || t < 0.0) {
+        errors.push_back("The time in the link (" + v + ") is not a number of seconds; starting at 0 s.");
+      } else {
+        options.timeSeconds = t;
+      }
+    } else if (a == "--select" && hasValue) {
+      const std::string& v = args[++i];
+      if (v.empty() || v.size() > 200 || v.find_first_of("\n\r\t") != std::string::npos) {
+        errors.push_back("The selected building in the link is not a valid id; nothing is selected.");
+      } else {
+        options.select = v;
+      }
+    } else if (a == "--filters" && hasValue) {
+      const std::string& v = args[++i];
+      options.filters = parseFilters(v);
+      if (!options.filters)
+        errors.push_back("The filters in the link (" + v + ") are not valid; showing every building.");
     } else if (a == "--bench" && hasValue) {
       const std::string& v = args[++i];
       char* end = nullptr;
@@ -111,7 +184,7 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   ImGui::CreateContext();
   ImGuiIO& io = ImGui::GetIO();
   io.IniFilename = nullptr;  // no imgui.ini in a browser
-  io.ConfigFlags |= ImGuiConfigFlags_NavEnableKeyboard;
+  io.ConfigFlags |= ImGuiConfigFlags_NavEnableKeyboard | ImGuiConfigFlags_NavNoCaptureKeyboard;
   io.BackendPlatformName = "quakeview-browser";
   for (std::size_t i = 0; i < kImGuiKeys.size(); ++i) io.KeyMap[kImGuiKeys[i].imguiKey] = static_cast<int>(i) + 1;
   ImGui::StyleColorsLight();
@@ -128,6 +201,10 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
     viewer_->showTestScene();
   }
   if (options.benchSeconds > 0.0) viewer_->startBench(options.benchSeconds);
+  if (options.camera) viewer_->setCamera(*options.camera);
+  pendingTime_ = options.timeSeconds;
+  pendingSelect_ = options.select;
+  if (options.filters && viewer_->city() != nullptr) viewer_->city()->setFilters(*options.filters);
   input_ = std::make_unique<BrowserInput>(kCanvas);
   lastFrameSeconds_ = browser::nowSeconds();
   return true;
@@ -165,13 +242,20 @@ void App::dispatchInput() {
       }
       case InputEvent::Type::PointerMove:
         io.MousePos = ImVec2(static_cast<float>(e.x), static_cast<float>(e.y));
+        cursor_ = std::make_pair(e.x, e.y);
         if (cameraOwnsPointer_) viewer_->controller().pointerMove(e.x, e.y);
         break;
       case InputEvent::Type::PointerUp:
         io.MouseDown[button] = false;
         if (cameraOwnsPointer_) {
+          const bool click = viewer_->controller().isClick() && e.button == 0;
           viewer_->controller().pointerUp(e.button);
           if (!viewer_->controller().dragging()) cameraOwnsPointer_ = false;
+          // A click (no drag) selects the building under the pointer, or clears the selection.
+          if (click) {
+            const auto hit = viewer_->pick(e.x, e.y);
+            viewer_->select(hit ? hit->attributes.id : std::string());
+          }
         }
         break;
       case InputEvent::Type::Wheel:
@@ -198,13 +282,21 @@ void App::dispatchInput() {
         const int index = imguiIndexForCode(e.code);
         if (index >= 0) io.KeysDown[index] = down;
         if (down) keysPressedThisFrame.push_back(e.code);
-        if (!io.WantCaptureKeyboard || !down) {
+        // Shortcuts reach the viewer unless a text field is being edited.
+        if (!io.WantTextInput || !down) {
           if (down && e.code == "Space") {
             if (viewer_->playing())
               viewer_->pause();
             else
               viewer_->play();
           }
+          if (down && (e.code == "Comma" || e.code == "Period")) {
+            viewer_->pause();
+            viewer_->setTime(viewer_->time() + (e.code == "Comma" ? -1.0 : 1.0));
+          }
+          if (down && e.code == "KeyF") viewer_->flyToSelection();
+          if (down && e.code == "Escape") viewer_->select("");
+          if (down && e.code == "Slash") panel_.focusSearch();
           viewer_->controller().key(cameraKeyForCode(e.code), down);
         }
         break;
@@ -238,10 +330,29 @@ void App::frame() {
 
   viewer_->frame(dt);
 
+  // The shareable view's time and selection, once the city is there to apply them to.
+  if ((pendingTime_ || !pendingSelect_.empty()) && viewer_->settled()) {
+    if (pendingTime_) {
+      if (*pendingTime_ > viewer_->duration()) {
+        viewer_->reportError("The time in the link is beyond the end of the record; showing its end.");
+      }
+      viewer_->setTime(*pendingTime_);
+      pendingTime_.reset();
+    }
+    if (!pendingSelect_.empty()) {
+      if (!viewer_->select(pendingSelect_)) {
+        viewer_->reportError("The building '" + pendingSelect_ +
+                             "' in the link is not in this city; nothing is selected.");
+      }
+      pendingSelect_.clear();
+    }
+  }
+
   const MemoryInfo memory = browser::memoryInfo();
   mirror_.beginFrame();
   ui::Widgets widgets(mirror_);
-  panel_.draw(*viewer_, widgets, memory);
+  panel_.setCursor(cursor_);
+  panel_.draw(*viewer_, widgets, memory, host_);
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
   mirror_.endFrame();

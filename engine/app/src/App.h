@@ -4,6 +4,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,11 +24,28 @@ struct AppOptions {
   bool antialias = true;
   double benchSeconds = 0.0;  ///< > 0: run the benchmark flight
   CitySceneOptions city;
+  // The shareable view (from the URL hash), applied once the city is there.
+  std::optional<CameraState> camera;
+  std::optional<double> timeSeconds;
+  std::string select;
+  std::optional<BuildingFilters> filters;
 };
 
 /// Parses the engine's arguments (set by the shell from the page URL). Unknown arguments are
 /// reported in `errors` and ignored.
 AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std::string>& errors);
+
+/// The UI's host services in the browser.
+class BrowserUiHost final : public UiHost {
+ public:
+  void openUrl(const std::string& url) override { browser::openUrl(url); }
+  void download(const std::string& filename, const std::string& mimeType, const std::string& content) override {
+    browser::downloadText(filename, mimeType, content);
+  }
+};
+
+/// Parses "minDamage,use,critical" filter text of the URL ("2,hospital,1"; empty fields: any).
+std::optional<BuildingFilters> parseFilters(const std::string& text);
 
 class App {
  public:
@@ -37,6 +55,8 @@ class App {
 
   [[nodiscard]] Viewer& viewer() { return *viewer_; }
   [[nodiscard]] const std::string& uiText() const { return mirror_.text(); }
+  [[nodiscard]] ControlPanel& panel() { return panel_; }
+  [[nodiscard]] UiHost& host() { return host_; }
 
  private:
   void dispatchInput();
@@ -49,6 +69,10 @@ class App {
   std::vector<InputEvent> deferred_;
   TextMirror mirror_;
   ControlPanel panel_;
+  BrowserUiHost host_;
+  std::optional<double> pendingTime_;
+  std::string pendingSelect_;
+  std::optional<std::pair<double, double>> cursor_;
   double lastFrameSeconds_ = 0.0;
   bool readySent_ = false;
   bool cameraOwnsPointer_ = false;

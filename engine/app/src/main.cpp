@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <algorithm>
+
 #include "App.h"
 #include "qv/core/JsonWriter.h"
 
@@ -85,6 +87,99 @@ EMSCRIPTEN_KEEPALIVE void qv_pause() {
 
 EMSCRIPTEN_KEEPALIVE int qv_playing() {
   return gApp != nullptr && gApp->viewer().playing() ? 1 : 0;
+}
+
+/// The building under a canvas point (CSS pixels), as JSON, or null.
+EMSCRIPTEN_KEEPALIVE const char* qv_pick(double x, double y) {
+  if (gApp == nullptr) return hand("null");
+  const auto info = gApp->viewer().pick(x, y);
+  return hand(info ? qv::buildingInfoJson(*info) : std::string("null"));
+}
+
+EMSCRIPTEN_KEEPALIVE const char* qv_building(const char* id) {
+  if (gApp == nullptr || id == nullptr) return hand("null");
+  const auto info = gApp->viewer().building(id);
+  return hand(info ? qv::buildingInfoJson(*info) : std::string("null"));
+}
+
+EMSCRIPTEN_KEEPALIVE int qv_select(const char* id) {
+  return gApp != nullptr && id != nullptr && gApp->viewer().select(id) ? 1 : 0;
+}
+
+EMSCRIPTEN_KEEPALIVE const char* qv_selection() {
+  if (gApp == nullptr) return hand("");
+  return hand(gApp->viewer().selection());
+}
+
+EMSCRIPTEN_KEEPALIVE int qv_fly_to_selection() {
+  return gApp != nullptr && gApp->viewer().flyToSelection() ? 1 : 0;
+}
+
+/// Filters: minDamage -1..4, use ("" any), critical 0/1. Returns 0 when there is no city.
+EMSCRIPTEN_KEEPALIVE int qv_set_filters(int minDamage, const char* use, int critical) {
+  if (gApp == nullptr || gApp->viewer().city() == nullptr || use == nullptr) return 0;
+  qv::BuildingFilters f;
+  f.minDamage = minDamage < 0 || minDamage > 4 ? -1 : minDamage;
+  f.use = use;
+  f.criticalOnly = critical != 0;
+  gApp->viewer().city()->setFilters(f);
+  return 1;
+}
+
+EMSCRIPTEN_KEEPALIVE const char* qv_filters_json() {
+  if (gApp == nullptr || gApp->viewer().city() == nullptr) return hand("null");
+  const qv::BuildingFilters& f = gApp->viewer().city()->filters();
+  qv::JsonWriter w;
+  w.beginObject();
+  if (f.minDamage >= 0)
+    w.field("minDamage", qv::damageStateName(static_cast<qv::DamageState>(f.minDamage)));
+  else
+    w.key("minDamage").null();
+  w.field("use", f.use).field("criticalOnly", f.criticalOnly).endObject();
+  return hand(w.take());
+}
+
+namespace {
+void writeEntries(qv::JsonWriter& w, const std::vector<qv::BuildingListEntry>& list) {
+  w.beginArray();
+  for (const auto& e : list) {
+    w.beginObject().field("id", e.id).field("name", e.name).field("address", e.address).field("use", e.use);
+    w.field("damageState", qv::damageStateName(e.damage)).field("peakDriftRatio", e.peakDriftRatio);
+    w.field("x", e.x).field("y", e.y).endObject();
+  }
+  w.endArray();
+}
+}  // namespace
+
+/// Buildings matching a query (id, name, address), as JSON (at most `limit`).
+EMSCRIPTEN_KEEPALIVE const char* qv_search(const char* query, int limit) {
+  if (gApp == nullptr || gApp->viewer().city() == nullptr || query == nullptr) return hand("[]");
+  qv::JsonWriter w;
+  writeEntries(w, gApp->viewer().city()->search(query, static_cast<std::size_t>(std::clamp(limit, 1, 10000))));
+  return hand(w.take());
+}
+
+/// The filtered list, most damaged first: {total, buildings: [...]} (at most `limit`).
+EMSCRIPTEN_KEEPALIVE const char* qv_filtered_json(int limit) {
+  if (gApp == nullptr || gApp->viewer().city() == nullptr) return hand("null");
+  std::size_t total = 0;
+  const auto list =
+      gApp->viewer().city()->filteredList(static_cast<std::size_t>(std::clamp(limit, 0, 1000000)), &total);
+  qv::JsonWriter w;
+  w.beginObject().field("total", static_cast<std::uint64_t>(total)).key("buildings");
+  writeEntries(w, list);
+  w.endObject();
+  return hand(w.take());
+}
+
+/// Exports the filtered list ("csv" or "geojson"): downloads it and returns the text.
+EMSCRIPTEN_KEEPALIVE const char* qv_export(const char* format) {
+  if (gApp == nullptr || format == nullptr) return hand("");
+  return hand(gApp->panel().exportList(gApp->viewer(), format, gApp->host()));
+}
+
+EMSCRIPTEN_KEEPALIVE int qv_search_ready() {
+  return gApp != nullptr && gApp->viewer().city() != nullptr && gApp->viewer().city()->searchIndexLoaded() ? 1 : 0;
 }
 
 }  // extern "C"

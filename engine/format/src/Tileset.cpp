@@ -225,6 +225,17 @@ std::string tilesetToJson(const Tileset& t) {
     w.key("damageStates").beginObject();
     for (int i = 0; i < 6; ++i) w.field(kDamageKeys[i], r.damageStates[i]);
     w.endObject();
+    if (!r.motionPreviewG.empty()) {
+      w.field("motionPreviewRateHz", r.motionPreviewRateHz);
+      w.key("motionPreviewG").beginArray();
+      for (float v : r.motionPreviewG) w.value(v);
+      w.endArray();
+    }
+    w.endObject();
+  }
+  if (t.search) {
+    w.key("search").beginObject();
+    w.field("file", t.search->file).field("bytes", t.search->bytes).field("crc32", hex32(t.search->crc32));
     w.endObject();
   }
   if (!t.nodes.empty()) {
@@ -310,7 +321,31 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
     for (int i = 0; i < 6; ++i) {
       if (!p.unsignedNumber(states, kDamageKeys[i], r.damageStates[i], "response damageStates")) return Error{p.error};
     }
+    simdjson::dom::array preview;
+    if (response["motionPreviewG"].get(preview) == simdjson::SUCCESS) {
+      if (preview.size() > 100000) return Error{p.prefix + "response: motionPreviewG is too long"};
+      if (!p.number(response, "motionPreviewRateHz", r.motionPreviewRateHz, "response") ||
+          !(r.motionPreviewRateHz > 0.0 && r.motionPreviewRateHz <= 1000.0)) {
+        return Error{p.prefix + "response: motionPreviewRateHz must be in (0, 1000]"};
+      }
+      for (element e : preview) {
+        double v = 0;
+        if (e.get_double().get(v) != simdjson::SUCCESS || !std::isfinite(v) || std::abs(v) > 100.0) {
+          return Error{p.prefix + "response: motionPreviewG holds a non-number"};
+        }
+        r.motionPreviewG.push_back(static_cast<float>(v));
+      }
+    }
     t.response = r;
+  }
+  object search;
+  if (root["search"].get(search) == simdjson::SUCCESS) {
+    CityFile f;
+    if (!p.text(search, "file", f.file, "search") || !p.unsignedNumber(search, "bytes", f.bytes, "search") ||
+        !p.hex(search, "crc32", f.crc32, "search") || !p.relativePath(f.file, "search")) {
+      return Error{p.error};
+    }
+    t.search = f;
   }
   element rootTile;
   if (root["root"].get(rootTile) != simdjson::SUCCESS) return Error{p.prefix + "missing \"root\" tile"};

@@ -32,6 +32,30 @@ EM_JS(void, qv_js_notify_bench, (const char* json), {
   if (Module["qvHooks"] && Module["qvHooks"].benchDone) Module["qvHooks"].benchDone(text);
 });
 
+EM_JS(void, qv_js_open_url, (const char* url), {
+  var text = UTF8ToString(url);
+  if (text.indexOf("https:") == 0 || text.indexOf("http:") == 0) window.open(text, "_blank", "noopener");
+});
+
+EM_JS(void, qv_js_download, (const char* name, const char* type, const char* data, int length), {
+  var bytes = HEAPU8.slice(data, data + length);
+  var blob = new Blob([bytes], {
+    type:
+      UTF8ToString(type)
+  });
+  var link = document.createElement("a");
+  link.href = URL.createObjectURL(blob);
+  link.download = UTF8ToString(name);
+  document.body.appendChild(link);
+  link.click();
+  setTimeout(
+      function() {
+        URL.revokeObjectURL(link.href);
+        link.remove();
+      },
+      1000);
+});
+
 bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& options, std::string& error) {
   EmscriptenWebGLContextAttributes attributes;
   emscripten_webgl_init_context_attributes(&attributes);
@@ -101,6 +125,14 @@ void notifyFatal(const std::string& message) {
 
 void notifyBenchDone(const std::string& json) {
   qv_js_notify_bench(json.c_str());
+}
+
+void openUrl(const std::string& url) {
+  qv_js_open_url(url.c_str());
+}
+
+void downloadText(const std::string& filename, const std::string& mimeType, const std::string& content) {
+  qv_js_download(filename.c_str(), mimeType.c_str(), content.data(), static_cast<int>(content.size()));
 }
 
 }  // namespace qv::browser

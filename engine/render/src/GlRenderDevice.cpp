@@ -3,9 +3,12 @@
 #include <GLES3/gl3.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
+#include <string>
 
 #include "Shaders.h"
+#include "qv/scene/Palette.h"
 
 namespace qv {
 namespace {
@@ -58,8 +61,40 @@ void* byteOffset(std::size_t offset) {
 
 }  // namespace
 
+namespace {
+
+// GLSL for the palette of qv/scene/Palette.h: ramp(t) through its five stops and the named colours.
+std::string paletteGlsl() {
+  auto vec = [](const Rgb& c) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, "vec3(%.4f, %.4f, %.4f)", static_cast<double>(c.r), static_cast<double>(c.g),
+                  static_cast<double>(c.b));
+    return std::string(buffer);
+  };
+  std::string s = "const vec3 kNoResult = " + vec(kNoResultColor) + ";\n";
+  s += "const vec3 kSelected = " + vec(kSelectedColor) + ";\n";
+  s += "const vec3 kDimmed = " + vec(kDimmedColor) + ";\n";
+  s += "vec3 ramp(float t) {\n  t = clamp(t, 0.0, 1.0) * 4.0;\n";
+  for (int i = 0; i < 4; ++i) {
+    s += "  if (t < " + std::to_string(i + 1) + ".0) return mix(" + vec(kDamagePalette[static_cast<std::size_t>(i)]) +
+         ", " + vec(kDamagePalette[static_cast<std::size_t>(i) + 1]) + ", t - " + std::to_string(i) + ".0);\n";
+  }
+  s += "  return " + vec(kDamagePalette[4]) + ";\n}\n";
+  return s;
+}
+
+std::string withPalette(const char* source) {
+  std::string s = source;
+  const auto at = s.find("@PALETTE@");
+  if (at != std::string::npos) s.replace(at, 9, paletteGlsl());
+  return s;
+}
+
+}  // namespace
+
 GlRenderDevice::GlRenderDevice() {
-  buildingProgram_ = linkProgram(shaders::kBuildingVertex, shaders::kBuildingFragment, error_);
+  const std::string vertex = withPalette(shaders::kBuildingVertex);
+  buildingProgram_ = linkProgram(vertex.c_str(), shaders::kBuildingFragment, error_);
   if (buildingProgram_ != 0) {
     groundProgram_ = linkProgram(shaders::kGroundVertex, shaders::kGroundFragment, error_);
   }

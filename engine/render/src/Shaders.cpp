@@ -27,25 +27,14 @@ uniform bool u_anyDimmed;
 out vec3 v_normal;
 out vec3 v_world;
 flat out vec4 v_color;
+flat out float v_hatch;
 
 const int kWidth = 2048;
 
 vec4 texel(sampler2D table, int i) { return texelFetch(table, ivec2(i % kWidth, i / kWidth), 0); }
 
-// Sequential ramp, light to dark (monotonic lightness: readable in grey and with colour-vision
-// deficiencies): grey, yellow, orange, red, dark red.
-vec3 ramp(float t) {
-  t = clamp(t, 0.0, 1.0);
-  vec3 c0 = vec3(0.80, 0.82, 0.84);
-  vec3 c1 = vec3(0.99, 0.85, 0.46);
-  vec3 c2 = vec3(0.98, 0.55, 0.24);
-  vec3 c3 = vec3(0.84, 0.19, 0.12);
-  vec3 c4 = vec3(0.40, 0.00, 0.05);
-  if (t < 0.25) return mix(c0, c1, t * 4.0);
-  if (t < 0.50) return mix(c1, c2, (t - 0.25) * 4.0);
-  if (t < 0.75) return mix(c2, c3, (t - 0.50) * 4.0);
-  return mix(c3, c4, (t - 0.75) * 4.0);
-}
+// The palette (qv/scene/Palette.h), inserted by the device when it builds the program.
+@PALETTE@
 
 void main() {
   int slot = int(a_slot);
@@ -80,14 +69,18 @@ void main() {
   vec3 color;
   if (u_colorMode == 0) color = ramp(drift / u_driftFullScale);
   else if (u_colorMode == 1) color = ramp(peakStorey / u_driftFullScale);
-  else if (u_colorMode == 2) color = damage < -0.5 ? vec3(0.62, 0.66, 0.74) : ramp(damage / 4.0);
+  else if (u_colorMode == 2) color = damage < -0.5 ? kNoResult : ramp(damage / 4.0);
   else color = vec3(0.82, 0.80, 0.76);
+  // No response for this building: its own colour, whatever the mode (hatched in the fragment stage).
+  float noResult = (u_colorMode != 3 && damage < -0.5) ? 1.0 : 0.0;
+  if (noResult > 0.5) color = kNoResult;
 
   if (a_normalKind.w == 1) color *= 1.08;  // roofs a touch lighter than walls
   float alpha = 1.0;
-  if ((flags & 2u) != 0u) { color = mix(color, vec3(0.90, 0.91, 0.92), 0.80); alpha = 0.0; }
-  if ((flags & 1u) != 0u) { color = mix(color, vec3(0.10, 0.75, 1.00), 0.65); alpha = 2.0; }
+  if ((flags & 2u) != 0u) { color = mix(color, kDimmed, 0.85); noResult = 0.0; alpha = 0.0; }
+  if ((flags & 1u) != 0u) { color = mix(color, kSelected, 0.65); alpha = 2.0; }
   v_color = vec4(color, alpha);
+  v_hatch = noResult;
 
   vec3 world = position + u_origin;
   v_world = world;
@@ -102,6 +95,7 @@ precision highp float;
 in vec3 v_normal;
 in vec3 v_world;
 flat in vec4 v_color;
+flat in float v_hatch;
 
 uniform vec3 u_sunDirection;
 uniform vec3 u_eye;
@@ -113,6 +107,8 @@ void main() {
   float sun = max(dot(n, -u_sunDirection), 0.0);
   float sky = 0.5 + 0.5 * n.z;  // hemispheric ambient: up-facing surfaces see more sky
   vec3 lit = v_color.rgb * (0.42 + 0.22 * sky + 0.55 * sun);
+  // Buildings without a result: diagonal hatching in screen space, readable without colour.
+  if (v_hatch > 0.5 && mod(gl_FragCoord.x + gl_FragCoord.y, 8.0) < 2.0) lit *= 0.72;
   // Selected buildings glow slightly so they stand out in shadow too.
   if (v_color.a > 1.5) lit = max(lit, v_color.rgb * 0.75);
   // Aerial perspective: far buildings fade towards the sky colour.

@@ -42,6 +42,7 @@ std::uint64_t key(std::uint32_t node, std::uint32_t index) {
 
 struct CityScene::LoadedTile {
   CityTile data;
+  std::unordered_map<std::string, std::uint32_t> idIndex;  // building id -> index in the file
   BoxTree tree;
   std::vector<std::uint32_t> positionOf;  // building index -> position in tree.order()
   MeshHandle mesh;
@@ -262,6 +263,8 @@ void CityScene::finishTile(std::uint32_t node) {
   }
   tile->tree.build(boxes);
   const auto& order = tile->tree.order();
+  tile->idIndex.reserve(d.buildings.size());
+  for (std::uint32_t b = 0; b < d.buildings.size(); ++b) tile->idIndex.emplace(d.buildings[b].attributes.id, b);
   tile->positionOf.resize(order.size());
   for (std::uint32_t p = 0; p < order.size(); ++p) tile->positionOf[order[p]] = p;
 
@@ -325,6 +328,7 @@ void CityScene::finishTile(std::uint32_t node) {
   t.lastUsed = frame_;
   t.attempts = 0;
   states_[node] = TileState::Loaded;
+  applyFlags(node);
   if (tileset_->nodes[node].response) requestSummary(node);
 }
 
@@ -378,6 +382,7 @@ void CityScene::applySummary(std::uint32_t node) {
     row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
   }
   writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+  applyFlags(node);  // damage filters need the summary
 }
 
 void CityScene::requestHistory(std::uint32_t node) {
@@ -494,6 +499,17 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     if (inFlight_ >= options_.maxRequestsInFlight) break;
     if (states_[i] == TileState::Unloaded) request(i, clock_);
   }
+  // The selected building's leaf, wherever the camera is (inspection needs its attributes and
+  // history).
+  for (std::uint32_t i : detailWanted_) {
+    tiles_[i]->lastUsed = frame_;
+    if (states_[i] == TileState::Unloaded) request(i, clock_);
+  }
+  detailWanted_.erase(std::remove_if(detailWanted_.begin(), detailWanted_.end(),
+                                     [&](std::uint32_t i) {
+                                       return states_[i] == TileState::Loaded || states_[i] == TileState::Failed;
+                                     }),
+                      detailWanted_.end());
   // Failed tiles the view still uses are retried with backoff (the server may recover).
   for (std::uint32_t i : selection_.used) {
     if (inFlight_ >= options_.maxRequestsInFlight) break;
@@ -528,6 +544,20 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
       t.loaded->tree.query(frustum, t.visible);
     for (const IndexRange& r : t.visible) visibleBuildings += r.end - r.begin;
     items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin});
+  }
+  // Damage states in view (for the panel), from the summaries of the drawn tiles.
+  damageInView_.fill(0);
+  for (std::uint32_t i : selection_.draw) {
+    const TileRuntime& t = *tiles_[i];
+    if (!t.loaded) continue;
+    for (const IndexRange& r : t.visible) {
+      for (std::uint32_t p = r.begin; p < r.end; ++p) {
+        const std::uint32_t b = t.loaded->tree.order()[p];
+        const DamageState d =
+            t.summary && b < t.summary->buildings.size() ? t.summary->buildings[b].damage : DamageState::NoResult;
+        ++damageInView_[d == DamageState::NoResult ? 5 : static_cast<std::size_t>(d)];
+      }
+    }
   }
   counts.buildingsVisible += visibleBuildings;
   times.cull += msSince(t0);
@@ -678,6 +708,281 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     }
   }
   counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Selection, filters, picking, search.
+
+namespace {
+
+void setFlag(BuildingGpuRecord& row, unsigned bit, bool on) {
+  auto flags = static_cast<unsigned>(row.flags);
+  flags = on ? (flags | bit) : (flags & ~bit);
+  row.flags = static_cast<float>(flags);
+}
+
+}  // namespace
+
+bool BuildingFilters::passes(const BuildingAttributes& a, const BuildingResponse* r) const {
+  if (criticalOnly && a.importance != Importance::Critical) return false;
+  if (!use.empty() && a.use != use) return false;
+  if (minDamage >= 0) {
+    if (r == nullptr || r->damage == DamageState::NoResult) return false;
+    if (static_cast<int>(r->damage) < minDamage) return false;
+  }
+  return true;
+}
+
+void CityScene::applyFlags(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  if (!t.loaded) return;
+  const LoadedTile& tile = *t.loaded;
+  const bool filtering = filters_.active();
+  for (std::uint32_t b = 0; b < tile.data.buildings.size(); ++b) {
+    BuildingGpuRecord& row = buildingRows_[tile.slotBase + tile.positionOf[b]];
+    const BuildingAttributes& a = tile.data.buildings[b].attributes;
+    const BuildingResponse* r = t.summary && b < t.summary->buildings.size() ? &t.summary->buildings[b] : nullptr;
+    setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
+    setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r));
+  }
+  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+}
+
+void CityScene::applyFlagsEverywhere() {
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
+    if (tiles_[i]->loaded) applyFlags(i);
+  }
+}
+
+void CityScene::setFilters(const BuildingFilters& filters) {
+  if (filters == filters_) return;
+  filters_ = filters;
+  applyFlagsEverywhere();
+}
+
+std::optional<BuildingRef> CityScene::find(std::string_view id) const {
+  std::optional<BuildingRef> coarse;
+  const std::string key(id);
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
+    const TileRuntime& t = *tiles_[i];
+    if (!t.loaded) continue;
+    const auto it = t.loaded->idIndex.find(key);
+    if (it == t.loaded->idIndex.end()) continue;
+    if (!t.loaded->data.coarse) return BuildingRef{i, it->second};
+    // Of the coarse copies, the deepest (the most detailed) wins.
+    if (!coarse || tileset_->nodes[i].level > tileset_->nodes[coarse->node].level) coarse = BuildingRef{i, it->second};
+  }
+  return coarse;
+}
+
+std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
+  if (ref.node >= tiles_.size() || !tiles_[ref.node]->loaded) return std::nullopt;
+  const TileRuntime& t = *tiles_[ref.node];
+  const CityTile& d = t.loaded->data;
+  if (ref.index >= d.buildings.size()) return std::nullopt;
+  BuildingInfo info;
+  info.attributes = d.buildings[ref.index].attributes;
+  info.attributes.centroidX += d.originX;
+  info.attributes.centroidY += d.originY;
+  info.detailed = !d.coarse;
+  info.tile = tileset_->nodes[ref.node].key();
+  if (t.summary && ref.index < t.summary->buildings.size()) {
+    info.hasResponse = true;
+    info.response = t.summary->buildings[ref.index];
+    const auto first = t.summary->storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(info.response.firstStorey);
+    info.storeyPeakDrift.assign(first, first + static_cast<std::ptrdiff_t>(info.response.storeys));
+  }
+  return info;
+}
+
+void CityScene::select(const std::string& id) {
+  if (id == selected_) return;
+  selected_ = id;
+  series_.reset();
+  seriesFor_.clear();
+  detailWanted_.clear();
+  applyFlagsEverywhere();
+  if (id.empty() || !tileset_) return;
+  // Its leaf (full attributes and history): the leaves whose bounds hold its centroid.
+  if (const auto ref = find(id); ref && tiles_[ref->node]->loaded->data.coarse) {
+    const auto info = this->info(*ref);
+    for (std::uint32_t i = 0; i < tileset_->nodes.size(); ++i) {
+      const TileNode& n = tileset_->nodes[i];
+      if (n.children.empty() && n.bounds.contains(static_cast<float>(info->attributes.centroidX),
+                                                  static_cast<float>(info->attributes.centroidY))) {
+        detailWanted_.push_back(i);
+      }
+    }
+  }
+}
+
+std::optional<BuildingSeries> CityScene::selectionSeries(std::size_t samples) {
+  if (selected_.empty() || samples < 2) return std::nullopt;
+  if (series_ && seriesFor_ == selected_ && series_->roofDisplacementM.size() == samples) return series_;
+  const auto ref = find(selected_);
+  if (!ref) return std::nullopt;
+  TileRuntime& t = *tiles_[ref->node];
+  if (t.loaded->data.coarse) return std::nullopt;  // the leaf is on its way
+  if (t.historyState == TileState::Unloaded) requestHistory(ref->node);
+  t.historyUsed = frame_;
+  if (t.historyState != TileState::Loaded || ref->index >= t.history->buildings.size()) return std::nullopt;
+  const BuildingHistory& h = t.history->buildings[ref->index];
+  const BuildingAttributes& a = t.loaded->data.buildings[ref->index].attributes;
+  if (h.floors == 0) return std::nullopt;
+  BuildingSeries s;
+  s.durationSeconds = duration();
+  std::vector<float> x(h.floors + 1u), y(h.floors + 1u);
+  const float storeyHeight = std::max(a.storeyHeightM(), 0.1f);
+  for (std::size_t i = 0; i < samples; ++i) {
+    const double time = s.durationSeconds * static_cast<double>(i) / static_cast<double>(samples - 1);
+    sampleHistory(h, time, x, y);
+    s.roofDisplacementM.push_back(std::hypot(x[h.floors], y[h.floors]));
+    float drift = 0.0f;
+    for (std::size_t k = 0; k < h.floors; ++k) {
+      drift = std::max(drift, std::hypot(x[k + 1] - x[k], y[k + 1] - y[k]) / storeyHeight);
+    }
+    s.maxDriftRatio.push_back(drift);
+  }
+  series_ = std::move(s);
+  seriesFor_ = selected_;
+  return series_;
+}
+
+std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::vec3& direction) const {
+  float best = INFINITY;
+  std::optional<BuildingRef> hit;
+  std::vector<std::pair<float, std::uint32_t>> candidates;
+  const float o[3] = {origin.x, origin.y, origin.z};
+  const float dir[3] = {direction.x, direction.y, direction.z};
+  for (std::uint32_t node : selection_.draw) {
+    const TileRuntime& t = *tiles_[node];
+    if (!t.loaded) continue;
+    const LoadedTile& tile = *t.loaded;
+    candidates.clear();
+    tile.tree.raycast(origin, direction, best == INFINITY ? 1.0e7f : best, candidates);
+    for (const auto& [entry, position] : candidates) {
+      if (entry > best) break;  // boxes come nearest first: nothing further can be nearer
+      const std::uint32_t b = tile.tree.order()[position];
+      const TileBuilding& tb = tile.data.buildings[b];
+      for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
+        const TilePart& part = tile.data.parts[p];
+        PrismView prism;
+        prism.xy = &tile.data.vertices[part.firstVertex].x;
+        prism.ringCounts = &tile.data.ringVertexCounts[part.firstRing];
+        prism.ringCount = part.ringCount;
+        prism.offsetX = tile.origin.x;
+        prism.offsetY = tile.origin.y;
+        prism.minZ = part.minHeightM;
+        prism.maxZ = part.heightM;
+        if (const auto tHit = rayPrism(o, dir, prism); tHit && *tHit < best) {
+          best = *tHit;
+          hit = BuildingRef{node, b};
+        }
+      }
+    }
+  }
+  return hit;
+}
+
+void CityScene::requestSearchIndex() {
+  if (!tileset_ || !tileset_->search || searchState_ != TileState::Unloaded) return;
+  searchState_ = TileState::Loading;
+  ++inFlight_;
+  const std::string url = resolveUrl(manifestUrl_, tileset_->search->file);
+  fetcher_.fetch(
+      url,
+      [this, url](FetchResponse r) {
+        --inFlight_;
+        if (!r.ok() || r.bytes.size() != tileset_->search->bytes || crc32(r.bytes) != tileset_->search->crc32) {
+          searchState_ = TileState::Failed;
+          onError_("Search index " + url + " failed: " +
+                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
+                            : std::string("size or checksum differs from the manifest")));
+          return;
+        }
+        auto decoded = decodeSearchIndex(r.bytes, url);
+        if (!decoded.ok()) {
+          searchState_ = TileState::Failed;
+          onError_(decoded.error());
+          return;
+        }
+        searchIndex_ = std::move(decoded).value();
+        searchState_ = TileState::Loaded;
+      },
+      options_.requestTimeoutMs);
+}
+
+BuildingListEntry CityScene::listEntry(std::uint32_t index) const {
+  const TileRuntime& root = *tiles_[0];
+  const CityTile& d = root.loaded->data;
+  const BuildingAttributes& a = d.buildings[index].attributes;
+  BuildingListEntry e;
+  e.id = a.id;
+  e.use = a.use;
+  e.importance = a.importance;
+  e.heightM = a.heightM;
+  e.storeys = a.storeys;
+  e.x = a.centroidX + d.originX;
+  e.y = a.centroidY + d.originY;
+  if (searchState_ == TileState::Loaded && index < searchIndex_.size() && searchIndex_[index].id == a.id) {
+    e.name = searchIndex_[index].name;
+    e.address = searchIndex_[index].address;
+  }
+  if (root.summary && index < root.summary->buildings.size()) {
+    const BuildingResponse& r = root.summary->buildings[index];
+    e.damage = r.damage;
+    e.peakDriftRatio = r.peakDriftRatio;
+    e.peakRoofDisplacementM = r.peakRoofDisplacementM;
+    e.pgaG = r.pgaG;
+  }
+  return e;
+}
+
+std::vector<BuildingListEntry> CityScene::search(std::string_view query, std::size_t limit) {
+  std::vector<BuildingListEntry> out;
+  if (tiles_.empty() || !tiles_[0]->loaded) return out;
+  requestSearchIndex();
+  const CityTile& d = tiles_[0]->loaded->data;
+  for (std::uint32_t i = 0; i < d.buildings.size() && out.size() < limit; ++i) {
+    bool match = matchesQuery(d.buildings[i].attributes.id, query);
+    if (!match && searchState_ == TileState::Loaded && i < searchIndex_.size()) {
+      match = matchesQuery(searchIndex_[i].name, query) || matchesQuery(searchIndex_[i].address, query);
+    }
+    if (match) out.push_back(listEntry(i));
+  }
+  return out;
+}
+
+std::vector<BuildingListEntry> CityScene::filteredList(std::size_t limit, std::size_t* total) {
+  std::vector<BuildingListEntry> out;
+  if (total != nullptr) *total = 0;
+  if (tiles_.empty() || !tiles_[0]->loaded) return out;
+  requestSearchIndex();
+  const TileRuntime& root = *tiles_[0];
+  const CityTile& d = root.loaded->data;
+  struct Key {
+    int damage;
+    float drift;
+    std::uint32_t index;
+  };
+  std::vector<Key> keys;
+  for (std::uint32_t i = 0; i < d.buildings.size(); ++i) {
+    const BuildingResponse* r =
+        root.summary && i < root.summary->buildings.size() ? &root.summary->buildings[i] : nullptr;
+    if (!filters_.passes(d.buildings[i].attributes, r)) continue;
+    const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
+    keys.push_back({damage, r != nullptr ? r->peakDriftRatio : 0.0f, i});
+  }
+  if (total != nullptr) *total = keys.size();
+  const std::size_t n = std::min(limit, keys.size());
+  std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
+                    [](const Key& a, const Key& b) {
+                      if (a.damage != b.damage) return a.damage > b.damage;
+                      if (a.drift != b.drift) return a.drift > b.drift;
+                      return a.index < b.index;
+                    });
+  for (std::size_t k = 0; k < n; ++k) out.push_back(listEntry(keys[k].index));
+  return out;
 }
 
 }  // namespace qv

@@ -80,6 +80,7 @@ void Viewer::startBench(double seconds) {
 
 bool Viewer::setCamera(const CameraState& camera) {
   cameraSetByUser_ = true;
+  flight_.reset();
   CameraState next = camera;
   const bool valid = sanitizeCamera(next, camera_);
   camera_ = next;
@@ -110,6 +111,7 @@ void Viewer::frame(double dtSeconds) {
     const CameraState overview = city_->overviewCamera(camera_.fovDeg);
     controller_.setHome(overview);
     if (!cameraSetByUser_) camera_ = overview;
+    geo_ = GeoFrame(city_->tileset()->originLon, city_->tileset()->originLat);
   }
   if (benchSeconds_ > 0.0 && benchResult_.empty()) {
     // The flight starts on the first frame after the initial view has loaded.
@@ -121,6 +123,23 @@ void Viewer::frame(double dtSeconds) {
       benchElapsed_ += std::max(0.0, dtSeconds);
     }
     if (bench_) camera_ = bench_->cameraAt(benchElapsed_);
+  }
+  if (flight_) {
+    // Ease in and out; any gesture ends the flight.
+    if (controller_.dragging()) {
+      flight_.reset();
+    } else {
+      flight_->elapsed += std::max(0.0, dtSeconds);
+      const double f = std::clamp(flight_->elapsed / flight_->duration, 0.0, 1.0);
+      const double s = f * f * (3.0 - 2.0 * f);
+      const CameraState& a = flight_->from;
+      const CameraState& b = flight_->to;
+      camera_.x = a.x + (b.x - a.x) * s;
+      camera_.y = a.y + (b.y - a.y) * s;
+      // Distance interpolates geometrically (zooming feels even).
+      camera_.distance = a.distance * std::pow(b.distance / a.distance, s);
+      if (f >= 1.0) flight_.reset();
+    }
   }
   controller_.update(dtSeconds);
   sanitizeCamera(camera_, controller_.home());
@@ -212,6 +231,65 @@ std::string Viewer::statsJson(const MemoryInfo& memory) const {
   w.field("timeSeconds", time_);
   w.endObject();
   return w.take();
+}
+
+std::optional<BuildingInfo> Viewer::pick(double cssX, double cssY) const {
+  if (!city_) return std::nullopt;
+  const CameraView view(camera_, widthPixels_, heightPixels_);
+  glm::vec3 origin, direction;
+  view.ray(cssX * widthPixels_ / widthCss_, cssY * heightPixels_ / heightCss_, origin, direction);
+  const auto ref = city_->pick(origin, direction);
+  if (!ref) return std::nullopt;
+  return city_->info(*ref);
+}
+
+std::optional<BuildingInfo> Viewer::building(const std::string& id) const {
+  if (!city_) return std::nullopt;
+  const auto ref = city_->find(id);
+  if (!ref) return std::nullopt;
+  return city_->info(*ref);
+}
+
+bool Viewer::select(const std::string& id) {
+  if (!city_) return false;
+  if (!id.empty() && !city_->find(id)) return false;
+  city_->select(id);
+  return true;
+}
+
+const std::string& Viewer::selection() const {
+  static const std::string kNone;
+  return city_ ? city_->selected() : kNone;
+}
+
+void Viewer::flyTo(double x, double y, double distance) {
+  CameraState to = camera_;
+  to.x = x;
+  to.y = y;
+  to.distance = distance;
+  sanitizeCamera(to, camera_);
+  flight_ = Flight{camera_, to, 0.0, 1.2};
+  cameraSetByUser_ = true;
+}
+
+bool Viewer::flyToSelection() {
+  const auto info = building(selection());
+  if (!info) return false;
+  const double size = std::max({static_cast<double>(info->attributes.heightM) * 2.5,
+                                std::sqrt(std::max(0.0f, info->attributes.footprintAreaM2)) * 6.0, 150.0});
+  flyTo(info->attributes.centroidX, info->attributes.centroidY, size);
+  return true;
+}
+
+std::optional<glm::dvec2> Viewer::groundAt(double cssX, double cssY) const {
+  const CameraView view(camera_, widthPixels_, heightPixels_);
+  return view.groundPoint(cssX * widthPixels_ / widthCss_, cssY * heightPixels_ / heightCss_);
+}
+
+double Viewer::metresPerCssPixel() const {
+  const CameraView view(camera_, widthPixels_, heightPixels_);
+  return static_cast<double>(widthPixels_) / widthCss_ /
+         static_cast<double>(view.pixelsPerMeterAt(static_cast<float>(camera_.distance)));
 }
 
 std::optional<glm::dvec2> Viewer::worldToScreen(double x, double y, double z) const {

@@ -2,67 +2,503 @@
 
 #include <imgui.h>
 
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "qv/scene/Export.h"
+#include "qv/scene/Palette.h"
+#include "qv/seismic/Damage.h"
+
 namespace qv {
 namespace {
+
+constexpr double kFeetPerMetre = 3.280839895;
+constexpr float kPanelWidth = 350.0f;
+constexpr float kInspectionWidth = 370.0f;
+
+const char* const kDamageLabels[6] = {"None", "Slight", "Moderate", "Extensive", "Complete", "No result"};
+const char* const kColorModes[] = {"Current inter-storey drift", "Peak inter-storey drift", "Damage state", "Neutral"};
+const char* const kUses[] = {"any",         "hospital",   "school",    "fire_station", "police",
+                             "residential", "house",      "office",    "retail",       "commercial",
+                             "hotel",       "industrial", "warehouse", "religious",    "civic"};
+constexpr int kUseCount = static_cast<int>(sizeof kUses / sizeof kUses[0]);
 
 std::string megabytes(std::uint64_t bytes) {
   return ui::format("%.1f MB", static_cast<double>(bytes) / (1024.0 * 1024.0));
 }
 
+std::string percent(double ratio) {
+  return ui::format("%.2f %%", ratio * 100.0);
+}
+
+// A round number of metres (1, 2 or 5 × 10^k) not larger than `limit`.
+double roundLength(double limit) {
+  const double p = std::pow(10.0, std::floor(std::log10(std::max(limit, 1e-3))));
+  for (double m : {5.0, 2.0, 1.0}) {
+    if (m * p <= limit) return m * p;
+  }
+  return p;
+}
+
+std::string degrees(double value, char positive, char negative) {
+  return ui::format("%.5f° %c", std::abs(value), value >= 0.0 ? positive : negative);
+}
+
 }  // namespace
 
-void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory) {
-  ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSize(ImVec2(330.0f, 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowBgAlpha(0.88f);
-  if (w.begin("QuakeView")) {
-    const StatsSummary s = viewer.stats();
-    w.text(ui::format("FPS: %.1f   frame: %.2f ms", s.fps, s.frameMs.total));
-
-    if (w.collapsingHeader("Animation")) {
-      if (w.button(viewer.playing() ? "Pause##transport" : "Play##transport")) {
-        if (viewer.playing())
-          viewer.pause();
-        else
-          viewer.play();
-      }
-      w.sameLine();
-      if (w.button("Reset view")) viewer.controller().reset();
-      double t = viewer.time();
-      if (w.sliderDouble("Time (s)", &t, 0.0, viewer.duration(), "%.2f")) viewer.setTime(t);
-      float speed = static_cast<float>(viewer.speed());
-      if (w.sliderFloat("Speed", &speed, 0.1f, 4.0f, "%.2fx")) viewer.setSpeed(speed);
-      float amplitude = viewer.amplitude();
-      if (w.sliderFloat("Amplitude", &amplitude, 1.0f, 100.0f, "%.0fx", true)) viewer.setAmplitude(amplitude);
-      static const char* const modes[] = {"Current inter-storey drift", "Peak drift", "Damage state", "Neutral"};
-      int mode = static_cast<int>(viewer.colorMode());
-      if (w.combo("Colour", &mode, modes, 4)) viewer.setColorMode(static_cast<ColorMode>(mode));
-    }
-
-    if (w.collapsingHeader("Performance")) {
-      w.text(ui::format("cull %.2f  lod %.2f  animate %.2f ms", s.frameMs.cull, s.frameMs.lod, s.frameMs.animate));
-      w.text(
-          ui::format("upload %.2f  render %.2f  total %.2f ms", s.frameMs.upload, s.frameMs.render, s.frameMs.total));
-      w.text(ui::format("draw calls %.0f   triangles %.0f", s.drawCalls, s.triangles));
-      w.text(ui::format("buildings: %u loaded, %u visible, %u animated", s.latest.buildingsLoaded,
-                        s.latest.buildingsVisible, s.latest.buildingsAnimated));
-      w.text(ui::format("upload %.1f KB/frame", s.uploadBytes / 1024.0));
-      w.text("memory: " + megabytes(memory.heapBytes) + " live, " + megabytes(memory.heapReservedBytes) + " reserved");
-    }
+const char* ControlPanel::qualityName(QualityPreset preset) {
+  switch (preset) {
+    case QualityPreset::High:
+      return "High (desktop)";
+    case QualityPreset::Balanced:
+      return "Balanced";
+    default:
+      return "Low (weak devices)";
   }
-  w.end();
+}
+
+void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset) {
+  CityScene* city = viewer.city();
+  if (city == nullptr) return;
+  CitySceneOptions& o = city->mutableOptions();
+  switch (preset) {
+    case QualityPreset::High:
+      o.maxScreenSpaceError = 12.0f;
+      o.maxDrawTiles = 240;
+      o.animationRadiusM = 1000.0f;
+      o.maxAnimatedBuildings = 20000;
+      break;
+    case QualityPreset::Balanced:
+      o.maxScreenSpaceError = 24.0f;
+      o.maxDrawTiles = 120;
+      o.animationRadiusM = 600.0f;
+      o.maxAnimatedBuildings = 6000;
+      break;
+    case QualityPreset::Low:
+      o.maxScreenSpaceError = 48.0f;
+      o.maxDrawTiles = 48;
+      o.animationRadiusM = 300.0f;
+      o.maxAnimatedBuildings = 1500;
+      break;
+  }
+}
+
+std::string ControlPanel::lengthText(const Viewer& viewer, double metres) const {
+  if (viewer.showFeet()) {
+    const double feet = metres * kFeetPerMetre;
+    return feet >= 5280.0 ? ui::format("%.2f mi", feet / 5280.0) : ui::format("%.0f ft", feet);
+  }
+  return metres >= 1000.0 ? ui::format("%.2f km", metres / 1000.0) : ui::format("%.1f m", metres);
+}
+
+std::string ControlPanel::exportList(Viewer& viewer, const std::string& format, UiHost& host) {
+  CityScene* city = viewer.city();
+  if (city == nullptr) return {};
+  const std::vector<BuildingListEntry> list = city->filteredList(1000000);
+  if (format == "geojson") {
+    std::string text = exportGeoJson(list, viewer.geo());
+    host.download("quakeview-buildings.geojson", "application/geo+json", text);
+    return text;
+  }
+  std::string text = exportCsv(list, viewer.geo());
+  host.download("quakeview-buildings.csv", "text/csv", text);
+  return text;
+}
+
+void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
+  drawPanel(viewer, w, memory, host);
+  drawInspection(viewer, w, host);
+  drawOverlay(viewer, w);
 
   if (!viewer.errors().empty()) {
-    ImGui::SetNextWindowPos(ImVec2(10.0f, ImGui::GetIO().DisplaySize.y - 10.0f), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
-    ImGui::SetNextWindowBgAlpha(0.9f);
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 20.0f, display.y - 10.0f), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(200.0f, 0.0f),
+                                        ImVec2(display.x - kPanelWidth - 40.0f, display.y * 0.3f));
+    ImGui::SetNextWindowBgAlpha(0.92f);
     if (w.begin("Errors", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
       const auto& errors = viewer.errors();
-      const std::size_t first = errors.size() > 8 ? errors.size() - 8 : 0;
+      const std::size_t first = errors.size() > 6 ? errors.size() - 6 : 0;
       if (first > 0) w.text(ui::format("(%zu earlier messages not shown)", first));
-      for (std::size_t i = first; i < errors.size(); ++i) w.textColored(0.85f, 0.15f, 0.1f, errors[i]);
+      for (std::size_t i = first; i < errors.size(); ++i) w.textColored(0.75f, 0.1f, 0.05f, errors[i]);
     }
     w.end();
   }
+}
+
+void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(260.0f, 0.0f), ImVec2(520.0f, std::max(200.0f, display.y - 20.0f)));
+  ImGui::SetNextWindowBgAlpha(0.90f);
+  if (!w.begin("QuakeView", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    w.end();
+    return;
+  }
+  const StatsSummary s = viewer.stats();
+  CityScene* city = viewer.city();
+  const Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
+  w.text(ui::format("FPS: %.1f   frame: %.2f ms   draw calls %.0f", s.fps, s.frameMs.total, s.drawCalls));
+  if (tileset != nullptr) {
+    const TileCounts tiles = city->tileCounts();
+    w.text(ui::format("City: %llu buildings, %u of %zu tiles loaded%s",
+                      static_cast<unsigned long long>(tileset->buildings), tiles.loaded, tileset->nodes.size(),
+                      tiles.pending > 0 ? ", loading..." : ""));
+    if (tileset->response) {
+      w.textWrapped("Earthquake: " + (tileset->response->scenario.empty() ? std::string("one record for every building")
+                                                                          : tileset->response->scenario));
+      w.textWrapped("Record: " + tileset->response->motion);
+      if (tileset->responseOutOfDate()) {
+        w.textColored(0.75f, 0.1f, 0.05f, "Results are older than the buildings: run quakeview-prep response again.");
+      }
+    } else {
+      w.textColored(0.6f, 0.35f, 0.0f, "No earthquake results for this city (quakeview-prep response).");
+    }
+  }
+
+  if (w.collapsingHeader("Animation")) {
+    if (w.button(viewer.playing() ? "Pause (Space)##transport" : "Play (Space)##transport")) {
+      if (viewer.playing())
+        viewer.pause();
+      else
+        viewer.play();
+    }
+    w.sameLine();
+    if (w.button("Reset view (R)")) viewer.controller().reset();
+    double t = viewer.time();
+    if (w.sliderDouble("Time (s)", &t, 0.0, std::max(viewer.duration(), 0.01), "%.2f")) viewer.setTime(t);
+    float speed = static_cast<float>(viewer.speed());
+    if (w.sliderFloat("Speed", &speed, 0.1f, 4.0f, "%.2fx")) viewer.setSpeed(speed);
+    float amplitude = viewer.amplitude();
+    if (w.sliderFloat("Amplitude", &amplitude, 1.0f, 200.0f, "%.0fx", true)) viewer.setAmplitude(amplitude);
+    int mode = static_cast<int>(viewer.colorMode());
+    if (w.combo("Colour", &mode, kColorModes, 4)) viewer.setColorMode(static_cast<ColorMode>(mode));
+    if (tileset != nullptr && tileset->response && !tileset->response->motionPreviewG.empty()) {
+      const auto& g = tileset->response->motionPreviewG;
+      float peak = 0.0f;
+      std::size_t at = 0;
+      for (std::size_t i = 0; i < g.size(); ++i) {
+        if (std::abs(g[i]) > peak) {
+          peak = std::abs(g[i]);
+          at = i;
+        }
+      }
+      const double rate = tileset->response->motionPreviewRateHz;
+      const double recordSeconds = static_cast<double>(g.size()) / rate;
+      const float cursor = static_cast<float>(viewer.time() / std::max(recordSeconds, 1e-3));
+      w.plot("##motion", g.data(), static_cast<int>(g.size()), -peak, peak, 50.0f, cursor,
+             ui::format("Ground motion (input record, X): peak %.2f g at %.1f s; time cursor at %.1f s",
+                        static_cast<double>(peak), static_cast<double>(at) / rate, viewer.time()));
+    }
+  }
+
+  if (w.collapsingHeader("Damage and colours")) {
+    const bool byDamage = viewer.colorMode() == ColorMode::DamageState;
+    const std::array<std::uint64_t, 6>* inView = city != nullptr ? &city->damageInView() : nullptr;
+    if (byDamage || tileset == nullptr) {
+      w.text("Damage state (HAZUS, from peak inter-storey drift):");
+    } else {
+      w.text(ui::format("Inter-storey drift (%s):", viewer.colorMode() == ColorMode::PeakDrift ? "peak" : "now"));
+    }
+    for (int k = 0; k < 5; ++k) {
+      const Rgb c = kDamagePalette[static_cast<std::size_t>(k)];
+      std::string label;
+      if (byDamage) {
+        label = kDamageLabels[k];
+        if (tileset != nullptr && tileset->response) {
+          label +=
+              ui::format(": %llu in the city", static_cast<unsigned long long>(tileset->response->damageStates[k]));
+        }
+        if (inView != nullptr)
+          label +=
+              ui::format(", %llu in view", static_cast<unsigned long long>((*inView)[static_cast<std::size_t>(k)]));
+      } else {
+        label = k < 4 ? ui::format("%.1f %% drift", static_cast<double>(kDriftFullScale) * 25.0 * k)
+                      : ui::format("%.1f %% drift or more", static_cast<double>(kDriftFullScale) * 100.0);
+      }
+      w.swatch(c.r, c.g, c.b, label);
+    }
+    std::string noResult = "No result (hatched)";
+    if (tileset != nullptr && tileset->response) {
+      noResult += ui::format(": %llu in the city", static_cast<unsigned long long>(tileset->response->damageStates[5]));
+    }
+    w.swatch(kNoResultColor.r, kNoResultColor.g, kNoResultColor.b, noResult, true);
+    // The thresholds behind the damage states, for the most common type of the general stock.
+    const auto thresholds = seismic::hazusDriftThresholds(StructuralType::C2M, CodeEra::ModerateCode, 5);
+    w.textWrapped(
+        ui::format("Damage states use HAZUS drift thresholds per structural type and code era, e.g. "
+                   "concrete shear wall, mid-rise, moderate code: slight %s, moderate %s, extensive %s, "
+                   "complete %s. The inspection window shows each building's own.",
+                   percent(thresholds[0]).c_str(), percent(thresholds[1]).c_str(), percent(thresholds[2]).c_str(),
+                   percent(thresholds[3]).c_str()));
+  }
+
+  if (city != nullptr && w.collapsingHeader("Find and filter", false)) {
+    const bool focus = focusSearch_;
+    focusSearch_ = false;
+    w.inputText("Search (/)", search_, focus);
+    if (!search_.empty()) {
+      const auto hits = city->search(search_, 8);
+      if (!city->searchIndexLoaded()) w.text("(searching ids; names and addresses are loading)");
+      if (hits.empty()) w.text("No building matches.");
+      for (const BuildingListEntry& hit : hits) {
+        const std::string label = (hit.name.empty() ? hit.id : hit.name + " (" + hit.id + ")") +
+                                  (hit.address.empty() ? "" : ", " + hit.address) + "##search" + hit.id;
+        if (w.selectable(label.c_str(), hit.id == viewer.selection())) {
+          viewer.select(hit.id);
+          viewer.flyTo(hit.x, hit.y, std::max(200.0, static_cast<double>(hit.heightM) * 3.0));
+        }
+      }
+    }
+    BuildingFilters f = city->filters();
+    static const char* const damageItems[] = {"any", "slight or worse", "moderate or worse", "extensive or worse",
+                                              "complete"};
+    int damage = std::clamp(f.minDamage, 0, 4);
+    if (f.minDamage < 0) damage = 0;
+    if (w.combo("Damage", &damage, damageItems, 5)) f.minDamage = damage == 0 ? -1 : damage;
+    int use = 0;
+    for (int i = 1; i < kUseCount; ++i) {
+      if (f.use == kUses[i]) use = i;
+    }
+    if (w.combo("Use", &use, kUses, kUseCount)) f.use = use == 0 ? std::string() : kUses[use];
+    w.checkbox("Critical facilities only", &f.criticalOnly);
+    city->setFilters(f);
+    std::size_t total = 0;
+    const auto list = city->filteredList(12, &total);
+    w.text(ui::format("Filtered: %zu of %llu buildings%s", total,
+                      static_cast<unsigned long long>(tileset != nullptr ? tileset->buildings : 0),
+                      f.active() ? " (the rest is dimmed)" : ""));
+    for (const BuildingListEntry& e : list) {
+      const std::string label =
+          ui::format("[%s] %s  %s", std::string(damageStateName(e.damage)).c_str(),
+                     (e.name.empty() ? e.id : e.name).c_str(), percent(e.peakDriftRatio).c_str()) +
+          "##list" + e.id;
+      if (w.selectable(label.c_str(), e.id == viewer.selection())) {
+        viewer.select(e.id);
+        viewer.flyTo(e.x, e.y, std::max(200.0, static_cast<double>(e.heightM) * 3.0));
+      }
+    }
+    if (w.button("Export CSV")) exportList(viewer, "csv", host);
+    w.sameLine();
+    if (w.button("Export GeoJSON")) exportList(viewer, "geojson", host);
+  }
+
+  if (w.collapsingHeader("General", false)) {
+    if (city != nullptr) {
+      CitySceneOptions& o = city->mutableOptions();
+      bool animate = o.animationRadiusM > 0.0f;
+      if (w.checkbox("Animate buildings near the camera (off: static, peak colours)", &animate)) {
+        o.animationRadiusM = animate ? 1000.0f : 0.0f;
+      }
+    }
+    bool feet = viewer.showFeet();
+    if (w.radio("Metres##units", !feet)) viewer.setShowFeet(false);
+    w.sameLine();
+    if (w.radio("Feet##units", feet)) viewer.setShowFeet(true);
+  }
+
+  if (w.collapsingHeader("Performance", false)) {
+    int quality = static_cast<int>(quality_);
+    static const char* const qualities[] = {"High (desktop)", "Balanced", "Low (weak devices)"};
+    if (w.combo("Quality", &quality, qualities, 3)) {
+      quality_ = static_cast<QualityPreset>(quality);
+      applyQuality(viewer, quality_);
+    }
+    if (city != nullptr) {
+      CitySceneOptions& o = city->mutableOptions();
+      w.sliderFloat("Animation radius (m)", &o.animationRadiusM, 0.0f, 5000.0f, "%.0f");
+      int animated = static_cast<int>(o.maxAnimatedBuildings);
+      if (w.sliderInt("Max animated", &animated, 0, 100000))
+        o.maxAnimatedBuildings = static_cast<std::uint32_t>(animated);
+      int tiles = static_cast<int>(o.maxDrawTiles);
+      if (w.sliderInt("Max tiles drawn", &tiles, 1, 250)) o.maxDrawTiles = static_cast<std::uint32_t>(tiles);
+      w.sliderFloat("Detail (pixels of error)", &o.maxScreenSpaceError, 2.0f, 100.0f, "%.0f");
+    }
+    w.text(ui::format("cull %.2f  lod %.2f  animate %.2f ms", s.frameMs.cull, s.frameMs.lod, s.frameMs.animate));
+    w.text(ui::format("upload %.2f  render %.2f  total %.2f ms", s.frameMs.upload, s.frameMs.render, s.frameMs.total));
+    w.text(ui::format("triangles %.0f", s.triangles));
+    w.text(ui::format("buildings: %u loaded, %u visible, %u animated", s.latest.buildingsLoaded,
+                      s.latest.buildingsVisible, s.latest.buildingsAnimated));
+    w.text(ui::format("upload %.1f KB/frame", s.uploadBytes / 1024.0));
+    w.text("memory: " + megabytes(memory.heapBytes) + " live, " + megabytes(memory.heapReservedBytes) + " reserved");
+  }
+
+  if (w.collapsingHeader("About these results", false)) {
+    w.textWrapped(
+        "Responses come from simplified models: every building is a shear building (one mass per floor, "
+        "storey springs with Bouc-Wen hysteresis) sized from its footprint, height and a structural type "
+        "inferred from its tags; damage states from HAZUS drift thresholds. They show patterns across a "
+        "city, not a safety assessment of any one building.");
+    if (tileset != nullptr && tileset->response) w.textWrapped("Method: " + tileset->response->method);
+    w.textWrapped("Map data © OpenStreetMap contributors (ODbL) where the city comes from OpenStreetMap.");
+    w.textWrapped(
+        "Keys: Space play/pause, , and . step time, arrows/WASD pan, Q/E turn, PageUp/PageDown tilt, +/- zoom, "
+        "R reset, F fly to the selection, Esc clear it, / search, Tab moves through the panel.");
+  }
+  w.end();
+}
+
+void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) {
+  const std::string id = viewer.selection();
+  if (id.empty()) return;
+  const auto info = viewer.building(id);
+  if (!info) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - kInspectionWidth - 10.0f, 10.0f), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kInspectionWidth, 0.0f), ImVec2(kInspectionWidth, display.y * 0.75f));
+  ImGui::SetNextWindowBgAlpha(0.92f);
+  bool open = true;
+  const std::string title = "Building " + id + "###inspection";
+  if (w.begin(title.c_str(), &open, ImGuiWindowFlags_AlwaysAutoResize)) {
+    const BuildingAttributes& a = info->attributes;
+    w.text(a.name.empty() ? std::string("(no name)") : a.name);
+    w.field("Use", a.use.empty() ? std::string("unknown") : a.use);
+    if (!a.address.empty()) w.field("Address", a.address);
+    if (!info->detailed) w.text("(loading the full record of this building)");
+    w.field("Height", lengthText(viewer, a.heightM) + (a.heightSource == ValueSource::Tagged
+                                                           ? std::string(" (tagged)")
+                                                           : std::string(" (inferred from storeys and use)")));
+    w.field("Storeys", ui::format("%u", a.storeys) + (a.storeysSource == ValueSource::Tagged
+                                                          ? std::string(" (tagged)")
+                                                          : std::string(" (inferred from height and use)")));
+    if (a.minHeightM > 0.0f) w.field("Base", lengthText(viewer, a.minHeightM));
+    w.field("Structure", std::string(structuralTypeCode(a.structuralType)) + ", " +
+                             std::string(structuralTypeDescription(a.structuralType)) + " (inferred)");
+    w.field("Code era", std::string(codeEraName(a.codeEra)) + (a.startYear > 0 ? ui::format(" (built %d)", a.startYear)
+                                                                               : std::string(" (year unknown)")));
+    std::string importance(importanceName(a.importance));
+    const std::pair<unsigned, const char*> reasons[] = {
+        {kReasonHospital, "hospital"}, {kReasonFireStation, "fire station"}, {kReasonPolice, "police"},
+        {kReasonSchool, "school"},     {kReasonTall, "over 100 m"},          {kReasonComplex, "several parts"},
+        {kReasonShelter, "shelter"}};
+    std::string why;
+    for (const auto& [bit, name] : reasons) {
+      if ((a.importanceReasons & bit) != 0) why += (why.empty() ? "" : ", ") + std::string(name);
+    }
+    if (!why.empty()) importance += " (" + why + ")";
+    w.field("Importance", importance);
+    w.field("Model", a.lod == 2 ? "LOD2 detailed model" : "LOD1 extruded footprint");
+    if (a.id.size() > 1 && (a.id[0] == 'w' || a.id[0] == 'r') &&
+        a.id.find_first_not_of("0123456789", 1) == std::string::npos) {
+      const std::string url =
+          std::string("https://www.openstreetmap.org/") + (a.id[0] == 'w' ? "way/" : "relation/") + a.id.substr(1);
+      if (w.button(("OpenStreetMap: " + url).c_str())) host.openUrl(url);
+    }
+    w.separator();
+    if (info->hasResponse && info->response.source != ResponseSource::None) {
+      const BuildingResponse& r = info->response;
+      const Rgb c =
+          r.damage == DamageState::NoResult ? kNoResultColor : kDamagePalette[static_cast<std::size_t>(r.damage)];
+      w.swatch(c.r, c.g, c.b, "Damage state: " + std::string(damageStateName(r.damage)));
+      const auto t = seismic::hazusDriftThresholds(a.structuralType, a.codeEra, a.storeys);
+      w.textWrapped(ui::format("Thresholds for %s, %s: slight %s, moderate %s, extensive %s, complete %s",
+                               std::string(structuralTypeCode(a.structuralType)).c_str(),
+                               std::string(codeEraName(a.codeEra)).c_str(), percent(t[0]).c_str(),
+                               percent(t[1]).c_str(), percent(t[2]).c_str(), percent(t[3]).c_str()));
+      w.field("Peak inter-storey drift", percent(r.peakDriftRatio));
+      w.field("Peak roof displacement", lengthText(viewer, r.peakRoofDisplacementM));
+      w.field("Peak ground acceleration", ui::format("%.3f g", static_cast<double>(r.pgaG)));
+      w.field("Residual drift", percent(r.residualDriftRatio));
+      w.field("Results from",
+              r.source == ResponseSource::Imported ? "imported analysis" : "MDOF shear-building model (simplified)");
+      if (CityScene* city = viewer.city()) {
+        if (const auto series = city->selectionSeries(240)) {
+          const float cursor = static_cast<float>(viewer.time() / std::max(series->durationSeconds, 1e-3));
+          const float roofPeak = *std::max_element(series->roofDisplacementM.begin(), series->roofDisplacementM.end());
+          const float driftPeak = *std::max_element(series->maxDriftRatio.begin(), series->maxDriftRatio.end());
+          const auto now =
+              std::min<std::size_t>(series->roofDisplacementM.size() - 1,
+                                    static_cast<std::size_t>(std::max(0.0f, cursor) *
+                                                             static_cast<float>(series->roofDisplacementM.size() - 1)));
+          w.plot("##roof", series->roofDisplacementM.data(), static_cast<int>(series->roofDisplacementM.size()), 0.0f,
+                 roofPeak * 1.05f + 1e-6f, 48.0f, cursor,
+                 "Roof displacement over time: peak " + lengthText(viewer, roofPeak) + ", now " +
+                     lengthText(viewer, series->roofDisplacementM[now]));
+          w.plot("##drift", series->maxDriftRatio.data(), static_cast<int>(series->maxDriftRatio.size()), 0.0f,
+                 driftPeak * 1.05f + 1e-9f, 48.0f, cursor,
+                 "Largest inter-storey drift over time: peak " + percent(driftPeak) + ", now " +
+                     percent(series->maxDriftRatio[now]));
+        } else {
+          w.text("(loading this building's motion)");
+        }
+      }
+      if (!info->storeyPeakDrift.empty()) {
+        const auto peak = *std::max_element(info->storeyPeakDrift.begin(), info->storeyPeakDrift.end());
+        const auto worst =
+            static_cast<std::size_t>(std::max_element(info->storeyPeakDrift.begin(), info->storeyPeakDrift.end()) -
+                                     info->storeyPeakDrift.begin());
+        w.bars("##storeys", info->storeyPeakDrift.data(), static_cast<int>(info->storeyPeakDrift.size()),
+               peak * 1.05f + 1e-9f, 48.0f,
+               ui::format("Peak drift per storey (ground to roof): largest %s in storey %zu", percent(peak).c_str(),
+                          worst + 1));
+      }
+    } else {
+      w.swatch(kNoResultColor.r, kNoResultColor.g, kNoResultColor.b, "No earthquake result for this building", true);
+    }
+    if (w.button("Fly to (F)")) viewer.flyToSelection();
+    w.sameLine();
+    if (w.button("Close (Esc)")) open = false;
+  }
+  w.end();
+  if (!open) viewer.select("");
+}
+
+void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x - 10.0f, display.y - 10.0f), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+  ImGui::SetNextWindowBgAlpha(0.75f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
+  if (w.begin("Map", nullptr, flags)) {
+    // North arrow: north points up when the heading is 0 and turns against the view.
+    const float radius = 16.0f;
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const ImVec2 centre(p.x + radius + 2.0f, p.y + radius + 2.0f);
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const auto angle = static_cast<float>(-viewer.camera().headingDeg * 3.14159265358979 / 180.0);
+    auto rotate = [&](float x, float y) {
+      return ImVec2(centre.x + x * std::cos(angle) - y * std::sin(angle),
+                    centre.y + x * std::sin(angle) + y * std::cos(angle));
+    };
+    draw->AddCircle(centre, radius, IM_COL32(60, 60, 60, 255), 24, 1.5f);
+    draw->AddTriangleFilled(rotate(0.0f, -radius + 2.0f), rotate(-5.0f, 4.0f), rotate(5.0f, 4.0f),
+                            IM_COL32(200, 30, 30, 255));
+    draw->AddTriangleFilled(rotate(0.0f, radius - 2.0f), rotate(-5.0f, 4.0f), rotate(5.0f, 4.0f),
+                            IM_COL32(90, 90, 90, 255));
+    const ImVec2 n = rotate(0.0f, -radius - 9.0f);
+    draw->AddText(ImVec2(n.x - 4.0f, n.y - 7.0f), IM_COL32(30, 30, 30, 255), "N");
+    ImGui::Dummy(ImVec2(2.0f * radius + 4.0f, 2.0f * radius + 8.0f));
+    w.mirror().line(ui::format("North arrow: view heading %.0f°", viewer.camera().headingDeg));
+    ImGui::SameLine();
+    ImGui::BeginGroup();
+    // Scale bar: a round length about 120 px long at the looked-at point.
+    const double metresPerPixel = viewer.metresPerCssPixel();
+    if (std::isfinite(metresPerPixel) && metresPerPixel > 0.0) {
+      const double unit = viewer.showFeet() ? 1.0 / kFeetPerMetre : 1.0;  // metres per displayed unit
+      const double length = roundLength(120.0 * metresPerPixel / unit) * unit;
+      const auto pixels = static_cast<float>(length / metresPerPixel);
+      const ImVec2 q = ImGui::GetCursorScreenPos();
+      draw->AddLine(ImVec2(q.x, q.y + 10.0f), ImVec2(q.x + pixels, q.y + 10.0f), IM_COL32(30, 30, 30, 255), 2.0f);
+      draw->AddLine(ImVec2(q.x, q.y + 4.0f), ImVec2(q.x, q.y + 14.0f), IM_COL32(30, 30, 30, 255), 2.0f);
+      draw->AddLine(ImVec2(q.x + pixels, q.y + 4.0f), ImVec2(q.x + pixels, q.y + 14.0f), IM_COL32(30, 30, 30, 255),
+                    2.0f);
+      ImGui::Dummy(ImVec2(std::max(pixels, 60.0f), 16.0f));
+      w.text("Scale: " + lengthText(viewer, length) + " (at the view centre)");
+    }
+    if (cursor_ && viewer.geo().valid()) {
+      const auto ground = viewer.groundAt(cursor_->first, cursor_->second);
+      const auto ll = ground ? viewer.geo().reverse(*ground) : std::nullopt;
+      if (ll) {
+        w.text("Cursor: " + degrees(ll->lat, 'N', 'S') + ", " + degrees(ll->lon, 'E', 'W'));
+      } else {
+        w.text("Cursor: (sky)");
+      }
+    }
+    ImGui::EndGroup();
+  }
+  w.end();
 }
 
 }  // namespace qv

@@ -1,7 +1,9 @@
 #include "qv/ui/Widgets.h"
 
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
+#include <cstring>
 
 #include <imgui.h>
 
@@ -129,6 +131,62 @@ void Widgets::field(std::string_view label, std::string_view value) {
       format("%.*s: %.*s", static_cast<int>(label.size()), label.data(), static_cast<int>(value.size()), value.data());
   ImGui::TextUnformatted(line.c_str());
   mirror_.line(line);
+}
+
+bool Widgets::inputText(const char* label, std::string& buffer, bool focus) {
+  char text[256];
+  const std::size_t n = std::min(buffer.size(), sizeof text - 1);
+  std::memcpy(text, buffer.data(), n);
+  text[n] = '\0';
+  if (focus) ImGui::SetKeyboardFocusHere();
+  const bool changed = ImGui::InputText(label, text, sizeof text);
+  if (changed) buffer = text;
+  const auto v = visibleLabel(label);
+  mirror_.line(format("%.*s: [%s]", static_cast<int>(v.size()), v.data(), buffer.c_str()));
+  return changed;
+}
+
+bool Widgets::selectable(const char* label, bool selected) {
+  const auto v = visibleLabel(label);
+  mirror_.line(format("> %.*s", static_cast<int>(v.size()), v.data()));
+  return ImGui::Selectable(label, selected);
+}
+
+void Widgets::plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
+                   float cursorFraction, std::string_view summary) {
+  ImGui::PlotLines(id, values, count, 0, nullptr, minValue, maxValue, ImVec2(ImGui::GetContentRegionAvail().x, height));
+  const ImVec2 a = ImGui::GetItemRectMin();
+  const ImVec2 b = ImGui::GetItemRectMax();
+  if (cursorFraction >= 0.0f && cursorFraction <= 1.0f) {
+    const float x = a.x + (b.x - a.x) * cursorFraction;
+    ImGui::GetWindowDrawList()->AddLine(ImVec2(x, a.y), ImVec2(x, b.y), IM_COL32(20, 90, 200, 255), 2.0f);
+  }
+  mirror_.line(summary);
+}
+
+void Widgets::bars(const char* id, const float* values, int count, float maxValue, float height,
+                   std::string_view summary) {
+  ImGui::PlotHistogram(id, values, count, 0, nullptr, 0.0f, maxValue, ImVec2(ImGui::GetContentRegionAvail().x, height));
+  mirror_.line(summary);
+}
+
+void Widgets::swatch(float r, float g, float b, std::string_view text, bool hatched) {
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float size = ImGui::GetTextLineHeight();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(p, ImVec2(p.x + size * 1.6f, p.y + size), ImGui::GetColorU32(ImVec4(r, g, b, 1.0f)));
+  if (hatched) {
+    for (float x = -size; x < size * 1.6f; x += 4.0f) {
+      draw->AddLine(ImVec2(p.x + std::max(x, 0.0f), p.y + std::max(0.0f, -x)),
+                    ImVec2(p.x + std::min(x + size, size * 1.6f), p.y + std::min(size, size * 1.6f - x)),
+                    IM_COL32(60, 60, 70, 160));
+    }
+  }
+  draw->AddRect(p, ImVec2(p.x + size * 1.6f, p.y + size), IM_COL32(80, 80, 80, 255));
+  ImGui::Dummy(ImVec2(size * 1.6f, size));
+  ImGui::SameLine();
+  ImGui::TextUnformatted(text.data(), text.data() + text.size());
+  mirror_.line(text);
 }
 
 }  // namespace qv::ui

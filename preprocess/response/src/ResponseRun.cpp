@@ -290,6 +290,16 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   info.method = "MDOF shear building, Bouc-Wen storeys, Newmark average acceleration";
   info.durationSeconds = static_cast<double>(frames - 1) * dt;
   info.sampleRateHz = rateCount > 0 ? rateSum / static_cast<double>(rateCount) : 0.0;
+  // The input record for the viewer's plot: the largest |a| of every 0.1 s, in g.
+  info.motionPreviewRateHz = 10.0;
+  const auto perWindow = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.1 / dt)));
+  for (std::size_t i = 0; i < motionX.size(); i += perWindow) {
+    double best = 0.0;
+    for (std::size_t k = i; k < std::min(motionX.size(), i + perWindow); ++k) {
+      if (std::abs(motionX.accelerationMps2[k]) > std::abs(best)) best = motionX.accelerationMps2[k];
+    }
+    info.motionPreviewG.push_back(static_cast<float>(best / seismic::kGravityMps2));
+  }
   auto written = (*writer)->commit(info);
   if (!written.ok()) return Error{written.error()};
   report.buildings = totalBuildings;

@@ -103,8 +103,8 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
   for (std::size_t b = 0; b < tile.buildings.size(); ++b) {
     const BuildingResponse& s = summary.buildings[b];
     ++report_.damage[damageIndex(s.damage)];
-    std::vector<float> storeys(summary.storeyPeakDrift.begin() + s.firstStorey,
-                               summary.storeyPeakDrift.begin() + s.firstStorey + s.storeys);
+    const auto first = summary.storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(s.firstStorey);
+    std::vector<float> storeys(first, first + static_cast<std::ptrdiff_t>(s.storeys));
     byId_[tile.buildings[b].attributes.id] = {s, std::move(storeys)};
   }
   return {};

@@ -6,9 +6,11 @@
 #include <functional>
 #include <mutex>
 #include <thread>
+#include <unordered_map>
 
 #include "qv/core/Crc32.h"
 #include "qv/format/CityTile.h"
+#include "qv/format/SearchIndex.h"
 #include "qv/prep/Cli.h"
 #include "qv/prep/Files.h"
 #include "qv/prep/Simplify.h"
@@ -307,6 +309,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   // 3. Build, encode and write every tile (in parallel).
   std::mutex errorMutex;
   std::string firstError;
+  std::vector<SearchEntry> search;  // in the root tile's building order
   {
     Progress progress("writing tiles", nodes.size());
     std::atomic<std::size_t> done{0};
@@ -314,6 +317,16 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       Node& node = nodes[i];
       CityTile tile = node.leaf() ? leafTile(model, info, node, node.bounds)
                                   : coarseTile(model, info, node, node.bounds, node.geometricError);
+      if (i == 0) {
+        // The search index follows the root tile's order (the root holds every building).
+        std::unordered_map<std::string_view, std::uint32_t> byId;
+        for (std::uint32_t b : node.buildings) byId.emplace(model.buildings[b].attributes.id, b);
+        search.reserve(tile.buildings.size());
+        for (const TileBuilding& tb : tile.buildings) {
+          const BuildingAttributes& a = model.buildings[byId.at(tb.attributes.id)].attributes;
+          search.push_back(SearchEntry{a.id, a.name, a.address});
+        }
+      }
       const std::vector<std::uint8_t> bytes = encodeCityTile(tile);
       node.file = tileFileName(node.level, node.x, node.y);
       node.bytes = bytes.size();
@@ -330,8 +343,13 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   if (interrupted()) return Error{"interrupted; the previous output (if any) is unchanged"};
   if (!firstError.empty()) return Error{firstError};
 
-  // 4. The manifest, last.
+  // 4. The search index, then the manifest, last.
   Tileset& t = report.tileset;
+  {
+    const std::vector<std::uint8_t> bytes = encodeSearchIndex(search);
+    if (const Status s = writeFileAtomic(staging->path() + "/search.qvi", bytes); !s.ok()) return Error{s.error()};
+    t.search = CityFile{"search.qvi", bytes.size(), crc32(bytes)};
+  }
   t.generator = options.generator;
   t.originLon = model.originLon;
   t.originLat = model.originLat;

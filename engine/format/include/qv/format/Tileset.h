@@ -54,6 +54,17 @@ struct ResponseInfo {
   std::string method;                   ///< "MDOF shear building, Bouc-Wen" or "imported"
   /// Counts per damage state: none, slight, moderate, extensive, complete, no_result.
   std::uint64_t damageStates[6] = {0, 0, 0, 0, 0, 0};
+  /// The input record's X component for plotting: the sample of largest |a| in each window of
+  /// 1 / motionPreviewRateHz seconds, in g (empty when unknown).
+  std::vector<float> motionPreviewG;
+  double motionPreviewRateHz = 0.0;
+};
+
+/// A file of the city other than tiles, with its size and checksum.
+struct CityFile {
+  std::string file;  ///< relative to the manifest
+  std::uint64_t bytes = 0;
+  std::uint32_t crc32 = 0;
 };
 
 struct Tileset {
@@ -66,6 +77,7 @@ struct Tileset {
   std::uint64_t buildings = 0;
   std::uint64_t buildingsRevision = 1;  ///< bumped by every tool that adds or changes buildings
   std::vector<std::string> sources;     ///< input files the city came from
+  std::optional<CityFile> search;       ///< the search index (search.qvi), root-tile order
   std::vector<TileNode> nodes;          ///< nodes[0] is the root
   std::optional<ResponseInfo> response;
 

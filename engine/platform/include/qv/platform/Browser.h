@@ -41,6 +41,11 @@ void runMainLoop(std::function<void()> frame);
 void notifyReady();
 /// The benchmark flight ended: sets `quakeview.benchResult` from this JSON.
 void notifyBenchDone(const std::string& json);
+/// Opens a link in a new tab (noopener).
+void openUrl(const std::string& url);
+/// Offers text to the user as a file download (a Blob behind a temporary link).
+void downloadText(const std::string& filename, const std::string& mimeType, const std::string& content);
+
 /// A fatal problem (no WebGL2, shaders failed): shows `message` on the page, rejects `ready`.
 void notifyFatal(const std::string& message);
 

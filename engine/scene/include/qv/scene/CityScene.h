@@ -8,6 +8,7 @@
 // histories, writing every floor's displacement into the GPU floor table.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -17,9 +18,11 @@
 
 #include "qv/format/CityTile.h"
 #include "qv/format/ResponseTile.h"
+#include "qv/format/SearchIndex.h"
 #include "qv/format/Tileset.h"
 #include "qv/geometry/OrbitCamera.h"
 #include "qv/lod/TileSelector.h"
+#include "qv/scene/BuildingInfo.h"
 #include "qv/scene/Fetcher.h"
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
@@ -41,6 +44,39 @@ struct TileCounts {
   std::uint32_t loaded = 0;
   std::uint32_t pending = 0;  ///< wanted by the view and not loaded yet (tiles and response tiers)
   std::uint32_t failed = 0;
+};
+
+/// Which buildings are shown at full strength; the others are dimmed.
+struct BuildingFilters {
+  int minDamage = -1;         ///< -1: any; 0..4: damage state at least this (none .. complete)
+  std::string use;            ///< empty: any; else the normalized use ("hospital", "school", ...)
+  bool criticalOnly = false;  ///< only critical facilities
+  [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly; }
+  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const;
+  friend bool operator==(const BuildingFilters&, const BuildingFilters&) = default;
+};
+
+/// One row of the city-wide list of (filtered) buildings.
+struct BuildingListEntry {
+  std::string id;
+  std::string name;  ///< from the search index when loaded, else empty
+  std::string address;
+  std::string use;
+  Importance importance = Importance::General;
+  DamageState damage = DamageState::NoResult;
+  float peakDriftRatio = 0.0f;
+  float peakRoofDisplacementM = 0.0f;
+  float pgaG = 0.0f;
+  float heightM = 0.0f;
+  std::uint16_t storeys = 0;
+  double x = 0.0, y = 0.0;  ///< centroid, metres in the city frame
+};
+
+/// Time series of one building for plots: `samples` values evenly spaced over [0, duration].
+struct BuildingSeries {
+  std::vector<float> roofDisplacementM;  ///< |(x, y)| of the roof
+  std::vector<float> maxDriftRatio;      ///< largest inter-storey drift ratio over the storeys
+  double durationSeconds = 0.0;
 };
 
 /// A building of the scene: the tile (manifest node index) and its index in that tile's file.
@@ -78,6 +114,32 @@ class CityScene {
   /// Bytes held: decoded tiles and histories (CPU) and meshes (GPU).
   [[nodiscard]] std::uint64_t memoryBytes() const;
 
+  // Picking, lookup and inspection.
+  /// The first building a ray (city frame, any direction length) meets among the drawn tiles.
+  [[nodiscard]] std::optional<BuildingRef> pick(const glm::vec3& origin, const glm::vec3& direction) const;
+  /// The best loaded copy of a building: its leaf when loaded, else a coarse tile holding it.
+  [[nodiscard]] std::optional<BuildingRef> find(std::string_view id) const;
+  [[nodiscard]] std::optional<BuildingInfo> info(BuildingRef ref) const;
+  /// Highlights the building with this id wherever it is loaded ("" clears) and loads its leaf
+  /// (full attributes, history) if needed.
+  void select(const std::string& id);
+  [[nodiscard]] const std::string& selected() const { return selected_; }
+  /// The selected building's motion over the whole record, once its history is loaded.
+  [[nodiscard]] std::optional<BuildingSeries> selectionSeries(std::size_t samples);
+
+  // Filters, search and lists (city-wide: the root tile holds every building).
+  void setFilters(const BuildingFilters& filters);
+  [[nodiscard]] const BuildingFilters& filters() const { return filters_; }
+  /// Buildings whose id, name or address contain every word of `query` (search index loaded on
+  /// first use: until it arrives only ids match). At most `limit` results, root-tile order.
+  [[nodiscard]] std::vector<BuildingListEntry> search(std::string_view query, std::size_t limit);
+  /// Buildings passing the filters, most damaged first (then by peak drift), at most `limit`;
+  /// `total` receives how many pass in all.
+  [[nodiscard]] std::vector<BuildingListEntry> filteredList(std::size_t limit, std::size_t* total = nullptr);
+  [[nodiscard]] bool searchIndexLoaded() const { return searchState_ == TileState::Loaded; }
+  /// Damage states (none .. complete, no result) of the buildings in view, from the last frame.
+  [[nodiscard]] const std::array<std::uint64_t, 6>& damageInView() const { return damageInView_; }
+
   [[nodiscard]] const CitySceneOptions& options() const { return options_; }
   CitySceneOptions& mutableOptions() { return options_; }
 
@@ -96,7 +158,12 @@ class CityScene {
   void requestHistory(std::uint32_t node);
   void applySummary(std::uint32_t node);
   void writeBuildingRows(std::uint32_t first, std::uint32_t count);
-  void enforceMemoryBudget();  // evicts what this frame did not use, least recently used first
+  void enforceMemoryBudget();
+  void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
+  void applyFlagsEverywhere();
+  void requestSearchIndex();
+  [[nodiscard]] BuildingListEntry listEntry(
+      std::uint32_t index) const;  // of the root tile  // evicts what this frame did not use, least recently used first
   void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
 
   RenderDevice& device_;
@@ -124,6 +191,15 @@ class CityScene {
   std::unique_ptr<class RangeAllocator> floorSlots_;
   std::vector<std::unique_ptr<Animated>> animated_;
   std::vector<float> scratchX_, scratchY_;
+
+  std::string selected_;
+  std::vector<std::uint32_t> detailWanted_;  // leaves to load for the selection
+  BuildingFilters filters_;
+  TileState searchState_ = TileState::Unloaded;
+  std::vector<SearchEntry> searchIndex_;
+  std::array<std::uint64_t, 6> damageInView_{};
+  std::string seriesFor_;
+  std::optional<BuildingSeries> series_;
 };
 
 }  // namespace qv

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "qv/geometry/GeoFrame.h"
 #include "qv/scene/Bench.h"
 #include "qv/scene/CameraController.h"
 #include "qv/scene/CityScene.h"
@@ -72,6 +73,28 @@ class Viewer {
   [[nodiscard]] const std::string& benchResult() const { return benchResult_; }
   [[nodiscard]] bool benchRunning() const { return benchSeconds_ > 0.0 && benchResult_.empty(); }
 
+  // Interaction (city content).
+  /// The building under a canvas point (CSS pixels from the top-left corner), if any.
+  [[nodiscard]] std::optional<BuildingInfo> pick(double cssX, double cssY) const;
+  /// Everything known about a loaded building (its leaf's data when loaded).
+  [[nodiscard]] std::optional<BuildingInfo> building(const std::string& id) const;
+  /// Selects a building of the city by id ("" clears); false (selection unchanged) when no
+  /// building has that id.
+  bool select(const std::string& id);
+  [[nodiscard]] const std::string& selection() const;
+  /// Moves the camera smoothly to look at (x, y) from `distance` metres (keeps heading/pitch).
+  void flyTo(double x, double y, double distance);
+  /// Flies to the selected building.
+  bool flyToSelection();
+  /// The ground point under a canvas point (CSS pixels), metres in the city frame.
+  [[nodiscard]] std::optional<glm::dvec2> groundAt(double cssX, double cssY) const;
+  /// The geographic frame of the city (invalid before the manifest arrives or for the test scene).
+  [[nodiscard]] const GeoFrame& geo() const { return geo_; }
+  [[nodiscard]] bool showFeet() const { return showFeet_; }
+  void setShowFeet(bool feet) { showFeet_ = feet; }
+  /// Metres of the city frame per CSS pixel at the looked-at point.
+  [[nodiscard]] double metresPerCssPixel() const;
+
   /// True once everything of the initial view has loaded or failed.
   [[nodiscard]] bool settled() const { return settled_; }
 
@@ -105,6 +128,13 @@ class Viewer {
   std::unique_ptr<TestContent> test_;
   std::unique_ptr<CityScene> city_;
   bool cameraSetByUser_ = false;
+  GeoFrame geo_{0.0, 1000.0};  // invalid until a city's manifest arrives
+  bool showFeet_ = false;
+  struct Flight {
+    CameraState from, to;
+    double elapsed = 0.0, duration = 1.2;
+  };
+  std::optional<Flight> flight_;
   double benchSeconds_ = 0.0;
   double benchElapsed_ = 0.0;
   std::unique_ptr<BenchRun> bench_;

@@ -1,15 +1,55 @@
-// The control panel (Dear ImGui): live performance figures, playback, display options.
+// The user interface (Dear ImGui): the control panel, the inspection window of the selected
+// building, the legend and the orientation overlay (north arrow, scale bar, coordinates).
+// Everything it shows is also written to the TextMirror behind `quakeview.uiText()`.
 #pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
 
 #include "qv/scene/Viewer.h"
 #include "qv/ui/Widgets.h"
 
 namespace qv {
 
+/// What the UI needs from the page it runs in.
+class UiHost {
+ public:
+  virtual ~UiHost() = default;
+  /// Opens a link in a new browser tab.
+  virtual void openUrl(const std::string& url) = 0;
+  /// Offers `content` to the user as a downloaded file.
+  virtual void download(const std::string& filename, const std::string& mimeType, const std::string& content) = 0;
+};
+
+/// Quality presets for weak devices: draw budget, detail and animation radius.
+enum class QualityPreset : int { High = 0, Balanced = 1, Low = 2 };
+
 class ControlPanel {
  public:
-  /// Draws the panel for this frame. Call between ImGui::NewFrame and ImGui::Render.
-  void draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory);
+  /// Draws every window for this frame. Call between ImGui::NewFrame and ImGui::Render.
+  void draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);
+
+  /// The pointer position (CSS pixels) for the coordinates readout; nullopt when off the canvas.
+  void setCursor(std::optional<std::pair<double, double>> css) { cursor_ = css; }
+  /// Puts the keyboard focus in the search box on the next frame ('/' key).
+  void focusSearch() { focusSearch_ = true; }
+  /// Exports the filtered list: "csv" or "geojson". Returns the text (also downloaded).
+  std::string exportList(Viewer& viewer, const std::string& format, UiHost& host);
+
+  [[nodiscard]] static const char* qualityName(QualityPreset preset);
+  static void applyQuality(Viewer& viewer, QualityPreset preset);
+
+ private:
+  void drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);
+  void drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host);
+  void drawOverlay(Viewer& viewer, ui::Widgets& w);
+  std::string lengthText(const Viewer& viewer, double metres) const;
+
+  std::optional<std::pair<double, double>> cursor_;
+  bool focusSearch_ = false;
+  std::string search_;
+  QualityPreset quality_ = QualityPreset::High;
 };
 
 }  // namespace qv

@@ -39,6 +39,18 @@ class Widgets {
   bool collapsingHeader(const char* label, bool defaultOpen = true);
   /// A labelled value row: "label: value".
   void field(std::string_view label, std::string_view value);
+  /// A single-line text input; `buffer` holds the text. Mirrored as "label: [text]".
+  bool inputText(const char* label, std::string& buffer, bool focus = false);
+  /// A clickable row; returns true when clicked. Mirrored as "> text".
+  bool selectable(const char* label, bool selected = false);
+  /// A line plot of `values` over [0, duration] with a vertical cursor at `cursorFraction` (0..1),
+  /// mirrored as `summary` (a plot is pixels: the text says what it shows).
+  void plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
+            float cursorFraction, std::string_view summary);
+  /// A histogram (bars), mirrored as `summary`.
+  void bars(const char* id, const float* values, int count, float maxValue, float height, std::string_view summary);
+  /// A filled colour square followed by text on the same line.
+  void swatch(float r, float g, float b, std::string_view text, bool hatched = false);
 
   [[nodiscard]] TextMirror& mirror() { return mirror_; }
 

@@ -1,0 +1,40 @@
+// What the viewer knows about one building: its attributes, where it stands, and its response.
+// The shape of `quakeview.building(id)` / `pick(x, y)` and of the inspection window.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "qv/format/BuildingAttributes.h"
+#include "qv/format/ResponseTile.h"
+
+namespace qv {
+
+struct BuildingInfo {
+  BuildingAttributes attributes;  ///< centroidX/Y in the city frame (metres from the origin)
+  bool detailed = false;          ///< from a leaf tile (name and address present)
+  std::string tile;               ///< "level/x/y" of the tile it came from
+  bool hasResponse = false;
+  BuildingResponse response;           ///< damage, peaks (meaningful when hasResponse)
+  std::vector<float> storeyPeakDrift;  ///< per storey, ground up (empty without a response)
+};
+
+/// `quakeview.building(id)` JSON: {id, name, use, address, x, y, heightM, heightSource, storeys,
+/// storeysSource, structuralType, codeEra, importance, lod, damageState, peakDriftRatio: [...],
+/// peakRoofDisplacementM, pgaG} plus informative extras (minHeightM, footprintAreaM2,
+/// structuralTypeDescription, importanceReasons, startYear, responseSource, detailed).
+std::string buildingInfoJson(const BuildingInfo& info);
+
+/// Picking: where a ray first meets a building (an extruded polygon with holes between two
+/// heights), as the ray parameter t >= 0, or nullopt. Coordinates in any one frame.
+struct PrismView {
+  const float* xy = nullptr;  ///< interleaved x, y of all rings' points
+  const std::uint16_t* ringCounts = nullptr;
+  std::uint32_t ringCount = 0;
+  float offsetX = 0.0f, offsetY = 0.0f;  ///< added to every point
+  float minZ = 0.0f, maxZ = 0.0f;
+};
+std::optional<float> rayPrism(const float origin[3], const float direction[3], const PrismView& prism);
+
+}  // namespace qv

@@ -1,0 +1,97 @@
+#include "qv/scene/BuildingInfo.h"
+
+#include <cmath>
+
+#include "qv/core/JsonWriter.h"
+
+namespace qv {
+
+std::string buildingInfoJson(const BuildingInfo& info) {
+  const BuildingAttributes& a = info.attributes;
+  JsonWriter w;
+  w.beginObject();
+  w.field("id", a.id).field("name", a.name).field("use", a.use).field("address", a.address);
+  w.field("x", a.centroidX).field("y", a.centroidY);
+  w.field("heightM", a.heightM).field("heightSource", valueSourceName(a.heightSource));
+  w.field("storeys", static_cast<unsigned>(a.storeys)).field("storeysSource", valueSourceName(a.storeysSource));
+  w.field("structuralType", structuralTypeCode(a.structuralType));
+  w.field("codeEra", codeEraName(a.codeEra)).field("importance", importanceName(a.importance));
+  w.field("lod", static_cast<unsigned>(a.lod));
+  w.field("damageState", info.hasResponse ? damageStateName(info.response.damage) : std::string_view("no_result"));
+  w.key("peakDriftRatio").beginArray();
+  for (float d : info.storeyPeakDrift) w.value(d);
+  w.endArray();
+  if (info.hasResponse && info.response.source != ResponseSource::None) {
+    w.field("peakRoofDisplacementM", info.response.peakRoofDisplacementM).field("pgaG", info.response.pgaG);
+  } else {
+    w.key("peakRoofDisplacementM").null().key("pgaG").null();
+  }
+  // Informative extras.
+  w.field("minHeightM", a.minHeightM).field("footprintAreaM2", a.footprintAreaM2);
+  w.field("structuralTypeDescription", structuralTypeDescription(a.structuralType));
+  w.key("importanceReasons").beginArray();
+  const std::pair<unsigned, const char*> reasons[] = {
+      {kReasonHospital, "hospital"}, {kReasonFireStation, "fire_station"},
+      {kReasonPolice, "police"},     {kReasonSchool, "school"},
+      {kReasonTall, "tall"},         {kReasonComplex, "complex"},
+      {kReasonShelter, "shelter"}};
+  for (const auto& [bit, name] : reasons) {
+    if ((a.importanceReasons & bit) != 0) w.value(name);
+  }
+  w.endArray();
+  w.field("startYear", static_cast<int>(a.startYear));
+  w.field("responseSource", info.hasResponse ? responseSourceName(info.response.source) : std::string_view("none"));
+  w.field("detailed", info.detailed).field("tile", info.tile);
+  w.endObject();
+  return w.take();
+}
+
+std::optional<float> rayPrism(const float o[3], const float d[3], const PrismView& p) {
+  float best = INFINITY;
+  // Roof and floor planes: inside the polygon (even-odd over all rings) at z = maxZ / minZ.
+  auto inside = [&](float x, float y) {
+    bool in = false;
+    std::uint32_t begin = 0;
+    for (std::uint32_t r = 0; r < p.ringCount; ++r) {
+      const std::uint32_t n = p.ringCounts[r];
+      for (std::uint32_t i = 0, j = n - 1; i < n; j = i++) {
+        const float xi = p.xy[2 * (begin + i)] + p.offsetX, yi = p.xy[2 * (begin + i) + 1] + p.offsetY;
+        const float xj = p.xy[2 * (begin + j)] + p.offsetX, yj = p.xy[2 * (begin + j) + 1] + p.offsetY;
+        if (((yi > y) != (yj > y)) && (x < (xj - xi) * (y - yi) / (yj - yi) + xi)) in = !in;
+      }
+      begin += n;
+    }
+    return in;
+  };
+  if (std::abs(d[2]) > 1e-9f) {
+    for (float z : {p.maxZ, p.minZ}) {
+      const float t = (z - o[2]) / d[2];
+      if (t >= 0.0f && t < best && inside(o[0] + t * d[0], o[1] + t * d[1])) best = t;
+    }
+  }
+  // Walls: the vertical quad of every ring edge.
+  std::uint32_t begin = 0;
+  for (std::uint32_t r = 0; r < p.ringCount; ++r) {
+    const std::uint32_t n = p.ringCounts[r];
+    for (std::uint32_t i = 0; i < n; ++i) {
+      const std::uint32_t j = (i + 1) % n;
+      const float ax = p.xy[2 * (begin + i)] + p.offsetX, ay = p.xy[2 * (begin + i) + 1] + p.offsetY;
+      const float bx = p.xy[2 * (begin + j)] + p.offsetX, by = p.xy[2 * (begin + j) + 1] + p.offsetY;
+      // Solve o + t d = a + s (b - a) in the plane: 2×2 system in (t, s).
+      const float ex = bx - ax, ey = by - ay;
+      const float det = d[0] * (-ey) - d[1] * (-ex);
+      if (std::abs(det) < 1e-12f) continue;
+      const float rx = ax - o[0], ry = ay - o[1];
+      const float t = (rx * (-ey) - ry * (-ex)) / det;
+      const float s = (d[0] * ry - d[1] * rx) / det;
+      if (t < 0.0f || t >= best || s < 0.0f || s > 1.0f) continue;
+      const float z = o[2] + t * d[2];
+      if (z >= p.minZ && z <= p.maxZ) best = t;
+    }
+    begin += n;
+  }
+  if (!std::isfinite(best)) return std::nullopt;
+  return best;
+}
+
+}  // namespace qv

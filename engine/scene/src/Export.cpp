@@ -1,0 +1,70 @@
+#include "qv/scene/Export.h"
+
+#include <cstdio>
+
+#include "qv/core/JsonWriter.h"
+
+namespace qv {
+namespace {
+
+std::string csvField(std::string_view text) {
+  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  out += '"';
+  return out;
+}
+
+std::string number(double v, int decimals) {
+  char buffer[48];
+  std::snprintf(buffer, sizeof buffer, "%.*f", decimals, v);
+  return buffer;
+}
+
+}  // namespace
+
+std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFrame& geo) {
+  std::string out =
+      "id,name,address,use,importance,damage_state,peak_drift_ratio,peak_roof_displacement_m,pga_g,height_m,storeys,"
+      "lon,lat,x_m,y_m\r\n";
+  for (const BuildingListEntry& b : buildings) {
+    const auto ll = geo.reverse({b.x, b.y});
+    out += csvField(b.id) + ',' + csvField(b.name) + ',' + csvField(b.address) + ',' + csvField(b.use) + ',';
+    out += std::string(importanceName(b.importance)) + ',' + std::string(damageStateName(b.damage)) + ',';
+    out += number(b.peakDriftRatio, 6) + ',' + number(b.peakRoofDisplacementM, 4) + ',' + number(b.pgaG, 4) + ',';
+    out += number(b.heightM, 1) + ',' + std::to_string(b.storeys) + ',';
+    out += (ll ? number(ll->lon, 7) : std::string()) + ',' + (ll ? number(ll->lat, 7) : std::string()) + ',';
+    out += number(b.x, 2) + ',' + number(b.y, 2) + "\r\n";
+  }
+  return out;
+}
+
+std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const GeoFrame& geo) {
+  JsonWriter w;
+  w.beginObject().field("type", "FeatureCollection").key("features").beginArray();
+  for (const BuildingListEntry& b : buildings) {
+    const auto ll = geo.reverse({b.x, b.y});
+    if (!ll) continue;
+    w.breakLine();
+    w.beginObject().field("type", "Feature");
+    w.key("geometry").beginObject().field("type", "Point");
+    w.key("coordinates").beginArray().value(ll->lon).value(ll->lat).endArray();
+    w.endObject();
+    w.key("properties").beginObject();
+    w.field("id", b.id).field("name", b.name).field("address", b.address).field("use", b.use);
+    w.field("importance", importanceName(b.importance)).field("damage_state", damageStateName(b.damage));
+    w.field("peak_drift_ratio", b.peakDriftRatio).field("peak_roof_displacement_m", b.peakRoofDisplacementM);
+    w.field("pga_g", b.pgaG).field("height_m", b.heightM).field("storeys", static_cast<unsigned>(b.storeys));
+    w.endObject();
+    w.endObject();
+  }
+  w.endArray().endObject();
+  std::string out = w.take();
+  out += '\n';
+  return out;
+}
+
+}  // namespace qv
