@@ -206,14 +206,15 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
   }
   if (!std::isfinite(tile.originX) || !std::isfinite(tile.originY) || !std::isfinite(tile.extent) ||
       !(tile.extent > 0.0f) || std::abs(tile.originX) > 1e7 || std::abs(tile.originY) > 1e7) {
-    return error("header holds an invalid origin or extent");
+    return error("header at byte 24: invalid origin or extent");
   }
   if (buildingCount > limits.maxBuildings) {
-    return error(std::to_string(buildingCount) + " buildings exceeds the limit of " +
+    return error("header at byte 16: " + std::to_string(buildingCount) + " buildings exceeds the limit of " +
                  std::to_string(limits.maxBuildings));
   }
   if (partCount > limits.maxParts) {
-    return error(std::to_string(partCount) + " parts exceeds the limit of " + std::to_string(limits.maxParts));
+    return error("header at byte 20: " + std::to_string(partCount) + " parts exceeds the limit of " +
+                 std::to_string(limits.maxParts));
   }
 
   // Section table.
@@ -279,8 +280,9 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
       p.firstTriangle = static_cast<std::uint32_t>(triangleTotal);
       ringTotal += p.ringCount;
       triangleTotal += p.triangleCount;
+      // Comparisons are false for NaN: every value is tested with its valid range, not the invalid one.
       if (!std::isfinite(p.minHeightM) || !std::isfinite(p.heightM) || p.heightM < p.minHeightM ||
-          p.heightM > 10000.0f || p.minHeightM < -1000.0f) {
+          p.heightM > 10000.0f || p.minHeightM < -1000.0f || !(p.roofHeightM >= 0.0f && p.roofHeightM <= 10000.0f)) {
         return error("section PART near byte " + std::to_string(r.offset()) + ": invalid part heights");
       }
       if (p.ringCount == 0)
@@ -322,13 +324,18 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
     }
   }
   std::uint32_t vertexCursor = 0;
+  std::size_t partIndex = 0;
   for (TilePart& p : tile.parts) {
     p.firstVertex = vertexCursor;
     std::uint32_t count = 0;
     for (std::uint32_t k = 0; k < p.ringCount; ++k) count += tile.ringVertexCounts[p.firstRing + k];
     p.vertexCount = count;
     vertexCursor += count;
-    if (count > 65535) return error("a part has " + std::to_string(count) + " vertices (at most 65535)");
+    if (count > 65535) {
+      return error("section PART at byte " + std::to_string(part.offset + partIndex * kPartRecordSize) + ": part " +
+                   std::to_string(partIndex) + " has " + std::to_string(count) + " vertices (at most 65535)");
+    }
+    ++partIndex;
   }
   tile.roofTriangles.resize(static_cast<std::size_t>(triangleTotal) * 3);
   {
@@ -392,8 +399,8 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
   }
   if (!b.ok()) return error("section BLDG: " + b.error());
   if (partCursor != partCount) {
-    return error("the buildings use " + std::to_string(partCursor) + " parts, the header declares " +
-                 std::to_string(partCount));
+    return error("section BLDG at byte " + std::to_string(bldg.offset) + ": the buildings use " +
+                 std::to_string(partCursor) + " parts, the header declares " + std::to_string(partCount));
   }
   return tile;
 }

@@ -59,7 +59,8 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
   }
   // Each entry needs at least three bytes (three empty strings).
   if (count > kMaxEntries || count > (bytes.size() - kHeaderSize) / 3) {
-    return Error{prefix + std::to_string(count) + " entries cannot fit in " + std::to_string(bytes.size()) + " bytes"};
+    return Error{prefix + "header at byte 16: " + std::to_string(count) + " entries cannot fit in " +
+                 std::to_string(bytes.size()) + " bytes"};
   }
   std::vector<SearchEntry> entries(count);
   ByteReader r(bytes.subspan(kHeaderSize), kHeaderSize);
@@ -68,7 +69,7 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
     e.name = r.string("name", 1024);
     e.address = r.string("address", 1024);
   }
-  if (!r.ok()) return Error{prefix + r.error()};
+  if (!r.ok()) return Error{prefix + "entries: " + r.error()};
   return entries;
 }
 

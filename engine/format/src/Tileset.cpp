@@ -11,6 +11,8 @@
 namespace qv {
 namespace {
 
+/// Heights beyond this are not buildings (and would not fit the float the tiles keep).
+constexpr double kMaxHeightM = 1.0e5;
 constexpr const char* kDamageKeys[6] = {"none", "slight", "moderate", "extensive", "complete", "no_result"};
 
 std::string hex32(std::uint32_t v) {
@@ -142,6 +144,7 @@ struct Parser {
       return false;
     }
     if (level > 30 || x >= (1ull << level) || y >= (1ull << level)) return fail(where + ": invalid level/x/y");
+    if (std::abs(maxHeight) > kMaxHeightM) return fail(where + ": \"maxHeight\" out of range");
     if (buildings > 0xFFFFFFFFull) return fail(where + ": too many buildings");
     if (!relativePath(n.file, where)) return false;
     n.level = static_cast<std::uint8_t>(level);
@@ -152,7 +155,8 @@ struct Parser {
     n.maxHeightM = static_cast<float>(maxHeight);
     bool coarse = false;
     if (o["coarse"].get(coarse) == simdjson::SUCCESS) n.coarse = coarse;
-    if (o["geometricError"].get_double().get(geometricError) == simdjson::SUCCESS && std::isfinite(geometricError)) {
+    if (o["geometricError"].get_double().get(geometricError) == simdjson::SUCCESS && std::isfinite(geometricError) &&
+        std::abs(geometricError) <= 1e7) {
       n.geometricErrorM = static_cast<float>(geometricError);
     }
     object r;
@@ -267,8 +271,11 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
   double version = 0;
   if (!p.number(root, "version", version, "manifest")) return Error{p.error};
   if (version != kTilesetVersion) {
-    return Error{p.prefix + "unsupported tileset version " + std::to_string(static_cast<long long>(version)) +
-                 " (this build reads version " + std::to_string(kTilesetVersion) + ")"};
+    // Printed as written: a hostile version (1e300) must not reach an integer conversion.
+    char written[32];
+    std::snprintf(written, sizeof written, "%.10g", version);
+    return Error{p.prefix + "manifest: unsupported tileset version " + written + " (this build reads version " +
+                 std::to_string(kTilesetVersion) + ")"};
   }
   t.version = kTilesetVersion;
   p.text(root, "generator", t.generator, "manifest", false);
@@ -294,6 +301,7 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
       !p.unsignedNumber(root, "buildingsRevision", revision, "manifest")) {
     return Error{p.error};
   }
+  if (std::abs(maxHeight) > kMaxHeightM) return Error{p.prefix + "manifest: \"maxHeight\" out of range"};
   t.buildingsRevision = revision;
   t.maxHeightM = static_cast<float>(maxHeight);
   simdjson::dom::array sources;

@@ -377,6 +377,10 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
       return errorAt(name, numbers[1],
                      "time does not increase (" + formatDouble(times[0]) + " then " + formatDouble(times[1]) + ")");
     }
+    // The same bound as a header's DT (the difference of two finite times can even overflow).
+    if (!(timeStep <= 10.0)) {
+      return errorAt(name, numbers[1], "the times give a step of " + formatDouble(timeStep) + " s (at most 10 s)");
+    }
     // Times are printed with few digits: accept steps within 0.1 % of the first one.
     const double tolerance = 1e-3 * timeStep;
     for (std::size_t k = 1; k < times.size(); ++k) {
@@ -461,7 +465,17 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
   }
 
   const double factor = metresPerSecond2Per(units);
-  for (double& a : motion.accelerationMps2) a *= factor;
+  for (std::size_t k = 0; k < motion.accelerationMps2.size(); ++k) {
+    double& a = motion.accelerationMps2[k];
+    const double asWritten = a;
+    a *= factor;
+    // Values near the largest double overflow when converted; no record holds such a value.
+    if (!std::isfinite(a)) {
+      return errorAt(name, 0,
+                     "sample " + std::to_string(k + 1) + " (" + formatDouble(asWritten) + " " +
+                         std::string(accelerationUnitName(units)) + ") is too large to be an acceleration");
+    }
+  }
   motion.timeStepS = timeStep;
   if (source != nullptr) {
     source->format = format;

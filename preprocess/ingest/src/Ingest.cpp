@@ -444,8 +444,8 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
         if (p.y == lonLat.maxY) north = i;
       }
     }
-    return fail("the buildings span " + std::to_string(lonLat.maxX - lonLat.minX) + " degrees of longitude and " +
-                std::to_string(lonLat.maxY - lonLat.minY) +
+    return fail("the buildings of " + joinPaths(inputPaths) + " span " + std::to_string(lonLat.maxX - lonLat.minX) +
+                " degrees of longitude and " + std::to_string(lonLat.maxY - lonLat.minY) +
                 " of latitude (more than a city's 10): absurd coordinates in the extreme buildings " +
                 features[west].id + " (west), " + features[east].id + " (east), " + features[south].id + " (south), " +
                 features[north].id + " (north)");
@@ -455,7 +455,7 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
   if (std::abs(originLon - lonLat.minX) > kMaxSpanDegrees || std::abs(originLon - lonLat.maxX) > kMaxSpanDegrees ||
       std::abs(originLat - lonLat.minY) > kMaxSpanDegrees || std::abs(originLat - lonLat.maxY) > kMaxSpanDegrees) {
     return fail("origin " + std::to_string(originLon) + "," + std::to_string(originLat) +
-                " is more than 10 degrees from the buildings");
+                " is more than 10 degrees from the buildings of " + joinPaths(inputPaths));
   }
   const CityProjection projection(originLon, originLat);
 

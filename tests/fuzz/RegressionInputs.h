@@ -1,0 +1,36 @@
+// Reads the saved inputs of one fuzz target (tests/fuzz/regressions/<target>/) for the regression
+// tests in the ordinary unit test builds (native and WebAssembly).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+namespace qv::fuzz {
+
+struct SavedInput {
+  std::string path;
+  std::vector<std::uint8_t> bytes;
+};
+
+/// Every file of tests/fuzz/regressions/<target>/, sorted by name (none when the folder is absent).
+inline std::vector<SavedInput> savedInputs(const std::string& sourceDir, const std::string& target) {
+  std::vector<SavedInput> inputs;
+  const std::filesystem::path folder = std::filesystem::path(sourceDir) / "tests/fuzz/regressions" / target;
+  std::error_code ec;
+  for (const auto& entry : std::filesystem::directory_iterator(folder, ec)) {
+    if (!entry.is_regular_file()) continue;
+    std::ifstream file(entry.path(), std::ios::binary);
+    SavedInput input{entry.path().string(), {}};
+    input.bytes.assign(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+    inputs.push_back(std::move(input));
+  }
+  std::sort(inputs.begin(), inputs.end(), [](const SavedInput& a, const SavedInput& b) { return a.path < b.path; });
+  return inputs;
+}
+
+}  // namespace qv::fuzz

@@ -1,0 +1,58 @@
+// Inputs the OSM and GeoJSON fuzzers found (tests/fuzz/regressions/osm, .../geojson) read through
+// readCity as the fuzz targets read them: the result is either a clean error naming the file or a
+// city of sane buildings, never a crash.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <string>
+
+#include "../fuzz/RegressionInputs.h"
+#include "IngestTestData.h"
+
+using namespace qv;
+using namespace qv::prep;
+using namespace qv::prep::test;
+
+namespace {
+
+void replay(const std::string& path) {
+  IngestOptions options;
+  options.threads = 1;
+  const Result<CityModel> city = readCity({path}, options);
+  if (!city.ok()) {
+    INFO(city.error());
+    CHECK(city.error().find(path) != std::string::npos);
+    return;
+  }
+  for (const Building& b : city->buildings) {
+    CHECK(std::isfinite(b.attributes.heightM));
+    CHECK(b.attributes.storeys >= 1);
+    for (const BuildingPart& p : b.parts) {
+      for (const auto& point : p.points) CHECK((std::isfinite(point.x) && std::isfinite(point.y)));
+    }
+  }
+}
+
+}  // namespace
+
+TEST_CASE("Fuzzer-found OSM inputs are read or rejected cleanly", "[ingest][osm][fuzz]") {
+  const TempDir dir;
+  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "osm")) {
+    SECTION(input.path) {
+      // As fuzz_osm: text starting with '<' is OSM XML, anything else PBF.
+      const std::string bytes(input.bytes.begin(), input.bytes.end());
+      const std::size_t first = bytes.find_first_not_of(" \t\r\n");
+      const bool xml = first != std::string::npos && bytes[first] == '<';
+      replay(dir.write(xml ? "input.osm" : "input.osm.pbf", bytes));
+    }
+  }
+}
+
+TEST_CASE("Fuzzer-found GeoJSON inputs are read or rejected cleanly", "[ingest][geojson][fuzz]") {
+  const TempDir dir;
+  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "geojson")) {
+    SECTION(input.path) {
+      replay(dir.write("input.geojson", std::string(input.bytes.begin(), input.bytes.end())));
+    }
+  }
+}
