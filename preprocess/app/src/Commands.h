@@ -10,11 +10,11 @@ namespace qv::prep {
 
 using CommandArgs = std::vector<std::string>;
 
-int runCity(const CommandArgs& args);       ///< city --input FILE... --out DIR
-int runSynthCity(const CommandArgs& args);  ///< synth-city --buildings N --seed S --out DIR
-int runInfo(const CommandArgs& args);       ///< info DIR [--json] [--building ID] [--verify]
-int runMdof(const CommandArgs& args);
-int runResponse(const CommandArgs& args);  ///< response --city DIR (--motion FILE | --synthetic SEED) ...       ///<
-                                           ///< mdof --storeys N --mass KG --stiffness N_PER_M ...
+int runCity(const CommandArgs& args);            ///< city --input FILE... --out DIR
+int runSynthCity(const CommandArgs& args);       ///< synth-city --buildings N --seed S --out DIR
+int runInfo(const CommandArgs& args);            ///< info DIR [--json] [--building ID] [--verify]
+int runMdof(const CommandArgs& args);            ///< mdof --storeys N --mass KG --stiffness N_PER_M ...
+int runResponse(const CommandArgs& args);        ///< response --city DIR (--motion FILE | --synthetic SEED) ...
+int runImportResponse(const CommandArgs& args);  ///< import-response --city DIR --input FILE...
 
 }  // namespace qv::prep

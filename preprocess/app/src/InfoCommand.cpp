@@ -8,7 +8,9 @@
 #include "Commands.h"
 #include "Summary.h"
 #include "qv/core/JsonWriter.h"
+#include "qv/format/ResponseTile.h"
 #include "qv/prep/Cli.h"
+#include "qv/prep/Files.h"
 
 namespace qv::prep {
 namespace {
@@ -16,9 +18,12 @@ namespace {
 const char* const kUsage =
     "usage: quakeview-prep info DIR [--json] [--building ID] [--verify]\n"
     "  Summarizes a city directory: buildings, storeys, tagged and inferred heights, structural\n"
-    "  types, tiles and bytes.\n"
+    "  types, tiles and bytes; after `response` or `import-response`, the motion used, buildings per\n"
+    "  damage state (none, slight, moderate, extensive, complete, no_result) and whether the response\n"
+    "  is older than the buildings (run `response` again after adding buildings).\n"
     "  --json          print the same as one JSON object\n"
-    "  --building ID   print one building (w123, r45, s7, g:12, cj:abc)\n"
+    "  --building ID   print one building (w123, r45, s7, g:12, cj:abc), with its response: damage\n"
+    "                  state, peak drift ratio per storey, peak roof displacement, PGA\n"
     "  --verify        decode and check every tile; exit 1 naming each bad one\n";
 
 // Upper bounds (exclusive) of the storey histogram's buckets: 1, 2, 3, 4-5, 6-9, 10-19, 20-39, 40+.
@@ -41,8 +46,8 @@ struct CitySummary {
   std::map<std::string, std::uint64_t> types, eras, uses;
 };
 
+// The building's attributes as fields of the object `w` is writing.
 void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNode& node, const CityTile& tile) {
-  w.beginObject();
   w.field("id", a.id).field("name", a.name).field("use", a.use).field("address", a.address);
   w.field("height_m", a.heightM).field("height_source", valueSourceName(a.heightSource));
   w.field("storeys", static_cast<unsigned>(a.storeys)).field("storeys_source", valueSourceName(a.storeysSource));
@@ -65,7 +70,43 @@ void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNod
   w.field("amenity", a.amenity);
   w.field("x_m", a.centroidX + tile.originX).field("y_m", a.centroidY + tile.originY);
   w.field("tile", node.key());
-  w.endObject();
+}
+
+constexpr const char* kDamageKeys[6] = {"none", "slight", "moderate", "extensive", "complete", "no_result"};
+
+// Buildings per damage state as the response recorded them; buildings the response does not know
+// (added since, or no response at all) count as no_result, so the counts sum to `buildings`.
+std::array<std::uint64_t, 6> damageCounts(const Tileset& t, std::uint64_t buildings) {
+  std::array<std::uint64_t, 6> counts{};
+  if (t.response) {
+    for (std::size_t k = 0; k < 6; ++k) counts[k] = t.response->damageStates[k];
+  }
+  std::uint64_t sum = 0;
+  for (std::uint64_t c : counts) sum += c;
+  if (sum < buildings) counts[5] += buildings - sum;
+  return counts;
+}
+
+// One building's response from its tile's summary (nullopt: no response for that tile).
+struct BuildingResponseView {
+  BuildingResponse summary;
+  std::vector<float> storeyPeakDrift;
+};
+Result<std::optional<BuildingResponseView>> loadBuildingResponse(const std::string& dir, const TileNode& node,
+                                                                 std::size_t index, std::size_t tileBuildings) {
+  if (!node.response) return std::optional<BuildingResponseView>();
+  auto bytes = readFile(dir + "/" + node.response->summaryFile);
+  if (!bytes.ok()) return Error{bytes.error()};
+  auto tile = decodeResponseSummary(*bytes, dir + "/" + node.response->summaryFile);
+  if (!tile.ok()) return Error{tile.error()};
+  if (tile->buildings.size() != tileBuildings || index >= tile->buildings.size()) {
+    return std::optional<BuildingResponseView>();  // out of date: the tile changed since
+  }
+  BuildingResponseView v;
+  v.summary = tile->buildings[index];
+  const auto first = tile->storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(v.summary.firstStorey);
+  v.storeyPeakDrift.assign(first, first + static_cast<std::ptrdiff_t>(v.summary.storeys));
+  return std::optional<BuildingResponseView>(std::move(v));
 }
 
 }  // namespace
@@ -122,12 +163,40 @@ int runInfo(const CommandArgs& argv) {
         std::fprintf(stderr, "info: %s\n", tile.error().c_str());
         return kExitDataError;
       }
-      for (const TileBuilding& b : tile->buildings) {
+      for (std::size_t index = 0; index < tile->buildings.size(); ++index) {
+        const TileBuilding& b = tile->buildings[index];
         if (b.attributes.id != *id) continue;
         const BuildingAttributes& a = b.attributes;
+        auto response = loadBuildingResponse(dir, node, index, tile->buildings.size());
+        if (!response.ok()) {
+          std::fprintf(stderr, "info: %s\n", response.error().c_str());
+          return kExitDataError;
+        }
+        const std::optional<BuildingResponseView>& r = *response;
+        const bool hasResult = r && r->summary.source != ResponseSource::None;
+        const std::string damage(damageStateName(hasResult ? r->summary.damage : DamageState::NoResult));
         if (json) {
           JsonWriter w;
+          w.beginObject();
           writeBuildingJson(w, a, node, *tile);
+          w.field("damage_state", damage);
+          w.field("response_source", responseSourceName(hasResult ? r->summary.source : ResponseSource::None));
+          w.key("peak_drift_ratio").beginArray();
+          if (hasResult) {
+            for (float v : r->storeyPeakDrift) w.value(v);
+          }
+          w.endArray();
+          if (hasResult) {
+            w.field("peak_roof_displacement_m", r->summary.peakRoofDisplacementM);
+            w.field("pga_g", r->summary.pgaG);
+            w.field("peak_floor_acceleration_mps2", r->summary.peakFloorAccelerationMs2);
+            w.field("residual_drift_ratio", r->summary.residualDriftRatio);
+          } else {
+            w.key("peak_roof_displacement_m").null();
+            w.key("pga_g").null();
+          }
+          w.field("response_out_of_date", t.responseOutOfDate());
+          w.endObject();
           std::printf("%s\n", w.str().c_str());
         } else {
           std::printf("%s  %s\n", a.id.c_str(), a.name.empty() ? "(no name)" : a.name.c_str());
@@ -140,6 +209,18 @@ int runInfo(const CommandArgs& argv) {
                       std::string(structuralTypeDescription(a.structuralType)).c_str(),
                       std::string(codeEraName(a.codeEra)).c_str(), std::string(importanceName(a.importance)).c_str(),
                       a.lod, node.key().c_str());
+          if (hasResult) {
+            std::printf("  damage %s (%s), peak drift %.4f, peak roof displacement %.3f m, PGA %.3f g\n",
+                        damage.c_str(), std::string(responseSourceName(r->summary.source)).c_str(),
+                        static_cast<double>(r->summary.peakDriftRatio),
+                        static_cast<double>(r->summary.peakRoofDisplacementM), static_cast<double>(r->summary.pgaG));
+            std::printf("  peak drift per storey (ground up):");
+            for (float v : r->storeyPeakDrift) std::printf(" %.4f", static_cast<double>(v));
+            std::printf("\n");
+          } else {
+            std::printf("  damage no_result (%s)\n", t.response ? "no result for this building" : "no response yet");
+          }
+          if (t.responseOutOfDate()) std::printf("  note: the response is older than the buildings\n");
         }
         return kExitOk;
       }
@@ -178,6 +259,7 @@ int runInfo(const CommandArgs& argv) {
     }
   }
   const double meanStoreys = s.buildings > 0 ? s.totalStoreys / static_cast<double>(s.buildings) : 0.0;
+  const std::array<std::uint64_t, 6> damage = damageCounts(t, s.buildings);
 
   if (json) {
     JsonWriter w;
@@ -221,6 +303,23 @@ int runInfo(const CommandArgs& argv) {
     w.key("sources").beginArray();
     for (const std::string& src : t.sources) w.value(src);
     w.endArray();
+    w.key("damage_states").beginObject();
+    for (std::size_t k = 0; k < 6; ++k) w.field(kDamageKeys[k], damage[k]);
+    w.endObject();
+    if (t.response) {
+      w.field("motion", t.response->motion).field("scenario", t.response->scenario);
+      w.key("response")
+          .beginObject()
+          .field("method", t.response->method)
+          .field("duration_s", t.response->durationSeconds)
+          .field("sample_rate_hz", t.response->sampleRateHz)
+          .field("buildings_revision", t.response->buildingsRevision)
+          .endObject();
+    } else {
+      w.key("motion").null();
+      w.key("response").null();
+    }
+    w.field("response_out_of_date", t.responseOutOfDate());
     w.endObject();
     std::printf("%s\n", w.str().c_str());
     return kExitOk;
@@ -246,6 +345,25 @@ int runInfo(const CommandArgs& argv) {
   for (const auto& [k, v] : s.eras) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(v));
   std::printf("\ntiles       %zu (%llu leaves, depth %d), %s\n", t.nodes.size(),
               static_cast<unsigned long long>(leaves), depth, humanBytes(bytes).c_str());
+  if (t.response) {
+    std::printf("response    %s\n", t.response->method.c_str());
+    std::printf("motion      %s\n", t.response->motion.c_str());
+    if (!t.response->scenario.empty()) std::printf("scenario    %s\n", t.response->scenario.c_str());
+    std::printf("damage     ");
+    for (std::size_t k = 0; k < 6; ++k) {
+      std::printf(" %s: %llu;", kDamageKeys[k], static_cast<unsigned long long>(damage[k]));
+    }
+    std::printf("\n");
+    if (t.responseOutOfDate()) {
+      std::printf(
+          "note        the response is out of date: it was computed for buildings revision %llu, the city "
+          "is at %llu; run `quakeview-prep response` again\n",
+          static_cast<unsigned long long>(t.response->buildingsRevision),
+          static_cast<unsigned long long>(t.buildingsRevision));
+    }
+  } else {
+    std::printf("response    none (run `quakeview-prep response` or `import-response`)\n");
+  }
   return kExitOk;
 }
 

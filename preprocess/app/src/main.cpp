@@ -23,6 +23,8 @@ constexpr Command kCommands[] = {
     {"info", qv::prep::runInfo, "info DIR [--json] [--building ID] [--verify]: what a city directory holds"},
     {"response", qv::prep::runResponse,
      "response --city DIR (--motion FILE | --synthetic SEED) [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M]"},
+    {"import-response", qv::prep::runImportResponse,
+     "import-response --city DIR --input FILE... [--units U]: displacement histories from another solver"},
     {"mdof", qv::prep::runMdof, "mdof --storeys N --mass KG --stiffness N_PER_M --motion FILE ...: one shear building"},
 };
 
