@@ -63,4 +63,14 @@ TEST_CASE("ByteReader reports the first short read with what and where", "[core]
   ByteReader v(endless);
   v.varint("count");
   CHECK(v.error().find("malformed varint") != std::string::npos);
+
+  const std::uint8_t tooWide[] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x02};
+  ByteReader w(tooWide);
+  CHECK(w.varint("length") == 0);
+  CHECK(w.error() == "varint in length overflows 64 bits at byte 10");
+
+  const std::uint8_t largest[] = {0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0xFF, 0x01};
+  ByteReader x(largest);
+  CHECK(x.varint("length") == 0xFFFFFFFFFFFFFFFFull);
+  CHECK(x.ok());
 }

@@ -110,3 +110,22 @@ TEST_CASE("Malformed manifests are rejected with a specific message", "[format][
   badOrigin.replace(badOrigin.find("[-74,40.71]"), 11, "[-74,140.7]");
   CHECK(errorOf(badOrigin).find("\"origin\" must hold") != std::string::npos);
 }
+
+TEST_CASE("Checksums are hex digits only and file sizes fit the formats' 32-bit size", "[format][tileset]") {
+  auto errorOf = [](const std::string& json) {
+    const auto r = parseTileset(json, "city/tileset.json");
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().rfind("city/tileset.json: ", 0) == 0);
+    return r.error();
+  };
+  const std::string good = tilesetToJson(sample());
+  for (const char* crc : {"\"-1\"", "\"+1\"", "\" 1\"", "\"0x1\"", "\"\""}) {
+    std::string bad = good;
+    bad.replace(bad.find("\"deadbeef\""), 10, crc);
+    CHECK(errorOf(bad).find("\"crc32\" is not hex") != std::string::npos);
+  }
+  std::string huge = good;
+  const std::size_t at = huge.find("\"bytes\":") + 8;
+  huge.replace(at, huge.find(',', at) - at, "4294967296");
+  CHECK(errorOf(huge).find("\"bytes\" is larger than a QuakeView file can be") != std::string::npos);
+}

@@ -47,3 +47,28 @@ TEST_CASE("Two-column records with a step beyond 10 s are refused like a header'
   REQUIRE_FALSE(motion.ok());
   CHECK(motion.error() == "times.txt:2: the times give a step of 100 s (at most 10 s)");
 }
+
+TEST_CASE("Files with more lines or values than a record can hold are refused before reading them whole",
+          "[seismic][reader][fuzz]") {
+  GroundMotionReadOptions options;
+  options.units = AccelerationUnit::G;
+  options.timeStepS = 0.01;
+  // About 100 bytes of bookkeeping a line: 2.2 million blank lines must not be split and classified.
+  const auto blank = parseGroundMotion(std::string(2200000, '\n'), "blank.txt", options);
+  REQUIRE_FALSE(blank.ok());
+  CHECK(blank.error() == "blank.txt: too many lines (more than 2162688; a record holds at most 2097152 values)");
+
+  std::string oneLine;
+  for (int i = 0; i < 2100000; ++i) oneLine += "0 ";
+  const auto wide = parseGroundMotion(oneLine, "wide.txt", options);
+  REQUIRE_FALSE(wide.ok());
+  CHECK(wide.error() == "wide.txt:1: too many values (the limit is 2097152)");
+
+  std::string line;
+  for (int k = 0; k < 1000; ++k) line += "1 ";
+  std::string manyLines;
+  for (int i = 0; i < 2200; ++i) manyLines += line + "\n";
+  const auto many = parseGroundMotion(manyLines, "many.txt", options);
+  REQUIRE_FALSE(many.ok());
+  CHECK(many.error() == "many.txt:2098: too many values (the limit is 2097152)");
+}

@@ -97,6 +97,11 @@ std::uint64_t ByteReader::varint(const char* what) {
   for (int shift = 0; shift < 70; shift += 7) {
     const std::uint8_t b = u8(what);
     if (!ok()) return 0;
+    // The tenth byte holds bit 63 only: anything more would be silently cut off.
+    if (shift == 63 && (b & 0x7Eu) != 0) {
+      fail(std::string("varint in ") + what + " overflows 64 bits");
+      return 0;
+    }
     v |= static_cast<std::uint64_t>(b & 0x7Fu) << shift;
     if ((b & 0x80u) == 0) return v;
   }

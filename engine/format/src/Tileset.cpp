@@ -97,10 +97,17 @@ struct Parser {
   bool hex(const object& o, const char* key, std::uint32_t& out, const std::string& where) {
     std::string s;
     if (!text(o, key, s, where)) return false;
-    char* end = nullptr;
-    const unsigned long v = std::strtoul(s.c_str(), &end, 16);
-    if (s.empty() || s.size() > 8 || end != s.c_str() + s.size()) return fail(where + ": \"" + key + "\" is not hex");
-    out = static_cast<std::uint32_t>(v);
+    // Digits only: strtoul alone would also take " 1", "+1", "-1" (as 0xffffffff) and "0x1".
+    if (s.empty() || s.size() > 8 || s.find_first_not_of("0123456789abcdefABCDEF") != std::string::npos) {
+      return fail(where + ": \"" + key + "\" is not hex");
+    }
+    out = static_cast<std::uint32_t>(std::strtoul(s.c_str(), nullptr, 16));
+    return true;
+  }
+  /// A file size: the binary formats store their own size in 32 bits.
+  bool fileSize(const object& o, const char* key, std::uint64_t& out, const std::string& where) {
+    if (!unsignedNumber(o, key, out, where)) return false;
+    if (out > 0xFFFFFFFFull) return fail(where + ": \"" + key + "\" is larger than a QuakeView file can be (4 GiB)");
     return true;
   }
   bool rect(const object& o, const char* key, Rect& out, const std::string& where) {
@@ -140,7 +147,7 @@ struct Parser {
         !unsignedNumber(o, "y", y, where) || !rect(o, "bounds", n.bounds, where) ||
         !number(o, "maxHeight", maxHeight, where) || !unsignedNumber(o, "buildings", buildings, where) ||
         !unsignedNumber(o, "subtreeBuildings", n.subtreeBuildings, where) || !text(o, "file", n.file, where) ||
-        !unsignedNumber(o, "bytes", bytes, where) || !hex(o, "crc32", n.crc32, where)) {
+        !fileSize(o, "bytes", bytes, where) || !hex(o, "crc32", n.crc32, where)) {
       return false;
     }
     if (level > 30 || x >= (1ull << level) || y >= (1ull << level)) return fail(where + ": invalid level/x/y");
@@ -163,12 +170,12 @@ struct Parser {
     if (o["response"].get(r) == simdjson::SUCCESS) {
       TileResponseFiles files;
       const std::string rw = where + " response";
-      if (!text(r, "summary", files.summaryFile, rw) || !unsignedNumber(r, "summaryBytes", files.summaryBytes, rw) ||
+      if (!text(r, "summary", files.summaryFile, rw) || !fileSize(r, "summaryBytes", files.summaryBytes, rw) ||
           !hex(r, "summaryCrc32", files.summaryCrc32, rw) || !relativePath(files.summaryFile, rw)) {
         return false;
       }
       if (r["history"].error() == simdjson::SUCCESS) {
-        if (!text(r, "history", files.historyFile, rw) || !unsignedNumber(r, "historyBytes", files.historyBytes, rw) ||
+        if (!text(r, "history", files.historyFile, rw) || !fileSize(r, "historyBytes", files.historyBytes, rw) ||
             !hex(r, "historyCrc32", files.historyCrc32, rw) || !relativePath(files.historyFile, rw)) {
           return false;
         }
@@ -349,7 +356,7 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
   object search;
   if (root["search"].get(search) == simdjson::SUCCESS) {
     CityFile f;
-    if (!p.text(search, "file", f.file, "search") || !p.unsignedNumber(search, "bytes", f.bytes, "search") ||
+    if (!p.text(search, "file", f.file, "search") || !p.fileSize(search, "bytes", f.bytes, "search") ||
         !p.hex(search, "crc32", f.crc32, "search") || !p.relativePath(f.file, "search")) {
       return Error{p.error};
     }

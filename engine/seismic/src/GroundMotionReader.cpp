@@ -1,5 +1,6 @@
 #include "qv/seismic/GroundMotionReader.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -11,7 +12,11 @@ namespace qv::seismic {
 namespace {
 
 constexpr std::size_t kMaxFileBytes = std::size_t{256} << 20;
-constexpr std::size_t kMaxSamples = std::size_t{20} << 20;
+// Limits checked before the per-line structures are allocated (a line costs about 100 bytes of
+// bookkeeping, so a file of blank lines must not be read whole): 2 Mi samples is almost 6 hours at
+// 100 Hz, far beyond any record; the line limit leaves room for a header and blank lines.
+constexpr std::size_t kMaxSamples = std::size_t{1} << 21;
+constexpr std::size_t kMaxLines = kMaxSamples + (std::size_t{1} << 16);
 
 struct Line {
   std::size_t number = 0;  // 1-based
@@ -57,10 +62,11 @@ bool isSeparator(char c) {
   return c == ' ' || c == '\t' || c == ',' || c == ';' || c == '\f' || c == '\v';
 }
 
-std::vector<std::string_view> tokenize(std::string_view line) {
+// At most maxTokens + 1 tokens (one more than allowed tells the caller the line has too many).
+std::vector<std::string_view> tokenize(std::string_view line, std::size_t maxTokens) {
   std::vector<std::string_view> tokens;
   std::size_t i = 0;
-  while (i < line.size()) {
+  while (i < line.size() && tokens.size() <= maxTokens) {
     while (i < line.size() && isSeparator(line[i])) ++i;
     const std::size_t begin = i;
     while (i < line.size() && !isSeparator(line[i])) ++i;
@@ -116,13 +122,18 @@ struct ParsedLine {
   std::vector<double> values;
   std::string_view badToken;  // first token that is not a number (Text lines)
   bool badIsNotFinite = false;
+  bool tooManyValues = false;  // more than kMaxSamples tokens (values not kept)
 };
 
 ParsedLine classify(std::string_view line) {
   ParsedLine parsed;
-  const auto tokens = tokenize(line);
+  const auto tokens = tokenize(line, kMaxSamples);
   if (tokens.empty()) return parsed;
   parsed.kind = LineKind::Numbers;
+  if (tokens.size() > kMaxSamples) {
+    parsed.tooManyValues = true;
+    return parsed;
+  }
   for (const std::string_view token : tokens) {
     double v = 0.0;
     const NumberStatus status = parseNumber(token, v);
@@ -270,6 +281,12 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
       !(std::isfinite(*options.timeStepS) && *options.timeStepS > 0.0 && *options.timeStepS <= 10.0)) {
     return errorAt(name, 0, "the time step given must be in (0, 10] s, not " + formatDouble(*options.timeStepS));
   }
+  if (const auto newlines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+      newlines >= kMaxLines) {
+    return errorAt(name, 0,
+                   "too many lines (more than " + std::to_string(kMaxLines) + "; a record holds at most " +
+                       std::to_string(kMaxSamples) + " values)");
+  }
   const std::vector<Line> lines = splitLines(text);
 
   // Header: the leading text lines (a value line cannot start before the first line that is all
@@ -277,13 +294,22 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
   HeaderInfo header;
   std::size_t first = 0;
   std::vector<ParsedLine> parsed(lines.size());
+  const auto tooManyValues = [&](std::size_t line) {
+    return errorAt(name, line, "too many values (the limit is " + std::to_string(kMaxSamples) + ")");
+  };
   for (; first < lines.size(); ++first) {
     parsed[first] = classify(lines[first].text);
     if (parsed[first].kind == LineKind::Numbers) break;
-    if (parsed[first].kind == LineKind::Text) scanHeaderLine(lines[first], header);
+    if (parsed[first].kind == LineKind::Text) {
+      scanHeaderLine(lines[first], header);
+      parsed[first].values = {};  // numbers before the first word of a header line are not samples
+    }
   }
+  std::size_t valuesSeen = 0;
   for (std::size_t i = first; i < lines.size(); ++i) {
     if (i != first) parsed[i] = classify(lines[i].text);
+    valuesSeen += parsed[i].values.size();
+    if (parsed[i].tooManyValues || valuesSeen > kMaxSamples) return tooManyValues(lines[i].number);
     if (parsed[i].kind == LineKind::Text) {
       if (parsed[i].badIsNotFinite) {
         return errorAt(name, lines[i].number, "value '" + std::string(parsed[i].badToken) + "' is not a finite number");
@@ -304,11 +330,6 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
   }
   if (valueCount == 0) {
     return errorAt(name, 0, text.empty() ? "the file is empty" : "no acceleration values in the file");
-  }
-  if (valueCount > kMaxSamples) {
-    return errorAt(
-        name, 0,
-        "too many values (" + std::to_string(valueCount) + "; the limit is " + std::to_string(kMaxSamples) + ")");
   }
 
   // A one-line numeric header "NPTS DT" (no text header): an integer count, a step, and exactly
