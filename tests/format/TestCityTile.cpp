@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <limits>
 #include <string>
 
 #include "qv/core/Crc32.h"
@@ -262,5 +263,37 @@ TEST_CASE("Corrupt, truncated and wrong-version tiles are rejected with a specif
     const std::uint32_t crc = crc32(std::span(bad).subspan(16));
     for (std::size_t i = 0; i < 4; ++i) bad[12 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
     CHECK(messageFor(bad).find("triangle index 9 beyond its part's 3 vertices") != std::string::npos);
+  }
+}
+
+TEST_CASE("Values outside their ranges are refused, NaN included", "[format][tile]") {
+  struct Case {
+    const char* what;
+    void (*change)(CityTile&);
+    const char* message;
+  };
+  const Case cases[] = {
+      {"denormal extent", [](CityTile& t) { t.extent = 1.0e-38f; }, "header at byte 40: extent"},
+      {"huge extent", [](CityTile& t) { t.extent = 1.0e9f; }, "header at byte 40: extent"},
+      {"origin far away", [](CityTile& t) { t.originX = 2.0e7; }, "header at byte 24: invalid origin"},
+      {"NaN roof height", [](CityTile& t) { t.parts[0].roofHeightM = std::numeric_limits<float>::quiet_NaN(); },
+       "section PART near byte"},
+      {"negative roof height", [](CityTile& t) { t.parts[0].roofHeightM = -1.0f; }, "invalid part heights"},
+      {"NaN building height",
+       [](CityTile& t) { t.buildings[0].attributes.heightM = std::numeric_limits<float>::quiet_NaN(); },
+       "invalid building"},
+      {"building above 10 km", [](CityTile& t) { t.buildings[0].attributes.heightM = 20000.0f; }, "invalid building"},
+      {"negative footprint", [](CityTile& t) { t.buildings[0].attributes.footprintAreaM2 = -1.0f; },
+       "invalid building"},
+  };
+  for (const Case& c : cases) {
+    SECTION(c.what) {
+      CityTile t = tinyTile();
+      c.change(t);
+      const auto r = decodeCityTile(encodeCityTile(t), "tiles/0-0-0.qvt");
+      REQUIRE_FALSE(r.ok());
+      CHECK(r.error().rfind("tiles/0-0-0.qvt: ", 0) == 0);
+      CHECK(r.error().find(c.message) != std::string::npos);
+    }
   }
 }

@@ -18,6 +18,8 @@ constexpr std::size_t kSectionEntrySize = 12;
 constexpr std::size_t kBuildingRecordSize = 40;
 constexpr std::size_t kPartRecordSize = 20;
 constexpr std::uint16_t kFlagCoarse = 1;
+constexpr float kMinExtentM = 1.0e-6f;
+constexpr float kMaxExtentM = 1.0e8f;
 constexpr std::uint16_t kFlagHeightTagged = 1;
 constexpr std::uint16_t kFlagStoreysTagged = 2;
 
@@ -204,9 +206,12 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
                   crc);
     return error(buffer);
   }
-  if (!std::isfinite(tile.originX) || !std::isfinite(tile.originY) || !std::isfinite(tile.extent) ||
-      !(tile.extent > 0.0f) || std::abs(tile.originX) > 1e7 || std::abs(tile.originY) > 1e7) {
-    return error("header at byte 24: invalid origin or extent");
+  if (!(std::abs(tile.originX) <= 1e7) || !(std::abs(tile.originY) <= 1e7)) {
+    return error("header at byte 24: invalid origin");
+  }
+  // A micrometre at least: below, extent / 65535 is a denormal float and vertices lose precision.
+  if (!(tile.extent >= kMinExtentM && tile.extent <= kMaxExtentM)) {
+    return error("header at byte 40: extent " + std::to_string(tile.extent) + " m is outside [1e-6, 1e8] m");
   }
   if (buildingCount > limits.maxBuildings) {
     return error("header at byte 16: " + std::to_string(buildingCount) + " buildings exceeds the limit of " +
@@ -387,8 +392,10 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
     if (building.partCount == 0 || partCursor > partCount) {
       return error("section BLDG near byte " + std::to_string(b.offset()) + ": building parts exceed the PART section");
     }
-    if (!std::isfinite(a.heightM) || !std::isfinite(a.minHeightM) || a.heightM < a.minHeightM || a.storeys == 0 ||
-        !std::isfinite(a.centroidX) || !std::isfinite(a.centroidY) || !std::isfinite(a.footprintAreaM2)) {
+    // The same height bounds as the parts; every test is written so that NaN fails it.
+    if (!(a.minHeightM >= -1000.0f && a.heightM >= a.minHeightM && a.heightM <= 10000.0f) || a.storeys == 0 ||
+        !(std::abs(a.centroidX) <= 1.0e7) || !(std::abs(a.centroidY) <= 1.0e7) || !(a.footprintAreaM2 >= 0.0f) ||
+        !std::isfinite(a.footprintAreaM2)) {
       return error("section BLDG near byte " + std::to_string(b.offset()) + ": invalid building values");
     }
     for (std::string* str : {&a.id, &a.name, &a.use, &a.address, &a.material, &a.structure, &a.amenity}) {

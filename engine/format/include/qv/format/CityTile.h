@@ -82,7 +82,8 @@ struct CityTile {
 };
 
 /// Serializes a tile. Vertices outside [0, extent] are clamped; the caller chooses origin and
-/// extent to cover its buildings (quantization step = extent / 65535).
+/// extent to cover its buildings (quantization step = extent / 65535). The decoder accepts
+/// |origin| <= 1e7 m and extent in [1e-6, 1e8] m, part and building heights in [-1000, 10000] m.
 std::vector<std::uint8_t> encodeCityTile(const CityTile& tile);
 
 /// Parses and validates a tile. `name` (a file name or URL) prefixes every error message, which
