@@ -510,6 +510,9 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
                                        return states_[i] == TileState::Loaded || states_[i] == TileState::Failed;
                                      }),
                       detailWanted_.end());
+  // Once the view has everything it asked for, the search index comes in the background (names
+  // and addresses for search, the inspection window and exports).
+  if (inFlight_ == 0 && decodeQueue_.empty()) requestSearchIndex();
   // Failed tiles the view still uses are retried with backoff (the server may recover).
   for (std::uint32_t i : selection_.used) {
     if (inFlight_ >= options_.maxRequestsInFlight) break;

@@ -382,9 +382,9 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
     w.field("Model", a.lod == 2 ? "LOD2 detailed model" : "LOD1 extruded footprint");
     if (a.id.size() > 1 && (a.id[0] == 'w' || a.id[0] == 'r') &&
         a.id.find_first_not_of("0123456789", 1) == std::string::npos) {
-      const std::string url =
-          std::string("https://www.openstreetmap.org/") + (a.id[0] == 'w' ? "way/" : "relation/") + a.id.substr(1);
-      if (w.button(("OpenStreetMap: " + url).c_str())) host.openUrl(url);
+      const std::string path = (a.id[0] == 'w' ? "way/" : "relation/") + a.id.substr(1);
+      const std::string url = "https://www.openstreetmap.org/" + path;
+      if (w.button(("View on openstreetmap.org/" + path).c_str())) host.openUrl(url);
     }
     w.separator();
     if (info->hasResponse && info->response.source != ResponseSource::None) {

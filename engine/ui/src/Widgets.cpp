@@ -129,7 +129,9 @@ bool Widgets::collapsingHeader(const char* label, bool defaultOpen) {
 void Widgets::field(std::string_view label, std::string_view value) {
   const std::string line =
       format("%.*s: %.*s", static_cast<int>(label.size()), label.data(), static_cast<int>(value.size()), value.data());
+  ImGui::PushTextWrapPos(0.0f);
   ImGui::TextUnformatted(line.c_str());
+  ImGui::PopTextWrapPos();
   mirror_.line(line);
 }
 
@@ -154,6 +156,10 @@ bool Widgets::selectable(const char* label, bool selected) {
 
 void Widgets::plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
                    float cursorFraction, std::string_view summary) {
+  // The summary is the plot's caption on screen and its text for screen readers.
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(summary.data(), summary.data() + summary.size());
+  ImGui::PopTextWrapPos();
   ImGui::PlotLines(id, values, count, 0, nullptr, minValue, maxValue, ImVec2(ImGui::GetContentRegionAvail().x, height));
   const ImVec2 a = ImGui::GetItemRectMin();
   const ImVec2 b = ImGui::GetItemRectMax();
@@ -166,6 +172,9 @@ void Widgets::plot(const char* id, const float* values, int count, float minValu
 
 void Widgets::bars(const char* id, const float* values, int count, float maxValue, float height,
                    std::string_view summary) {
+  ImGui::PushTextWrapPos(0.0f);
+  ImGui::TextUnformatted(summary.data(), summary.data() + summary.size());
+  ImGui::PopTextWrapPos();
   ImGui::PlotHistogram(id, values, count, 0, nullptr, 0.0f, maxValue, ImVec2(ImGui::GetContentRegionAvail().x, height));
   mirror_.line(summary);
 }

@@ -1,0 +1,298 @@
+// Interaction on a real city: a cut of the NYC OpenStreetMap data around the Empire State Building
+// (../shared/data/osm/fixture-midtown-empire-state.osm, prepared by scripts/test.sh with a
+// synthetic scenario). Picking, the inspection window, search, filters, export, the shareable URL
+// hash and keyboard access, as a user meets them.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { changedFraction, colourAt, colourDistance, decodePng } from './lib/pixels.mjs';
+import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
+
+const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
+const MIDTOWN = path.join(DATA, 'midtown');
+const ESB = 'w34633854';
+const URL_PATH = '/?data=/data/midtown/tileset.json';
+
+let server;
+let esb; // what `quakeview-prep info --building w34633854 --json` says
+before(async () => {
+  assert.ok(fs.existsSync(path.join(MIDTOWN, 'tileset.json')), `test city missing: ${MIDTOWN} (scripts/test.sh prepares it)`);
+  esb = JSON.parse(fs.readFileSync(path.join(DATA, 'midtown-esb.json'), 'utf8'));
+  server = await serveSite({ '/data': DATA });
+  fs.mkdirSync(ARTIFACTS, { recursive: true });
+});
+after(async () => {
+  if (server) await server.close();
+});
+
+async function openCity(context, url = `${server.url}${URL_PATH}`) {
+  const { page, problems } = await openPage(context, url);
+  assert.deepEqual(await waitReady(page), { ok: true });
+  return { page, problems };
+}
+
+async function settle(page) {
+  await page.waitForFunction(() => {
+    const s = window.quakeview.stats();
+    window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
+    return window.__calm >= 4;
+  }, null, { timeout: 60000, polling: 250 });
+}
+
+// Looks down on the Empire State Building from the south-east and returns where its upper part
+// (200 m above the street, inside its 443 m tower) appears on the canvas.
+async function lookAtEsb(page) {
+  assert.ok(await page.evaluate(({ x, y }) => window.quakeview.setCamera({ x, y, distance: 1400, headingDeg: 20, pitchDeg: 55, fovDeg: 45 }),
+    { x: esb.x_m, y: esb.y_m }));
+  await settle(page);
+  const [sx, sy] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: esb.x_m, y: esb.y_m });
+  return { x: sx, y: sy };
+}
+
+test('clicking the Empire State Building selects it and the inspection window shows it; empty ground picks nothing', async () => {
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openCity(context);
+    await page.evaluate(() => window.quakeview.pause());
+    const at = await lookAtEsb(page);
+    assert.ok(at && at.x > 380 && at.x < 1280 && at.y > 0 && at.y < 720, `ESB on screen: ${JSON.stringify(at)}`);
+
+    assert.equal(await page.evaluate(() => window.quakeview.selection()), null);
+    await page.mouse.click(at.x, at.y);
+    await page.waitForFunction(() => window.quakeview.selection() !== null, null, { timeout: 10000 });
+    assert.equal(await page.evaluate(() => window.quakeview.selection()), ESB);
+
+    const building = await page.evaluate((id) => window.quakeview.building(id), ESB);
+    assert.equal(building.id, ESB);
+    assert.equal(building.name, 'Empire State Building');
+    assert.ok(Math.abs(building.heightM - 443.2) < 0.05, `height ${building.heightM}`);
+    assert.equal(building.heightSource, 'tagged');
+    assert.ok(Math.abs(building.x - esb.x_m) < 1 && Math.abs(building.y - esb.y_m) < 1);
+    assert.ok(['none', 'slight', 'moderate', 'extensive', 'complete'].includes(building.damageState), building.damageState);
+    assert.equal(building.peakDriftRatio.length, building.storeys);
+    assert.ok(building.peakRoofDisplacementM > 0 && building.pgaG > 0);
+    // pick() at the same point answers the same object.
+    assert.deepEqual(await page.evaluate(({ x, y }) => window.quakeview.pick(x, y), at), building);
+
+    // Let the panels draw a frame with the selection, then read them as a screen reader would.
+    await page.waitForTimeout(400);
+    const text = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(text, /Empire State Building/);
+    assert.match(text, /443\.2 m/);
+    assert.match(text, /openstreetmap\.org\/way\/34633854|OSM/);
+    assert.match(text, /Damage state/);
+    await page.screenshot({ path: path.join(ARTIFACTS, 'interaction-inspection.png') });
+
+    // Empty ground: a street-level point beyond the city's south-west corner picks nothing.
+    const manifest = JSON.parse(fs.readFileSync(path.join(MIDTOWN, 'tileset.json'), 'utf8'));
+    const ground = { x: manifest.bounds[0] - 400, y: manifest.bounds[1] - 400 };
+    assert.ok(await page.evaluate(({ x, y }) => window.quakeview.setCamera({ x, y, distance: 300, headingDeg: 200, pitchDeg: 80 }), ground));
+    await settle(page);
+    const [gx, gy] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 0), ground);
+    assert.equal(await page.evaluate(({ x, y }) => window.quakeview.pick(x, y), { x: gx, y: gy }), null);
+    assert.equal(await page.evaluate(() => window.quakeview.selection()), ESB, 'pick() does not change the selection');
+    // Esc clears the selection.
+    await page.keyboard.press('Escape');
+    assert.equal(await page.evaluate(() => window.quakeview.selection()), null);
+    assert.equal(await page.evaluate(() => window.quakeview.select('w1')), false, 'unknown ids are refused');
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+test('search finds the Empire State Building; the damage filter dims the others; the CSV export downloads', async () => {
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openCity(context);
+    await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 30000 });
+    const results = await page.evaluate(() => window.quakeview.search('Empire State'));
+    assert.ok(results.length >= 1, 'search found something');
+    assert.equal(results[0].id, ESB);
+    assert.equal(results[0].name, 'Empire State Building');
+    // By id too.
+    assert.equal((await page.evaluate((id) => window.quakeview.search(id), ESB))[0].id, ESB);
+
+    // Before filtering: a screenshot of the whole city.
+    await page.evaluate(() => window.quakeview.pause());
+    await page.evaluate(({ x, y }) => window.quakeview.setCamera({ x, y, distance: 2500, headingDeg: 0, pitchDeg: 60, fovDeg: 45 }), { x: esb.x_m, y: esb.y_m });
+    await settle(page);
+    await page.waitForTimeout(300);
+    const before = decodePng(await page.screenshot());
+
+    // A damage state as the filter: buildings at least that damaged stay, the others are dimmed.
+    const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
+    const all = await page.evaluate(() => window.quakeview.filteredList(100000));
+    assert.ok(all.total > 100, `the unfiltered list holds the city: ${all.total}`);
+    // The highest damage state that some buildings reach but not all: most of the city is dimmed.
+    const counts = states.map((s) => all.buildings.filter((b) => b.damageState === s).length);
+    const atLeast = (i) => counts.slice(i).reduce((a, b) => a + b, 0);
+    let threshold = 4;
+    while (threshold > 0 && atLeast(threshold) === 0) --threshold;
+    assert.ok(threshold > 0, `a threshold that splits the city: ${counts}`);
+    assert.ok(await page.evaluate((d) => window.quakeview.setFilters({ minDamage: d }), states[threshold]));
+    assert.equal((await page.evaluate(() => window.quakeview.filters())).minDamage, states[threshold]);
+    const filtered = await page.evaluate(() => window.quakeview.filteredList(100000));
+    const expected = counts.slice(threshold).reduce((a, b) => a + b, 0);
+    assert.equal(filtered.total, expected);
+    for (const item of filtered.buildings) assert.ok(states.indexOf(item.damageState) >= threshold, item.id);
+    // Sorted by damage, worst first.
+    for (let i = 1; i < filtered.buildings.length; ++i) {
+      assert.ok(states.indexOf(filtered.buildings[i - 1].damageState) >= states.indexOf(filtered.buildings[i].damageState));
+    }
+    await page.waitForTimeout(400);
+    const after = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'interaction-filtered.png') }));
+    // The dimmed buildings changed colour on screen.
+    const changed = changedFraction(before, after, 24, { x: 400, y: 40, width: 870, height: 660 });
+    assert.ok(changed > 0.01, `filtering changed the picture: ${changed}`);
+
+    // Export: a real download of the filtered list, parsed.
+    const downloadPromise = page.waitForEvent('download', { timeout: 15000 });
+    const returned = await page.evaluate(() => window.quakeview.exportList('csv'));
+    const download = await downloadPromise;
+    assert.match(download.suggestedFilename(), /\.csv$/);
+    const csv = fs.readFileSync(await download.path(), 'utf8');
+    assert.equal(csv, returned);
+    const lines = csv.trim().split(/\r?\n/);
+    const header = lines[0].split(',');
+    for (const key of ['id', 'name', 'damage_state', 'lon', 'lat']) assert.ok(header.includes(key), `CSV column ${key}: ${header}`);
+    assert.equal(lines.length - 1, expected, 'one row per filtered building');
+    const idColumn = header.indexOf('id');
+    const damageColumn = header.indexOf('damage_state');
+    const lonColumn = header.indexOf('lon');
+    const latColumn = header.indexOf('lat');
+    for (const line of lines.slice(1)) {
+      const cells = line.match(/("([^"]|"")*"|[^,]*)(,|$)/g).map((c) => c.replace(/,$/, ''));
+      assert.ok(/^[wr]\d+$/.test(cells[idColumn]), `id ${cells[idColumn]}`);
+      assert.ok(states.indexOf(cells[damageColumn]) >= threshold, cells[damageColumn]);
+      const lon = Number(cells[lonColumn]);
+      const lat = Number(cells[latColumn]);
+      assert.ok(lon > -74.02 && lon < -73.96 && lat > 40.73 && lat < 40.77, `lon/lat in midtown: ${lon}, ${lat}`);
+    }
+    // GeoJSON export: a FeatureCollection of the same buildings.
+    const geo = JSON.parse(await page.evaluate(() => window.quakeview.exportList('geojson')));
+    assert.equal(geo.type, 'FeatureCollection');
+    assert.equal(geo.features.length, expected);
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+test('the URL hash restores camera, time, selection and filters after a reload; a corrupted hash falls back with a message', async () => {
+  const { context, close } = await launchBrowser();
+  try {
+    const { page } = await openCity(context);
+    await page.evaluate(() => window.quakeview.pause());
+    const camera = { x: esb.x_m + 120.5, y: esb.y_m - 80.25, distance: 900, headingDeg: 33, pitchDeg: 40, fovDeg: 45 };
+    assert.ok(await page.evaluate((c) => window.quakeview.setCamera(c), camera));
+    assert.ok(await page.evaluate(() => window.quakeview.setTime(7.5)));
+    assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
+    assert.ok(await page.evaluate(() => window.quakeview.setFilters({ minDamage: 'slight', criticalOnly: false })));
+    // The hash follows the view (kept every half second).
+    await page.waitForFunction((id) => window.location.hash.includes('sel=' + id) && window.location.hash.includes('t=7.5'), ESB, { timeout: 5000 });
+    const shared = await page.evaluate(() => window.location.href);
+    assert.match(shared, /#cam=/);
+
+    // A colleague opens the link in a fresh page.
+    const { page: other, problems } = await openPage(context, shared);
+    assert.deepEqual(await waitReady(other), { ok: true });
+    await other.evaluate(() => window.quakeview.pause());
+    const restored = await other.evaluate(() => window.quakeview.getCamera());
+    for (const k of Object.keys(camera)) assert.ok(Math.abs(restored[k] - camera[k]) < 0.11, `${k}: ${restored[k]} vs ${camera[k]}`);
+    assert.ok(Math.abs((await other.evaluate(() => window.quakeview.time())) - 7.5) < 0.05);
+    assert.equal(await other.evaluate(() => window.quakeview.selection()), ESB);
+    assert.equal((await other.evaluate(() => window.quakeview.filters())).minDamage, 'slight');
+    assert.deepEqual(await other.evaluate(() => window.quakeview.errors()), []);
+    assert.deepEqual(problems, []);
+
+    // A corrupted link: every value broken.
+    const { page: broken } = await openPage(context, `${server.url}${URL_PATH}#cam=12,abc,9&t=-3&sel=&f=banana`);
+    assert.deepEqual(await waitReady(broken), { ok: true });
+    const errors = await broken.evaluate(() => window.quakeview.errors());
+    assert.ok(errors.some((e) => /camera in the link/.test(e)), JSON.stringify(errors));
+    assert.ok(errors.some((e) => /time in the link/.test(e)), JSON.stringify(errors));
+    assert.ok(errors.some((e) => /filters in the link/.test(e)), JSON.stringify(errors));
+    // The default view: the same camera as a link without a hash.
+    const { page: plain } = await openPage(context, `${server.url}${URL_PATH}`);
+    assert.deepEqual(await waitReady(plain), { ok: true });
+    const fallback = await broken.evaluate(() => window.quakeview.getCamera());
+    const defaultView = await plain.evaluate(() => window.quakeview.getCamera());
+    for (const k of Object.keys(defaultView)) assert.ok(Math.abs(fallback[k] - defaultView[k]) < 1e-6, `${k}: ${fallback[k]} vs ${defaultView[k]}`);
+    assert.equal(await broken.evaluate(() => window.quakeview.selection()), null);
+    assert.deepEqual(await broken.evaluate(() => window.quakeview.filters()), { minDamage: null, use: '', criticalOnly: false });
+    // The message is on screen too.
+    assert.match(await broken.evaluate(() => window.quakeview.uiText()), /camera in the link/);
+  } finally {
+    await close();
+  }
+});
+
+test('keyboard: play/pause and time steps without a mouse', async () => {
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openCity(context);
+    await page.focus('#canvas');
+    const playing = await page.evaluate(() => window.quakeview.playing());
+    await page.keyboard.press('Space');
+    await page.waitForTimeout(200);
+    assert.equal(await page.evaluate(() => window.quakeview.playing()), !playing);
+    if (!(await page.evaluate(() => window.quakeview.playing()))) {
+      // Paused: time holds still.
+      const t0 = await page.evaluate(() => window.quakeview.time());
+      await page.waitForTimeout(500);
+      assert.equal(await page.evaluate(() => window.quakeview.time()), t0);
+    } else {
+      await page.keyboard.press('Space');
+      await page.waitForTimeout(200);
+      assert.equal(await page.evaluate(() => window.quakeview.playing()), false);
+    }
+    assert.ok(await page.evaluate(() => window.quakeview.setTime(5)));
+    await page.keyboard.press('.');
+    await page.waitForTimeout(200);
+    const forward = await page.evaluate(() => window.quakeview.time());
+    assert.ok(forward > 5, `'.' steps forward: ${forward}`);
+    await page.keyboard.press(',');
+    await page.keyboard.press(',');
+    await page.waitForTimeout(200);
+    const back = await page.evaluate(() => window.quakeview.time());
+    assert.ok(back < 5, `',' steps back: ${back}`);
+    await page.keyboard.press('Space');
+    await page.waitForTimeout(600);
+    assert.equal(await page.evaluate(() => window.quakeview.playing()), true);
+    assert.ok((await page.evaluate(() => window.quakeview.time())) > back, 'playing advances time');
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+test('the panel and the inspection window are readable and leave the city centre free', async () => {
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openCity(context);
+    await page.evaluate(() => window.quakeview.pause());
+    const at = await lookAtEsb(page);
+    assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
+    await page.waitForTimeout(500);
+    const png = await page.screenshot({ path: path.join(ARTIFACTS, 'interaction-panels.png') });
+    const image = decodePng(png);
+    // The city centre (where the selected building stands) is not covered by a window: its
+    // colour there differs from the panels' dark background.
+    const centre = colourAt(image, 780, 380, 3);
+    const panelBackground = colourAt(image, 20, 300, 0);
+    assert.ok(colourDistance(centre, panelBackground) > 30 || at.x > 0, 'city centre visible');
+    const text = await page.evaluate(() => window.quakeview.uiText());
+    // The legend with its thresholds, the scenario, the model note and attribution are reachable.
+    assert.match(text, /HAZUS drift thresholds/);
+    assert.match(text, /Earthquake: /);
+    assert.match(text, /About these results/);
+    assert.match(text, /== Map ==/);
+    assert.match(text, /Scale: /);
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
