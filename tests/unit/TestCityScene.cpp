@@ -259,3 +259,60 @@ TEST_CASE("A manifest that cannot be loaded is an error, not a hang", "[scene][c
   REQUIRE(other.errors().size() == 1);
   CHECK(other.errors()[0].find("not valid JSON") != std::string::npos);
 }
+
+TEST_CASE("Picking finds the building under the cursor; hidden kinds and filters show in the GPU flags",
+          "[scene][city][pick]") {
+  MiniCity city;
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.setCamera(CameraState{0.0, 0.0, 600.0, 0.0, 70.0, 45.0});
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  std::size_t total = 0;
+  const auto list = viewer.city()->filteredList(1000, &total);
+  REQUIRE(total == 64);
+  const BuildingListEntry& target = list.front();
+  const auto info = viewer.building(target.id);
+  REQUIRE(info.has_value());
+  // A point inside its roof, as the user sees it.
+  const auto screen = viewer.worldToScreen(target.x, target.y, info->attributes.heightM * 0.99);
+  REQUIRE(screen.has_value());
+  const auto picked = viewer.pick(screen->x, screen->y);
+  REQUIRE(picked.has_value());
+  CHECK(picked->attributes.id == target.id);
+  // The sky picks nothing.
+  CHECK_FALSE(viewer.pick(640.0, 2.0).has_value());
+
+  // LOD1 hidden: the building is neither drawn (hidden flag) nor pickable.
+  viewer.city()->setLodVisibility(false, true);
+  runFrames(viewer, 2);
+  CHECK_FALSE(viewer.pick(screen->x, screen->y).has_value());
+  for (const auto& [slot, row] : device.buildings) CHECK((static_cast<unsigned>(row.flags) & kFlagHidden) != 0);
+  viewer.city()->setLodVisibility(true, true);
+  runFrames(viewer, 2);
+  CHECK(viewer.pick(screen->x, screen->y).has_value());
+
+  // A damage filter dims exactly the buildings below it.
+  BuildingFilters filters;
+  filters.minDamage = static_cast<int>(list.front().damage);
+  viewer.city()->setFilters(filters);
+  runFrames(viewer, 2);
+  int dimmed = 0;
+  int kept = 0;
+  for (const auto& [slot, row] : device.buildings) {
+    const bool isDimmed = (static_cast<unsigned>(row.flags) & kFlagDimmed) != 0;
+    CHECK(isDimmed == (row.damageState < static_cast<float>(filters.minDamage)));
+    (isDimmed ? dimmed : kept) += 1;
+  }
+  CHECK(kept > 0);
+  std::size_t passing = 0;
+  (void)viewer.city()->filteredList(1000, &passing);
+  CHECK(passing > 0);
+  CHECK(passing < 64 + 1);
+}

@@ -747,6 +747,7 @@ void CityScene::applyFlags(std::uint32_t node) {
     const BuildingResponse* r = t.summary && b < t.summary->buildings.size() ? &t.summary->buildings[b] : nullptr;
     setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
     setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r));
+    setFlag(row, kFlagHidden, a.lod == 2 ? !showLod2_ : !showLod1_);
   }
   writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
 }
@@ -755,6 +756,13 @@ void CityScene::applyFlagsEverywhere() {
   for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
     if (tiles_[i]->loaded) applyFlags(i);
   }
+}
+
+void CityScene::setLodVisibility(bool lod1, bool lod2) {
+  if (lod1 == showLod1_ && lod2 == showLod2_) return;
+  showLod1_ = lod1;
+  showLod2_ = lod2;
+  applyFlagsEverywhere();
 }
 
 void CityScene::setFilters(const BuildingFilters& filters) {
@@ -867,6 +875,7 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
       if (entry > best) break;  // boxes come nearest first: nothing further can be nearer
       const std::uint32_t b = tile.tree.order()[position];
       const TileBuilding& tb = tile.data.buildings[b];
+      if (tb.attributes.lod == 2 ? !showLod2_ : !showLod1_) continue;  // hidden: not pickable
       for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
         const TilePart& part = tile.data.parts[p];
         PrismView prism;

@@ -292,6 +292,11 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       if (w.checkbox("Animate buildings near the camera (off: static, peak colours)", &animate)) {
         o.animationRadiusM = animate ? 1000.0f : 0.0f;
       }
+      bool lod1 = city->showLod1();
+      bool lod2 = city->showLod2();
+      const bool a = w.checkbox("Show LOD1 buildings (extruded footprints)", &lod1);
+      const bool b = w.checkbox("Show LOD2 buildings (detailed models)", &lod2);
+      if (a || b) city->setLodVisibility(lod1, lod2);
     }
     bool feet = viewer.showFeet();
     if (w.radio("Metres##units", !feet)) viewer.setShowFeet(false);

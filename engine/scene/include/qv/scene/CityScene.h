@@ -130,6 +130,10 @@ class CityScene {
   // Filters, search and lists (city-wide: the root tile holds every building).
   void setFilters(const BuildingFilters& filters);
   [[nodiscard]] const BuildingFilters& filters() const { return filters_; }
+  /// Which kinds of building are drawn (and pickable): LOD1 extrusions, LOD2 detailed models.
+  void setLodVisibility(bool lod1, bool lod2);
+  [[nodiscard]] bool showLod1() const { return showLod1_; }
+  [[nodiscard]] bool showLod2() const { return showLod2_; }
   /// Buildings whose id, name or address contain every word of `query` (search index loaded on
   /// first use: until it arrives only ids match). At most `limit` results, root-tile order.
   [[nodiscard]] std::vector<BuildingListEntry> search(std::string_view query, std::size_t limit);
@@ -195,6 +199,8 @@ class CityScene {
   std::string selected_;
   std::vector<std::uint32_t> detailWanted_;  // leaves to load for the selection
   BuildingFilters filters_;
+  bool showLod1_ = true;
+  bool showLod2_ = true;
   TileState searchState_ = TileState::Unloaded;
   std::vector<SearchEntry> searchIndex_;
   std::array<std::uint64_t, 6> damageInView_{};
