@@ -17,6 +17,8 @@ seconds=${1:-20}
 jobs=${QUAKEVIEW_JOBS:-2}
 fuzz_jobs=${QUAKEVIEW_FUZZ_JOBS:-1}
 build="$root/build/fuzz"
+# Stack traces for UBSan reports too (ASan prints them by default).
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
 
 case "$seconds" in
   '' | *[!0-9]*) echo "usage: scripts/fuzz.sh [SECONDS_PER_TARGET]" >&2; exit 2 ;;
@@ -53,10 +55,12 @@ for target in $targets; do
   rm -rf "$crashes" && mkdir -p "$corpus" "$crashes" "$(dirname "$log")"
   echo "==== $target: ${seconds}s ===="
   # The working corpus keeps what earlier runs found; the seeds are read alongside it.
-  fork_args=()
-  [ "$fuzz_jobs" -gt 1 ] && fork_args=(-fork="$fuzz_jobs" -ignore_crashes=0)
+  extra_args=()
+  [ "$fuzz_jobs" -gt 1 ] && extra_args=(-fork="$fuzz_jobs" -ignore_crashes=0)
+  dict="$root/tests/fuzz/dicts/$what.dict"
+  [ -f "$dict" ] && extra_args+=(-dict="$dict")
   "$exe" "$corpus" "$build/seeds/$what" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-    -artifact_prefix="$crashes/" -print_final_stats=1 "${fork_args[@]}" >"$log" 2>&1
+    -artifact_prefix="$crashes/" -print_final_stats=1 "${extra_args[@]}" >"$log" 2>&1
   rc=$?
   runs=$(sed -nE 's/^stat::number_of_executed_units: *([0-9]+).*/\1/p' "$log" | tail -n 1)
   [ -z "$runs" ] && runs=$(grep -oE '#[0-9]+' "$log" | tail -n 1 | tr -d '#')

@@ -56,3 +56,17 @@ TEST_CASE("Fuzzer-found GeoJSON inputs are read or rejected cleanly", "[ingest][
     }
   }
 }
+
+TEST_CASE("GeoJSON that simdjson refuses before iterating is reported with its position", "[ingest][geojson][fuzz]") {
+  // A UTF-8-encoded surrogate (ED A0 80) in a name: well formed to a lenient UTF-8 check, refused
+  // by simdjson's. The message must give the byte's line and column.
+  const TempDir dir;
+  const std::string path = dir.write("surrogate.geojson",
+                                     "{\"type\": \"FeatureCollection\", \"features\": [\n"
+                                     "  {\"name\": \"Tower \xED\xA0\x80\"}\n]}\n");
+  IngestOptions options;
+  options.threads = 1;
+  const auto city = readCity({path}, options);
+  REQUIRE_FALSE(city.ok());
+  CHECK(city.error() == path + ":2:19: malformed JSON: invalid UTF-8");
+}

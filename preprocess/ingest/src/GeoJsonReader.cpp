@@ -215,6 +215,13 @@ class JsonSyntaxChecker {
       for (std::size_t k = 1; k <= extra; ++k) {
         if ((static_cast<unsigned char>(s_[i + k]) & 0xC0) != 0x80) return i;
       }
+      // Unicode's table of well-formed sequences (as simdjson checks): no overlong forms, no
+      // surrogates (U+D800..DFFF), nothing above U+10FFFF.
+      const auto second = static_cast<unsigned char>(s_[i + 1]);
+      if ((c == 0xE0 && second < 0xA0) || (c == 0xED && second > 0x9F) || (c == 0xF0 && second < 0x90) ||
+          (c == 0xF4 && second > 0x8F)) {
+        return i;
+      }
       i += extra + 1;
     }
     return std::nullopt;
@@ -247,6 +254,7 @@ class GeoJsonReader {
     }
     simdjson::error_code e = parser_.iterate(json_).get(doc_);
     if (e != simdjson::SUCCESS) return jsonError(e, "not valid JSON");
+    iterating_ = true;
     od::json_type rootType{};
     if ((e = doc_.type().get(rootType)) != simdjson::SUCCESS) return jsonError(e, "not valid JSON");
     if (rootType != od::json_type::object) {
@@ -312,6 +320,9 @@ class GeoJsonReader {
   }
 
   std::size_t currentOffset() {
+    // Before iterate() succeeded the document has no token buffer: current_location() would read
+    // through a null pointer.
+    if (!iterating_) return 0;
     const char* location = nullptr;
     if (doc_.current_location().get(location) != simdjson::SUCCESS || location == nullptr) return json_.size();
     return static_cast<std::size_t>(location - json_.data());
@@ -586,6 +597,7 @@ class GeoJsonReader {
   simdjson::padded_string json_;
   od::parser parser_;
   od::document doc_;
+  bool iterating_ = false;  ///< doc_ comes from a successful iterate()
 };
 
 }  // namespace

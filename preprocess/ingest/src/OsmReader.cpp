@@ -220,6 +220,11 @@ class OsmReader {
     }
     const std::string id = "w" + std::to_string(way.id());
     if (missing_.check(way, id)) return;
+    // libosmium's is_closed() reads the last node: undefined for a way without nodes.
+    if (way.nodes().empty()) {
+      city_.drops.add("too-few-points");
+      return;
+    }
     if (!way.is_closed()) {
       city_.drops.add("not-closed");
       return;
@@ -303,7 +308,9 @@ class OsmReader {
         missingNodes = missing_.check(*way, id) || missingNodes;
         if (std::strcmp(member.role(), "inner") != 0) {
           ++outers;
-          if (way->is_closed() && tagSet(way->tags().get_value_by_key("building"))) ++outersThatAreBuildings;
+          if (!way->nodes().empty() && way->is_closed() && tagSet(way->tags().get_value_by_key("building"))) {
+            ++outersThatAreBuildings;
+          }
         }
       }
       if (missingNodes) continue;
