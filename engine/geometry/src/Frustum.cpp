@@ -34,4 +34,21 @@ Containment Frustum::classify(const Box& box) const {
   return inside ? Containment::Inside : Containment::Intersects;
 }
 
+Containment Frustum::classify(const Box& box, unsigned& mask) const {
+  for (unsigned i = 0; i < 6; ++i) {
+    const unsigned bit = 1u << i;
+    if ((mask & bit) == 0) continue;
+    const glm::vec4& p = planes_[i];
+    const float px = p.x >= 0.0f ? box.maxX : box.minX;
+    const float py = p.y >= 0.0f ? box.maxY : box.minY;
+    const float pz = p.z >= 0.0f ? box.maxZ : box.minZ;
+    if (p.x * px + p.y * py + p.z * pz + p.w < 0.0f) return Containment::Outside;
+    const float nx = p.x >= 0.0f ? box.minX : box.maxX;
+    const float ny = p.y >= 0.0f ? box.minY : box.maxY;
+    const float nz = p.z >= 0.0f ? box.minZ : box.maxZ;
+    if (p.x * nx + p.y * ny + p.z * nz + p.w >= 0.0f) mask &= ~bit;
+  }
+  return mask == 0 ? Containment::Inside : Containment::Intersects;
+}
+
 }  // namespace qv

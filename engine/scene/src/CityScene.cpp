@@ -22,6 +22,7 @@ double msSince(Clock::time_point start) {
 // Rows of the GPU tables: capacity of the index spaces (the device grows textures on demand).
 constexpr std::uint32_t kMaxBuildingSlots = 1u << 21;
 constexpr std::uint32_t kMaxFloorRows = 1u << 22;
+constexpr std::uint32_t kNotAnimated = UINT32_MAX;
 
 std::string hex32(std::uint32_t v) {
   char buffer[16];
@@ -32,10 +33,6 @@ std::string hex32(std::uint32_t v) {
 // HTTP statuses worth retrying soon: the server or the network may recover.
 bool transientStatus(int status) {
   return status == 0 || status == 408 || status == 429 || status >= 500;
-}
-
-std::uint64_t key(std::uint32_t node, std::uint32_t index) {
-  return (static_cast<std::uint64_t>(node) << 32) | index;
 }
 
 }  // namespace
@@ -70,6 +67,8 @@ struct CityScene::TileRuntime {
   std::unique_ptr<ResponseHistoryTile> history;
   std::uint64_t historyBytes = 0;
   std::uint64_t historyUsed = 0;
+  /// Per building of the loaded tile: its index in animated_, or kNotAnimated.
+  std::vector<std::uint32_t> animatedIndex;
 };
 
 struct CityScene::Animated {
@@ -425,6 +424,15 @@ void CityScene::requestHistory(std::uint32_t node) {
       options_.requestTimeoutMs);
 }
 
+void CityScene::reindexAnimated() {
+  for (std::size_t k = 0; k < animated_.size(); ++k) {
+    TileRuntime& t = *tiles_[animated_[k]->ref.node];
+    if (animated_[k]->ref.index < t.animatedIndex.size()) {
+      t.animatedIndex[animated_[k]->ref.index] = static_cast<std::uint32_t>(k);
+    }
+  }
+}
+
 void CityScene::evict(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   if (t.loaded) {
@@ -436,6 +444,8 @@ void CityScene::evict(std::uint32_t node) {
       }
     }
     animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
+    t.animatedIndex.clear();
+    reindexAnimated();
     if (t.loaded->mesh) device_.destroyMesh(t.loaded->mesh);
     slots_->release(t.loaded->slotBase,
                     std::max<std::uint32_t>(1, static_cast<std::uint32_t>(t.loaded->positionOf.size())));
@@ -657,16 +667,17 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   }
 
   // Keep the floor rows of buildings that stay animated; release the rest; allocate the new.
-  std::unordered_map<std::uint64_t, std::size_t> current;
-  current.reserve(animated_.size());
-  for (std::size_t k = 0; k < animated_.size(); ++k) current[key(animated_[k]->ref.node, animated_[k]->ref.index)] = k;
+  // (Each tile maps its buildings to their entries in animated_: no hashing per frame.)
   for (const Candidate& c : candidates) {
-    const auto it = current.find(key(c.node, c.index));
-    if (it != current.end()) {
-      animated_[it->second]->frame = frame_;
+    TileRuntime& t = *tiles_[c.node];
+    const LoadedTile& tile = *t.loaded;
+    if (t.animatedIndex.size() != tile.data.buildings.size()) {
+      t.animatedIndex.assign(tile.data.buildings.size(), kNotAnimated);
+    }
+    if (const std::uint32_t k = t.animatedIndex[c.index]; k != kNotAnimated) {
+      animated_[k]->frame = frame_;
       continue;
     }
-    const LoadedTile& tile = *tiles_[c.node]->loaded;
     const std::uint32_t rows = tile.data.buildings[c.index].attributes.storeys + 1u;
     const auto base = floorSlots_->allocate(rows);
     if (!base) break;
@@ -678,18 +689,26 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     a->frame = frame_;
     buildingRows_[a->slot].floorBase = static_cast<float>(*base);
     writeBuildingRows(a->slot, 1);
+    t.animatedIndex[c.index] = static_cast<std::uint32_t>(animated_.size());
     animated_.push_back(std::move(a));
   }
+  bool released = false;
   for (auto& a : animated_) {
     if (a->frame == frame_) continue;
-    if (tiles_[a->ref.node]->loaded) {
+    TileRuntime& t = *tiles_[a->ref.node];
+    if (t.loaded) {
       buildingRows_[a->slot].floorBase = -1.0f;
       writeBuildingRows(a->slot, 1);
     }
+    if (a->ref.index < t.animatedIndex.size()) t.animatedIndex[a->ref.index] = kNotAnimated;
     floorSlots_->release(a->floorBase, a->rows);
     a.reset();
+    released = true;
   }
-  animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
+  if (released) {
+    animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
+    reindexAnimated();
+  }
   if (floorRows_.size() < floorSlots_->highWater()) floorRows_.resize(floorSlots_->highWater());
 
   // Every animated building's floors at this time.

@@ -111,7 +111,7 @@ void Viewer::frame(double dtSeconds) {
     const CameraState overview = city_->overviewCamera(camera_.fovDeg);
     controller_.setHome(overview);
     if (!cameraSetByUser_) camera_ = overview;
-    geo_ = GeoFrame(city_->tileset()->originLon, city_->tileset()->originLat);
+    if (const Tileset* tileset = city_->tileset()) geo_ = GeoFrame(tileset->originLon, tileset->originLat);
   }
   if (benchSeconds_ > 0.0 && benchResult_.empty()) {
     // The flight starts on the first frame after the initial view has loaded.

@@ -102,12 +102,16 @@ void BoxTree::emit(std::vector<IndexRange>& out, std::uint32_t begin, std::uint3
 
 void BoxTree::query(const Frustum& frustum, std::vector<IndexRange>& out) const {
   if (nodes_.empty()) return;
-  std::uint32_t stack[64];
+  // Each entry carries the planes its box still straddles: a plane a node lies wholly inside is
+  // not tested again below it.
+  std::pair<std::uint32_t, unsigned> stack[64];
   int top = 0;
-  stack[top++] = 0;
+  stack[top++] = {0, 0x3fu};
   while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    const Containment c = frustum.classify(node.box);
+    const auto [index, parentMask] = stack[--top];
+    const Node& node = nodes_[index];
+    unsigned mask = parentMask;
+    const Containment c = frustum.classify(node.box, mask);
     if (c == Containment::Outside) continue;
     if (c == Containment::Inside) {
       emit(out, node.begin, node.end, true);
@@ -115,14 +119,15 @@ void BoxTree::query(const Frustum& frustum, std::vector<IndexRange>& out) const 
     }
     if (node.left == 0) {
       for (std::uint32_t p = node.begin; p < node.end; ++p) {
-        const Containment pc = frustum.classify(sorted_[p]);
+        unsigned m = mask;
+        const Containment pc = frustum.classify(sorted_[p], m);
         if (pc != Containment::Outside) emit(out, p, p + 1, pc == Containment::Inside);
       }
       continue;
     }
     // Right first so the left (lower positions) pops first and ranges come out in order.
-    stack[top++] = node.right;
-    stack[top++] = node.left;
+    stack[top++] = {node.right, mask};
+    stack[top++] = {node.left, mask};
   }
 }
 

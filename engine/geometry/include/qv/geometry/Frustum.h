@@ -20,6 +20,9 @@ class Frustum {
 
   /// Conservative: Outside only when the box is entirely behind one plane.
   [[nodiscard]] Containment classify(const Box& box) const;
+  /// classify() against only the planes whose bit is set in `mask` (bit i = plane i); clears
+  /// the bits of planes the box lies wholly inside, so a hierarchy skips them for its children.
+  [[nodiscard]] Containment classify(const Box& box, unsigned& mask) const;
   [[nodiscard]] bool intersects(const Box& box) const { return classify(box) != Containment::Outside; }
 
   /// Planes (a, b, c, d) with a·x + b·y + c·z + d >= 0 inside; normals are unit length.
