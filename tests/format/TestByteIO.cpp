@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <string>
+#include <vector>
 
 #include "qv/core/ByteIO.h"
 #include "qv/core/Crc32.h"
@@ -14,6 +15,29 @@ TEST_CASE("CRC-32 matches zlib's check value", "[core][crc]") {
   // Incremental use gives the same result.
   CHECK(crc32(bytes.subspan(4), crc32(bytes.subspan(0, 4))) == 0xCBF43926u);
   CHECK(crc32({}) == 0u);
+}
+
+TEST_CASE("CRC-32 equals the bit-by-bit definition for every length and split", "[core][crc]") {
+  std::vector<std::uint8_t> data(300);
+  std::uint32_t state = 12345u;
+  for (auto& b : data) {
+    state = state * 1664525u + 1013904223u;
+    b = static_cast<std::uint8_t>(state >> 24);
+  }
+  auto reference = [](std::span<const std::uint8_t> bytes) {
+    std::uint32_t c = 0xFFFFFFFFu;
+    for (std::uint8_t b : bytes) {
+      c ^= b;
+      for (int k = 0; k < 8; ++k) c = (c & 1u) != 0 ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xFFFFFFFFu;
+  };
+  const std::span<const std::uint8_t> all(data);
+  for (std::size_t n = 0; n <= data.size(); n += 7) {
+    const std::uint32_t expected = reference(all.first(n));
+    CHECK(crc32(all.first(n)) == expected);
+    CHECK(crc32(all.subspan(n / 3, n - n / 3), crc32(all.first(n / 3))) == expected);
+  }
 }
 
 TEST_CASE("ByteWriter writes little-endian and ByteReader reads it back", "[core][bytes]") {
