@@ -71,8 +71,11 @@ void main() {
   else if (u_colorMode == 1) color = ramp(peakStorey / u_driftFullScale);
   else if (u_colorMode == 2) color = damage < -0.5 ? kNoResult : ramp(damage / 4.0);
   else color = vec3(0.82, 0.80, 0.76);
+  // Results not loaded yet (-2): plain, neither coloured nor marked as missing.
+  bool pending = damage < -1.5;
+  if (pending) color = vec3(0.82, 0.80, 0.76);
   // No response for this building: its own colour, whatever the mode (hatched in the fragment stage).
-  float noResult = (u_colorMode != 3 && damage < -0.5) ? 1.0 : 0.0;
+  float noResult = (u_colorMode != 3 && damage < -0.5 && !pending) ? 1.0 : 0.0;
   if (noResult > 0.5) color = kNoResult;
 
   if (a_normalKind.w == 1) color *= 1.08;  // roofs a touch lighter than walls

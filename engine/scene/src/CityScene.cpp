@@ -289,6 +289,8 @@ void CityScene::finishTile(std::uint32_t node) {
     row.storeyHeightMeters = storeyHeight;
     row.storeys = static_cast<float>(a.storeys);
     row.baseZ = a.minHeightM;
+    // Results on their way: plain (not hatched as "no result") until the summary arrives.
+    if (tileset_->nodes[node].response) row.damageState = kDamagePending;
     for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
       const TilePart& part = d.parts[pi];
       levels.clear();
@@ -352,6 +354,7 @@ void CityScene::requestSummary(std::uint32_t node) {
         const TileNode& tn = tileset_->nodes[node];
         if (!r.ok() || r.bytes.size() != tn.response->summaryBytes || crc32(r.bytes) != tn.response->summaryCrc32) {
           rt.summaryState = TileState::Failed;
+          markNoResult(node);
           onError_("Response summary " + url + " failed: " +
                    (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
                             : std::string("size or checksum differs from the manifest")));
@@ -360,6 +363,7 @@ void CityScene::requestSummary(std::uint32_t node) {
         auto decoded = decodeResponseSummary(r.bytes, url);
         if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
           rt.summaryState = TileState::Failed;
+          markNoResult(node);
           onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
           return;
         }
@@ -368,6 +372,14 @@ void CityScene::requestSummary(std::uint32_t node) {
         applySummary(node);
       },
       options_.requestTimeoutMs);
+}
+
+void CityScene::markNoResult(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  if (!t.loaded) return;
+  const LoadedTile& tile = *t.loaded;
+  for (std::uint32_t p = 0; p < tile.positionOf.size(); ++p) buildingRows_[tile.slotBase + p].damageState = -1.0f;
+  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
 }
 
 void CityScene::applySummary(std::uint32_t node) {

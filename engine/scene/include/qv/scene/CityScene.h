@@ -158,7 +158,9 @@ class CityScene {
   void finishTile(std::uint32_t node);  // decode + mesh (time-budgeted)
   void failTile(std::uint32_t node, const std::string& message, bool transient, double now);
   void evict(std::uint32_t node);
-  void reindexAnimated();  ///< after animated_ changed order: each tile's building -> entry map
+  void reindexAnimated();
+  void markNoResult(std::uint32_t node);  ///< its summary failed: hatch its buildings  ///< after animated_ changed
+                                          ///< order: each tile's building -> entry map
   void requestSummary(std::uint32_t node);
   void requestHistory(std::uint32_t node);
   void applySummary(std::uint32_t node);

@@ -29,12 +29,14 @@ struct BuildingGpuRecord {
   float storeys = 1.0f;             ///< number of storeys
   float floorBase = -1.0f;          ///< first texel of its floor rows, -1 when not animated
   float peakValue = 0.0f;           ///< peak drift ratio (colour when static)
-  float damageState = -1.0f;        ///< 0..4 none..complete, -1 no result
+  float damageState = -1.0f;        ///< 0..4 none..complete, -1 no result, -2 result not loaded yet
   float flags = 0.0f;               ///< BuildingFlag bits
   float baseZ = 0.0f;               ///< height of floor level 0 (the building's min height), metres
   float reserved = 0.0f;
 };
 static_assert(sizeof(BuildingGpuRecord) == 32);
+
+inline constexpr float kDamagePending = -2.0f;
 
 enum BuildingFlag : unsigned { kFlagSelected = 1u, kFlagDimmed = 2u, kFlagHidden = 4u };
 
