@@ -175,14 +175,24 @@ float interpolationErrorEstimate(const float* q, std::size_t frames, std::size_t
   const std::size_t offsets[3] = {std::max<std::size_t>(1, step / 4), step / 2, 3 * step / 4};
   Weights w[3];
   for (int o = 0; o < 3; ++o) w[o] = catmullRom(static_cast<float>(offsets[o]) / static_cast<float>(step));
-  for (std::size_t i1 = 0; i1 + 1 < samples; ++i1) {
-    const float p0 = sample(i1 > 0 ? i1 - 1 : 0), p1 = sample(i1), p2 = sample(i1 + 1), p3 = sample(i1 + 2);
+  auto check = [&](std::size_t i1, float p0, float p1, float p2, float p3) {
     for (int o = 0; o < 3; ++o) {
       const std::size_t f = i1 * step + offsets[o];
       if (f >= frames) break;
       const float v = w[o].w0 * p0 + w[o].w1 * p1 + w[o].w2 * p2 + w[o].w3 * p3;
       worst = std::max(worst, std::abs(v - q[f]));
     }
+  };
+  // Intervals 1 .. interiorLast have all four samples inside the frames (no clamping): the bulk.
+  const std::size_t fullSamples = (frames - 1) / step + 1;  // samples j with j * step <= frames - 1
+  const std::size_t interiorLast = fullSamples >= 3 ? fullSamples - 3 : 0;
+  for (std::size_t i1 = 1; i1 <= interiorLast; ++i1) {
+    const float* base = q + (i1 - 1) * step;
+    check(i1, base[0], base[step], base[2 * step], base[3 * step]);
+  }
+  for (std::size_t i1 = 0; i1 + 1 < samples; ++i1) {
+    if (i1 >= 1 && i1 <= interiorLast) continue;
+    check(i1, sample(i1 > 0 ? i1 - 1 : 0), sample(i1), sample(i1 + 1), sample(i1 + 2));
   }
   return worst;
 }
