@@ -59,7 +59,8 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
    ! "$prep" info "$e2e_data/synth" --building s1 --json >"$e2e_data/synth-s1.json" ||
    ! "$prep" city --input ../shared/data/osm/fixture-midtown-empire-state.osm --out "$e2e_data/midtown" >/dev/null ||
    ! "$prep" response --city "$e2e_data/midtown" --synthetic 7 --epicentre -73.99,40.74,8 --magnitude 6.6 >/dev/null ||
-   ! "$prep" info "$e2e_data/midtown" --building w34633854 --json >"$e2e_data/midtown-esb.json"; then
+   ! "$prep" info "$e2e_data/midtown" --building w34633854 --json >"$e2e_data/midtown-esb.json" ||
+   ! "$prep" synth-city --buildings 50000 --seed 5 --max-leaf-buildings 500 --out "$e2e_data/large" >/dev/null; then
   failures+=("e2e data")
 fi
 

@@ -181,6 +181,7 @@
   else args.push('--data', params.get('data') || 'data/default/tileset.json');
   if (params.get('aa') === '0') args.push('--no-antialias');
   if (params.get('bench')) args.push('--bench', params.get('bench'));
+  if (params.get('memory')) args.push('--memory-mb', params.get('memory'));
 
   // The shareable view lives in the URL hash: #cam=x,y,distance,heading,pitch,fov&t=seconds
   // &sel=id&f=minDamage,use,critical. The engine validates every value (a malformed one falls

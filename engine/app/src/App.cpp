@@ -151,6 +151,16 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
       options.filters = parseFilters(v);
       if (!options.filters)
         errors.push_back("The filters in the link (" + v + ") are not valid; showing every building.");
+    } else if (a == "--memory-mb" && hasValue) {
+      const std::string& v = args[++i];
+      char* end = nullptr;
+      const double mb = std::strtod(v.c_str(), &end);
+      if (end == v.c_str() || *end != '\0' || !(mb >= 16.0 && mb <= 4096.0)) {
+        errors.push_back("memory=" + v + " in the URL is not a number of megabytes from 16 to 4096; using " +
+                         std::to_string(options.city.memoryBudgetBytes >> 20) + " MB.");
+      } else {
+        options.city.memoryBudgetBytes = static_cast<std::uint64_t>(mb * 1048576.0);
+      }
     } else if (a == "--bench" && hasValue) {
       const std::string& v = args[++i];
       char* end = nullptr;

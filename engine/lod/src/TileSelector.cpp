@@ -85,6 +85,10 @@ void selectTiles(const Tileset& t, std::span<const TileState> states, const Came
     // go on to its children, which are then wanted).
     if (!allReady && state(i) == TileState::Loaded) {
       cut.push_back(i);
+      // The children that have arrived are kept (not evicted) until their siblings join them.
+      for (std::uint32_t c : children) {
+        if (ready(c)) out.used.push_back(c);
+      }
       continue;
     }
     if (cut.size() + queue.size() + children.size() > options.maxDrawTiles) {

@@ -30,6 +30,12 @@ std::string hex32(std::uint32_t v) {
   return buffer;
 }
 
+// Exponential backoff after the n-th failure (n >= 1): 1 s doubling to 30 s; a permanent error
+// (404, bad data) waits longest, since only a fixed server brings it back.
+double backoffSeconds(int failures, bool transient) {
+  return transient ? std::min(30.0, std::pow(2.0, std::min(std::max(failures, 1) - 1, 5))) : 30.0;
+}
+
 // HTTP statuses worth retrying soon: the server or the network may recover.
 bool transientStatus(int status) {
   return status == 0 || status == 408 || status == 429 || status >= 500;
@@ -62,9 +68,13 @@ struct CityScene::TileRuntime {
   TileState summaryState = TileState::Unloaded;
   Fetcher::RequestId summaryRequest = 0;
   std::unique_ptr<ResponseSummaryTile> summary;
+  int summaryAttempts = 0;  // failures so far: retried with backoff, as tiles are
+  double summaryRetryAt = 0.0;
   TileState historyState = TileState::Unloaded;
   Fetcher::RequestId historyRequest = 0;
   std::unique_ptr<ResponseHistoryTile> history;
+  int historyAttempts = 0;
+  double historyRetryAt = 0.0;
   std::uint64_t historyBytes = 0;
   std::uint64_t historyUsed = 0;
   /// Per building of the loaded tile: its index in animated_, or kNotAnimated.
@@ -190,9 +200,7 @@ void CityScene::request(std::uint32_t node, double now) {
 void CityScene::failTile(std::uint32_t node, const std::string& message, bool transient, double now) {
   TileRuntime& t = *tiles_[node];
   ++t.attempts;
-  // Exponential backoff, 1 s doubling to 30 s; a permanent error (404, bad data) waits longest.
-  const double delay = transient ? std::min(30.0, std::pow(2.0, std::min(t.attempts - 1, 5))) : 30.0;
-  t.retryAt = now + delay;
+  t.retryAt = now + backoffSeconds(t.attempts, transient);
   states_[node] = TileState::Failed;
   if (!t.errorShown) {
     t.errorShown = true;
@@ -342,6 +350,7 @@ void CityScene::requestSummary(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   const TileNode& n = tileset_->nodes[node];
   if (!n.response || t.summaryState == TileState::Loading || t.summaryState == TileState::Loaded) return;
+  if (t.summaryState == TileState::Failed && t.summaryRetryAt > clock_) return;
   t.summaryState = TileState::Loading;
   ++inFlight_;
   const std::string url = resolveUrl(manifestUrl_, n.response->summaryFile);
@@ -354,7 +363,9 @@ void CityScene::requestSummary(std::uint32_t node) {
         const TileNode& tn = tileset_->nodes[node];
         if (!r.ok() || r.bytes.size() != tn.response->summaryBytes || crc32(r.bytes) != tn.response->summaryCrc32) {
           rt.summaryState = TileState::Failed;
+          rt.summaryRetryAt = clock_ + backoffSeconds(++rt.summaryAttempts, true);
           markNoResult(node);
+          if (rt.summaryAttempts > 1) return;  // reported once
           onError_("Response summary " + url + " failed: " +
                    (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
                             : std::string("size or checksum differs from the manifest")));
@@ -363,12 +374,15 @@ void CityScene::requestSummary(std::uint32_t node) {
         auto decoded = decodeResponseSummary(r.bytes, url);
         if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
           rt.summaryState = TileState::Failed;
+          rt.summaryRetryAt = clock_ + backoffSeconds(++rt.summaryAttempts, false);
           markNoResult(node);
+          if (rt.summaryAttempts > 1) return;
           onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
           return;
         }
         rt.summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
         rt.summaryState = TileState::Loaded;
+        rt.summaryAttempts = 0;
         applySummary(node);
       },
       options_.requestTimeoutMs);
@@ -400,7 +414,8 @@ void CityScene::requestHistory(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   const TileNode& n = tileset_->nodes[node];
   if (!n.response || n.response->historyFile.empty()) return;
-  if (t.historyState != TileState::Unloaded) return;
+  if (t.historyState == TileState::Loading || t.historyState == TileState::Loaded) return;
+  if (t.historyState == TileState::Failed && t.historyRetryAt > clock_) return;
   t.historyState = TileState::Loading;
   ++inFlight_;
   const std::string url = resolveUrl(manifestUrl_, n.response->historyFile);
@@ -413,6 +428,8 @@ void CityScene::requestHistory(std::uint32_t node) {
         const TileNode& tn = tileset_->nodes[node];
         if (!r.ok() || r.bytes.size() != tn.response->historyBytes || crc32(r.bytes) != tn.response->historyCrc32) {
           rt.historyState = TileState::Failed;
+          rt.historyRetryAt = clock_ + backoffSeconds(++rt.historyAttempts, true);
+          if (rt.historyAttempts > 1) return;  // reported once
           onError_("Response history " + url + " failed: " +
                    (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
                             : std::string("size or checksum differs from the manifest")));
@@ -421,6 +438,8 @@ void CityScene::requestHistory(std::uint32_t node) {
         auto decoded = decodeResponseHistory(r.bytes, url);
         if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
           rt.historyState = TileState::Failed;
+          rt.historyRetryAt = clock_ + backoffSeconds(++rt.historyAttempts, false);
+          if (rt.historyAttempts > 1) return;
           onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
           return;
         }
@@ -535,7 +554,11 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   // Once the view has everything it asked for, the search index comes in the background (names
   // and addresses for search, the inspection window and exports).
   if (inFlight_ == 0 && decodeQueue_.empty()) requestSearchIndex();
-  // Failed tiles the view still uses are retried with backoff (the server may recover).
+  // Failed tiles (and their response summaries) the view still uses are retried with backoff
+  // (the server may recover).
+  for (std::uint32_t i : selection_.used) {
+    if (tiles_[i]->summaryState == TileState::Failed && tiles_[i]->loaded) requestSummary(i);
+  }
   for (std::uint32_t i : selection_.used) {
     if (inFlight_ >= options_.maxRequestsInFlight) break;
     if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= clock_) request(i, clock_);
@@ -865,7 +888,7 @@ std::optional<BuildingSeries> CityScene::selectionSeries(std::size_t samples) {
   if (!ref) return std::nullopt;
   TileRuntime& t = *tiles_[ref->node];
   if (t.loaded->data.coarse) return std::nullopt;  // the leaf is on its way
-  if (t.historyState == TileState::Unloaded) requestHistory(ref->node);
+  if (t.historyState == TileState::Unloaded || t.historyState == TileState::Failed) requestHistory(ref->node);
   t.historyUsed = frame_;
   if (t.historyState != TileState::Loaded || ref->index >= t.history->buildings.size()) return std::nullopt;
   const BuildingHistory& h = t.history->buildings[ref->index];

@@ -30,7 +30,8 @@ struct TileSelectorOptions {
 struct TileSelection {
   std::vector<std::uint32_t> draw;    ///< loaded nodes to draw, no two overlapping
   std::vector<std::uint32_t> wanted;  ///< nodes to load, most important first
-  std::vector<std::uint32_t> used;    ///< every node the selection passed through (for LRU)
+  std::vector<std::uint32_t> used;    ///< every node the selection passed through, and arrived children
+                                      ///< waiting for their siblings (kept from eviction: LRU)
   bool budgetLimited = false;         ///< refinement stopped at the draw budget
   /// Nothing is waiting: every tile the view needs is loaded or failed.
   [[nodiscard]] bool complete() const { return wanted.empty(); }
