@@ -33,15 +33,22 @@ struct SystemRef {
 };
 
 // Explicit SIMD with the GCC/Clang vector extensions: generic 16-byte vectors (4 floats or 2
-// doubles: one SSE2 register; scalars in WebAssembly without SIMD). Comparisons give integer masks of
-// -1/0 and the vector ?: selects lane by lane (GCC 12, clang 14 and em++ 3.1.6 all accept it).
+// doubles: one SSE2 register; scalars in WebAssembly without SIMD), or 32-byte vectors (one AVX2
+// register) when CMake's QUAKEVIEW_WIDE_SIMD compiles this file with -mavx2 -mfma. Comparisons give
+// integer masks of -1/0 and the vector ?: selects lane by lane (GCC 12, clang 14 and em++ 3.1.6 all
+// accept it).
+#if defined(QUAKEVIEW_WIDE_SIMD) && defined(__AVX2__)
+constexpr std::size_t kVectorBytes = 32;
+#else
+constexpr std::size_t kVectorBytes = 16;
+#endif
 template <typename T>
 struct Simd;
 template <>
 struct Simd<float> {
-  typedef float V __attribute__((vector_size(16)));
-  typedef std::int32_t M __attribute__((vector_size(16)));
-  static constexpr std::size_t kLanes = 4;
+  typedef float V __attribute__((vector_size(kVectorBytes)));
+  typedef std::int32_t M __attribute__((vector_size(kVectorBytes)));
+  static constexpr std::size_t kLanes = kVectorBytes / 4;
   static constexpr std::int32_t kAbsMask = 0x7fffffff;
   // Convergence: the residual below 1e-3 of the size of its terms, or a correction at the level of
   // rounding. 1e-3 keeps float histories within about 6e-4 of the double reference (relative to the
@@ -51,9 +58,9 @@ struct Simd<float> {
 };
 template <>
 struct Simd<double> {
-  typedef double V __attribute__((vector_size(16)));
-  typedef std::int64_t M __attribute__((vector_size(16)));
-  static constexpr std::size_t kLanes = 2;
+  typedef double V __attribute__((vector_size(kVectorBytes)));
+  typedef std::int64_t M __attribute__((vector_size(kVectorBytes)));
+  static constexpr std::size_t kLanes = kVectorBytes / 8;
   static constexpr std::int64_t kAbsMask = 0x7fffffffffffffff;
   static constexpr double kResidual = 1e-10;
   static constexpr double kCorrection = 1e-14;
@@ -109,7 +116,7 @@ struct VectorMath {
 // Everything about one storey row across the lanes (structure of arrays). Floor i and storey i
 // share a row: the floor above the storey.
 template <typename T>
-struct alignas(16) Row {
+struct alignas(kVectorBytes) Row {
   using V = typename Simd<T>::V;
   // Model (per batch).
   V mass, load, elastic, hysteretic, hystereticStiffness, inverseYield, nIsTwo, oneMinusN, fourN, cUnload;
@@ -201,9 +208,11 @@ class BatchKernel {
   Row<T>& row(std::size_t i, std::size_t k) { return rows_[i * K + k]; }
 
   static bool allSet(M m) {
-    typedef std::uint64_t Words __attribute__((vector_size(16)));
+    typedef std::uint64_t Words __attribute__((vector_size(kVectorBytes)));
     const Words w = __builtin_bit_cast(Words, m);
-    return (w[0] & w[1]) == ~std::uint64_t{0};
+    std::uint64_t all = ~std::uint64_t{0};
+    for (std::size_t i = 0; i < kVectorBytes / 8; ++i) all &= w[i];
+    return all == ~std::uint64_t{0};
   }
 
   // scale · a(t - delay) under the time convention of GroundMotion.h, branch-free on the record padded
