@@ -5,6 +5,7 @@
 #   (the native code is also compiled with clang 14, optimized, warnings as errors; its
 #   quakeview-prep prepares the browser tests' cities)
 #   3. browser end-to-end tests (playwright-core + Debian's headless Chromium, pages served over HTTP)
+#   4. a bounded run of every libFuzzer target (scripts/fuzz.sh: clang 14, ASan + UBSan, 20 s each)
 # Ends with one summary line; exits non-zero if anything failed. Every stage runs even after a
 # failure so one run shows everything that is wrong.
 set -uo pipefail
@@ -48,6 +49,14 @@ if ! (cmake --preset native-clang >/dev/null && cmake --build --preset native-cl
   failures+=("clang build")
 fi
 
+stage "fuzzing: every libFuzzer target for ${QUAKEVIEW_FUZZ_SECONDS:-20} s (clang 14, ASan + UBSan)"
+if QUAKEVIEW_PREP="$root/build/native-clang/preprocess/app/quakeview-prep" \
+   bash scripts/fuzz.sh "${QUAKEVIEW_FUZZ_SECONDS:-20}"; then
+  counts[fuzz]=$(wc -l < "$root/build/fuzz/fuzz-targets.txt")
+else
+  failures+=("fuzz")
+fi
+
 # Small cities for the browser tests, made with the tools just built (the optimized clang build:
 # the response step runs a solver per building).
 stage "preparing the end-to-end test cities"
@@ -83,7 +92,7 @@ else
 fi
 
 elapsed=$(( $(date +%s) - start ))
-summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests in ${elapsed}s"
+summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests, fuzz ${counts[fuzz]:-0} targets in ${elapsed}s"
 if [ "${#failures[@]}" -eq 0 ]; then
   echo "QuakeView tests: ALL PASSED ($summary)"
 else
