@@ -336,6 +336,11 @@ void CityScene::finishTile(std::uint32_t node) {
   t.loaded = std::move(tile);
   t.lastUsed = frame_;
   t.attempts = 0;
+  if (t.errorShown) {
+    // It failed before and has now arrived: its error no longer stands.
+    t.errorShown = false;
+    if (onResolved_) onResolved_("Tile " + tileset_->nodes[node].key() + " failed");
+  }
   states_[node] = TileState::Loaded;
   applyFlags(node);
   if (tileset_->nodes[node].response) requestSummary(node);
@@ -382,6 +387,10 @@ void CityScene::requestSummary(std::uint32_t node) {
         }
         rt.summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
         rt.summaryState = TileState::Loaded;
+        if (rt.summaryAttempts > 0 && onResolved_) {
+          onResolved_("Response summary " + url + " failed");
+          onResolved_(url + ":");
+        }
         rt.summaryAttempts = 0;
         applySummary(node);
       },
@@ -444,6 +453,11 @@ void CityScene::requestHistory(std::uint32_t node) {
           return;
         }
         rt.history = std::make_unique<ResponseHistoryTile>(std::move(decoded).value());
+        if (rt.historyAttempts > 0 && onResolved_) {
+          onResolved_("Response history " + url + " failed");
+          onResolved_(url + ":");
+        }
+        rt.historyAttempts = 0;
         std::uint64_t bytes = 0;
         for (const BuildingHistory& h : rt.history->buildings) {
           bytes += sizeof(BuildingHistory) + (h.x.coordinates.size() + h.y.coordinates.size()) * 2 +

@@ -68,6 +68,7 @@ void Viewer::setViewport(int widthPixels, int heightPixels, double widthCss, dou
 void Viewer::openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options) {
   city_ = std::make_unique<CityScene>(device_, fetcher, manifestUrl, options,
                                       [this](const std::string& message) { reportError(message); });
+  city_->setResolvedSink([this](const std::string& prefix) { withdrawErrors(prefix); });
   cityFramed_ = false;
   settled_ = false;
 }
@@ -91,6 +92,10 @@ bool Viewer::setTime(double seconds) {
   if (!std::isfinite(seconds)) return false;
   time_ = std::clamp(seconds, 0.0, duration_);
   return true;
+}
+
+void Viewer::withdrawErrors(const std::string& prefix) {
+  std::erase_if(errors_, [&](const std::string& e) { return e.starts_with(prefix); });
 }
 
 void Viewer::reportError(std::string message) {

@@ -93,6 +93,9 @@ class CityScene {
   /// Starts loading `manifestUrl` (tileset.json); tiles are resolved relative to it.
   CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifestUrl, CitySceneOptions options,
             ErrorSink onError);
+  /// Called with the start of an earlier error message once what failed has recovered (a tile
+  /// that loads after failing), so the viewer can withdraw it.
+  void setResolvedSink(ErrorSink sink) { onResolved_ = std::move(sink); }
   ~CityScene();
   CityScene(const CityScene&) = delete;
   CityScene& operator=(const CityScene&) = delete;
@@ -178,6 +181,7 @@ class CityScene {
   std::string manifestUrl_;
   CitySceneOptions options_;
   ErrorSink onError_;
+  ErrorSink onResolved_;
   Fetcher::RequestId manifestRequest_ = 0;
   std::optional<Tileset> tileset_;
   bool manifestFailed_ = false;

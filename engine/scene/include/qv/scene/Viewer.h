@@ -99,6 +99,8 @@ class Viewer {
   [[nodiscard]] bool settled() const { return settled_; }
 
   void reportError(std::string message);
+  /// Removes the messages that start with `prefix` (what they reported has recovered).
+  void withdrawErrors(const std::string& prefix);
   [[nodiscard]] const std::vector<std::string>& errors() const { return errors_; }
 
   [[nodiscard]] StatsSummary stats() const { return stats_.summary(); }
