@@ -5,11 +5,11 @@ namespace qv::prep {
 std::string humanBytes(std::uint64_t bytes) {
   char buffer[32];
   if (bytes >= 1024ull * 1024 * 1024)
-    std::snprintf(buffer, sizeof buffer, "%.2f GB", static_cast<double>(bytes) / (1024.0 * 1024 * 1024));
+    std::snprintf(buffer, sizeof buffer, "%.2f GiB", static_cast<double>(bytes) / (1024.0 * 1024 * 1024));
   else if (bytes >= 1024ull * 1024)
-    std::snprintf(buffer, sizeof buffer, "%.1f MB", static_cast<double>(bytes) / (1024.0 * 1024));
+    std::snprintf(buffer, sizeof buffer, "%.1f MiB", static_cast<double>(bytes) / (1024.0 * 1024));
   else if (bytes >= 1024)
-    std::snprintf(buffer, sizeof buffer, "%.1f KB", static_cast<double>(bytes) / 1024.0);
+    std::snprintf(buffer, sizeof buffer, "%.1f KiB", static_cast<double>(bytes) / 1024.0);
   else
     std::snprintf(buffer, sizeof buffer, "%llu B", static_cast<unsigned long long>(bytes));
   return buffer;
