@@ -283,6 +283,11 @@ Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> 
     return Error{prefix + "section HMET: invalid duration"};
   }
   ByteReader r(bytes.subspan(hist->first, hist->second), hist->first);
+  // Every building takes at least its two-byte floor count: check before allocating.
+  if (header->count > hist->second / 2) {
+    return Error{prefix + "section HIST at byte " + std::to_string(hist->first) + ": " + std::to_string(header->count) +
+                 " buildings cannot fit in " + std::to_string(hist->second) + " bytes"};
+  }
   tile.buildings.resize(header->count);
   for (BuildingHistory& b : tile.buildings) {
     b.floors = r.u16("floors");
@@ -359,7 +364,10 @@ void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX,
   const float w1 = 0.5f * (3.0f * u3 - 5.0f * u2 + 2.0f);
   const float w2 = 0.5f * (-3.0f * u3 + 4.0f * u2 + u);
   const float w3 = 0.5f * (u3 - u2);
-  const std::size_t floors = std::min<std::size_t>(h.floors, floorsX.size() > 0 ? floorsX.size() - 1 : 0);
+  // Floor levels 1..floors are written; both outputs must hold them (level 0 is the ground).
+  const std::size_t room = std::min(floorsX.size(), floorsY.size());
+  const std::size_t floors = std::min<std::size_t>(h.floors, room > 0 ? room - 1 : 0);
+  if (floors == 0) return;
   const std::pair<const HistoryDirection*, std::span<float>> directions[] = {{&h.x, floorsX}, {&h.y, floorsY}};
   for (const auto& [d, out] : directions) {
     for (std::size_t k = 0; k < d->modes; ++k) {
@@ -367,7 +375,7 @@ void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX,
       const float coordinate = (w0 * static_cast<float>(q[i0]) + w1 * static_cast<float>(q[i1]) +
                                 w2 * static_cast<float>(q[i2]) + w3 * static_cast<float>(q[i3])) *
                                d->scales[k];
-      for (std::size_t f = 0; f < std::min<std::size_t>(floors, out.size() - 1); ++f) {
+      for (std::size_t f = 0; f < floors; ++f) {
         out[f + 1] += d->shapes[f * d->modes + k] * coordinate;
       }
     }
