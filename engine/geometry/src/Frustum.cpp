@@ -19,19 +19,8 @@ Frustum::Frustum(const glm::mat4& m) {
 }
 
 Containment Frustum::classify(const Box& box) const {
-  bool inside = true;
-  for (const glm::vec4& p : planes_) {
-    // The box corner farthest along the plane normal (p-vertex) and the nearest one (n-vertex).
-    const float px = p.x >= 0.0f ? box.maxX : box.minX;
-    const float py = p.y >= 0.0f ? box.maxY : box.minY;
-    const float pz = p.z >= 0.0f ? box.maxZ : box.minZ;
-    if (p.x * px + p.y * py + p.z * pz + p.w < 0.0f) return Containment::Outside;
-    const float nx = p.x >= 0.0f ? box.minX : box.maxX;
-    const float ny = p.y >= 0.0f ? box.minY : box.maxY;
-    const float nz = p.z >= 0.0f ? box.minZ : box.maxZ;
-    if (p.x * nx + p.y * ny + p.z * nz + p.w < 0.0f) inside = false;
-  }
-  return inside ? Containment::Inside : Containment::Intersects;
+  unsigned mask = 0x3fu;  // all six planes
+  return classify(box, mask);
 }
 
 Containment Frustum::classify(const Box& box, unsigned& mask) const {
