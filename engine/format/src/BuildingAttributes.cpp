@@ -1,6 +1,7 @@
 #include "qv/format/BuildingAttributes.h"
 
 #include <array>
+#include <utility>
 
 namespace qv {
 namespace {
@@ -73,6 +74,19 @@ CodeEra parseCodeEra(std::string_view name) {
 
 std::string_view importanceName(Importance importance) {
   return importance == Importance::Critical ? "critical" : "general";
+}
+
+std::vector<std::string_view> importanceReasonNames(unsigned reasons) {
+  static constexpr std::pair<unsigned, std::string_view> kNames[] = {
+      {kReasonHospital, "hospital"}, {kReasonFireStation, "fire_station"},
+      {kReasonPolice, "police"},     {kReasonSchool, "school"},
+      {kReasonTall, "tall"},         {kReasonComplex, "complex"},
+      {kReasonShelter, "shelter"}};
+  std::vector<std::string_view> names;
+  for (const auto& [bit, name] : kNames) {
+    if ((reasons & bit) != 0) names.push_back(name);
+  }
+  return names;
 }
 
 std::string_view valueSourceName(ValueSource source) {

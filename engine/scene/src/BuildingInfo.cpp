@@ -30,14 +30,7 @@ std::string buildingInfoJson(const BuildingInfo& info) {
   w.field("minHeightM", a.minHeightM).field("footprintAreaM2", a.footprintAreaM2);
   w.field("structuralTypeDescription", structuralTypeDescription(a.structuralType));
   w.key("importanceReasons").beginArray();
-  const std::pair<unsigned, const char*> reasons[] = {
-      {kReasonHospital, "hospital"}, {kReasonFireStation, "fire_station"},
-      {kReasonPolice, "police"},     {kReasonSchool, "school"},
-      {kReasonTall, "tall"},         {kReasonComplex, "complex"},
-      {kReasonShelter, "shelter"}};
-  for (const auto& [bit, name] : reasons) {
-    if ((a.importanceReasons & bit) != 0) w.value(name);
-  }
+  for (const std::string_view name : importanceReasonNames(a.importanceReasons)) w.value(name);
   w.endArray();
   w.field("startYear", static_cast<int>(a.startYear));
   w.field("responseSource", info.hasResponse ? responseSourceName(info.response.source) : std::string_view("none"));

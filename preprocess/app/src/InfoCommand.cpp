@@ -56,14 +56,7 @@ void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNod
   w.field("structural_type_description", structuralTypeDescription(a.structuralType));
   w.field("code_era", codeEraName(a.codeEra)).field("importance", importanceName(a.importance));
   w.key("importance_reasons").beginArray();
-  const std::pair<unsigned, const char*> reasons[] = {
-      {kReasonHospital, "hospital"}, {kReasonFireStation, "fire_station"},
-      {kReasonPolice, "police"},     {kReasonSchool, "school"},
-      {kReasonTall, "tall"},         {kReasonComplex, "complex"},
-      {kReasonShelter, "shelter"}};
-  for (const auto& [bit, name] : reasons) {
-    if ((a.importanceReasons & bit) != 0) w.value(name);
-  }
+  for (const std::string_view name : importanceReasonNames(a.importanceReasons)) w.value(name);
   w.endArray();
   w.field("lod", static_cast<unsigned>(a.lod));
   w.field("start_year", static_cast<int>(a.startYear)).field("material", a.material).field("structure", a.structure);

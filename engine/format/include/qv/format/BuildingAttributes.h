@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace qv {
 
@@ -101,6 +102,9 @@ StructuralType parseStructuralType(std::string_view code);
 std::string_view codeEraName(CodeEra era);
 CodeEra parseCodeEra(std::string_view name);
 std::string_view importanceName(Importance importance);  ///< "general" / "critical"
-std::string_view valueSourceName(ValueSource source);    ///< "tagged" / "inferred"
+/// The names of the reasons set in `reasons` (ImportanceReason bits), in bit order: "hospital",
+/// "fire_station", "police", "school", "tall", "complex", "shelter".
+std::vector<std::string_view> importanceReasonNames(unsigned reasons);
+std::string_view valueSourceName(ValueSource source);  ///< "tagged" / "inferred"
 
 }  // namespace qv
