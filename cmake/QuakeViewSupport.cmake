@@ -153,6 +153,11 @@ if(QUAKEVIEW_SANITIZE AND NOT EMSCRIPTEN)
   add_compile_options(-fsanitize=address,undefined -fno-sanitize-recover=undefined
                       -fno-omit-frame-pointer)
   add_link_options(-fsanitize=address,undefined)
+  if(QUAKEVIEW_FUZZ)
+    # libosmium's PBF parser passes a null pointer with size 0 to memcpy on malformed blob headers
+    # (third-party code): recoverable, and suppressed in scripts/fuzz.sh (tests/fuzz/ubsan-suppressions.txt).
+    add_compile_options(-fsanitize-recover=nonnull-attribute)
+  endif()
 endif()
 
 function(quakeview_apply_warnings target)

@@ -18,7 +18,7 @@ jobs=${QUAKEVIEW_JOBS:-2}
 fuzz_jobs=${QUAKEVIEW_FUZZ_JOBS:-1}
 build="$root/build/fuzz"
 # Stack traces for UBSan reports too (ASan prints them by default).
-export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:suppressions=$root/tests/fuzz/ubsan-suppressions.txt}
 
 case "$seconds" in
   '' | *[!0-9]*) echo "usage: scripts/fuzz.sh [SECONDS_PER_TARGET]" >&2; exit 2 ;;
