@@ -97,6 +97,18 @@ Status writeFileAtomic(const std::string& path, const std::string& text) {
   return writeFileAtomic(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
+Status writeStagedFile(const std::string& path, std::span<const std::uint8_t> bytes) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) return Error{"cannot create " + path + ": " + systemError(errno)};
+  Status written = writeAll(fd, bytes.data(), bytes.size(), path);
+  if (::close(fd) != 0 && written.ok()) written = Error{"cannot write " + path + ": " + systemError(errno)};
+  return written;
+}
+
+Status writeStagedFile(const std::string& path, const std::string& text) {
+  return writeStagedFile(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
 Status makeDirectories(const std::string& path) {
   std::error_code ec;
   fs::create_directories(path, ec);
@@ -147,6 +159,16 @@ StagingDirectory::~StagingDirectory() {
 
 Status StagingDirectory::commit() {
   if (committed_) return Error{"staging directory committed twice"};
+  // One sync of the file system holding the staged files (instead of one fsync per file): a late
+  // write error (full disk, I/O error) surfaces here, before the previous city is replaced.
+  {
+    const int fd = ::open(staging_.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd < 0) return Error{"cannot open " + staging_ + ": " + systemError(errno)};
+    const int synced = ::syncfs(fd);
+    const int e = errno;
+    ::close(fd);
+    if (synced != 0) return Error{"cannot write the files of " + target_ + ": " + systemError(e)};
+  }
   std::error_code ec;
   std::string target = target_;
   while (target.size() > 1 && target.back() == '/') target.pop_back();

@@ -11,13 +11,14 @@ double cross(glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
   return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
 }
 
-double distanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
+// Squared distance (no square root in the inner loop of the simplification).
+double squaredDistanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
   const glm::dvec2 ab = b - a;
   const double len2 = ab.x * ab.x + ab.y * ab.y;
   double t = len2 > 0.0 ? ((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2 : 0.0;
   t = std::clamp(t, 0.0, 1.0);
   const glm::dvec2 q = a + ab * t;
-  return std::hypot(p.x - q.x, p.y - q.y);
+  return (p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y);
 }
 
 void douglasPeucker(std::span<const glm::dvec2> pts, std::size_t first, std::size_t last, double tol,
@@ -30,13 +31,13 @@ void douglasPeucker(std::span<const glm::dvec2> pts, std::size_t first, std::siz
     double worst = -1.0;
     std::size_t index = a;
     for (std::size_t i = a + 1; i < b; ++i) {
-      const double d = distanceToSegment(pts[i], pts[a], pts[b]);
+      const double d = squaredDistanceToSegment(pts[i], pts[a], pts[b]);
       if (d > worst) {
         worst = d;
         index = i;
       }
     }
-    if (worst > tol) {
+    if (worst > tol * tol) {
       keep[index] = true;
       stack.emplace_back(a, index);
       stack.emplace_back(index, b);
@@ -101,7 +102,8 @@ std::vector<glm::dvec2> simplifyRing(std::span<const glm::dvec2> ring, double to
   std::size_t far = 0;
   double farDistance = -1.0;
   for (std::size_t i = 1; i < n; ++i) {
-    const double d = std::hypot(ring[i].x - ring[0].x, ring[i].y - ring[0].y);
+    const double d =
+        (ring[i].x - ring[0].x) * (ring[i].x - ring[0].x) + (ring[i].y - ring[0].y) * (ring[i].y - ring[0].y);
     if (d > farDistance) {
       farDistance = d;
       far = i;

@@ -65,15 +65,6 @@ void parallelFor(std::size_t count, unsigned threads, const std::function<void(s
   for (std::thread& t : pool) t.join();
 }
 
-bool isConvex(const std::vector<glm::dvec2>& ring) {
-  const std::size_t n = ring.size();
-  for (std::size_t i = 0; i < n; ++i) {
-    const glm::dvec2 a = ring[i], b = ring[(i + 1) % n], c = ring[(i + 2) % n];
-    if ((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x) < 0.0) return false;
-  }
-  return true;
-}
-
 // Tile origin and quantization extent covering a set of buildings.
 void frame(const std::vector<BuildingInfo>& info, const std::vector<std::uint32_t>& members, CityTile& tile,
            Rect& bounds) {
@@ -176,12 +167,8 @@ CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& inf
     std::vector<glm::dvec2> ring = coarseOutline(std::span(p.points).first(p.ringEnds[0]), tolerance, error);
     if (ring.size() < 3) continue;
     std::vector<std::uint32_t> triangles;
-    if (isConvex(ring)) {
-      for (std::uint32_t i = 1; i + 1 < ring.size(); ++i) triangles.insert(triangles.end(), {0, i, i + 1});
-    } else {
-      const std::uint32_t end = static_cast<std::uint32_t>(ring.size());
-      if (!triangulatePolygon(ring, std::span(&end, 1), triangles)) continue;
-    }
+    const std::uint32_t end = static_cast<std::uint32_t>(ring.size());
+    if (!triangulatePolygon(ring, std::span(&end, 1), triangles)) continue;
     worst = std::max(worst, error);
     TilePart tp;
     tp.ringCount = 1;
@@ -333,7 +320,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       node.crc = crc32(bytes);
       for (std::uint32_t b : node.buildings)
         node.maxHeight = std::max(node.maxHeight, model.buildings[b].attributes.heightM);
-      if (const Status s = writeFileAtomic(staging->path() + "/" + node.file, bytes); !s.ok()) {
+      if (const Status s = writeStagedFile(staging->path() + "/" + node.file, bytes); !s.ok()) {
         const std::lock_guard lock(errorMutex);
         if (firstError.empty()) firstError = s.error();
       }
@@ -347,7 +334,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   Tileset& t = report.tileset;
   {
     const std::vector<std::uint8_t> bytes = encodeSearchIndex(search);
-    if (const Status s = writeFileAtomic(staging->path() + "/search.qvi", bytes); !s.ok()) return Error{s.error()};
+    if (const Status s = writeStagedFile(staging->path() + "/search.qvi", bytes); !s.ok()) return Error{s.error()};
     t.search = CityFile{"search.qvi", bytes.size(), crc32(bytes)};
   }
   t.generator = options.generator;
@@ -388,7 +375,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   }
   report.tiles = nodes.size();
   report.buildings = kept.size();
-  if (const Status s = writeFileAtomic(staging->path() + "/tileset.json", tilesetToJson(t)); !s.ok()) {
+  if (const Status s = writeStagedFile(staging->path() + "/tileset.json", tilesetToJson(t)); !s.ok()) {
     return Error{s.error()};
   }
   if (interrupted()) return Error{"interrupted; the previous output (if any) is unchanged"};

@@ -23,6 +23,11 @@ Result<std::string> readTextFile(const std::string& path, std::uint64_t maxBytes
 Status writeFileAtomic(const std::string& path, std::span<const std::uint8_t> bytes);
 Status writeFileAtomic(const std::string& path, const std::string& text);
 
+/// Writes a new file inside a StagingDirectory: no temporary and no sync of its own (the staging
+/// directory is swapped in whole, and commit() syncs the file system once for all its files).
+Status writeStagedFile(const std::string& path, std::span<const std::uint8_t> bytes);
+Status writeStagedFile(const std::string& path, const std::string& text);
+
 /// Creates directories as needed (like mkdir -p).
 Status makeDirectories(const std::string& path);
 
@@ -37,7 +42,8 @@ class StagingDirectory {
   ~StagingDirectory();  ///< removes the staging directory unless committed
 
   [[nodiscard]] const std::string& path() const { return staging_; }
-  /// Moves the staging directory to the target, replacing a previous city there.
+  /// Syncs the staged files to disk (once, for all of them), then moves the staging directory to
+  /// the target, replacing a previous city there.
   Status commit();
 
  private:
