@@ -253,13 +253,16 @@ std::vector<std::uint8_t> encodeResponseHistory(const ResponseHistoryTile& tile)
         hist.f32(i < d->shapes.size() ? d->shapes[i] : 0.0f);
       }
       for (std::size_t k = 0; k < d->modes; ++k) hist.f32(k < d->scales.size() ? d->scales[k] : 0.0f);
-      const std::size_t n = static_cast<std::size_t>(d->modes) * b.sampleCount;
-      for (std::size_t i = 0; i < n; ++i) {
-        const std::int16_t v = i < d->coordinates.size() ? d->coordinates[i] : 0;
-        if (bits == 8)
-          hist.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp<int>(v, -127, 127))));
-        else
-          hist.i16(v);
+      // The file stores each mode's coordinates together (mode-major); memory is time-major.
+      for (std::size_t k = 0; k < d->modes; ++k) {
+        for (std::size_t s = 0; s < b.sampleCount; ++s) {
+          const std::size_t i = s * d->modes + k;
+          const std::int16_t v = i < d->coordinates.size() ? d->coordinates[i] : 0;
+          if (bits == 8)
+            hist.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp<int>(v, -127, 127))));
+          else
+            hist.i16(v);
+        }
       }
     }
   }
@@ -333,11 +336,21 @@ Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> 
       for (float v : d->scales) {
         if (!std::isfinite(v)) return Error{prefix + "section HIST: non-finite scale"};
       }
+      // Mode-major in the file, time-major in memory: the viewer reads all modes of one instant
+      // together (one cache line per building and frame instead of one per mode).
       d->coordinates.resize(sampleCount);
-      if (b.bits == 8) {
-        for (std::int16_t& v : d->coordinates) v = static_cast<std::int8_t>(r.u8("coordinate"));
-      } else {
-        for (std::int16_t& v : d->coordinates) v = r.i16("coordinate");
+      const std::span<const std::uint8_t> raw = r.bytes(sampleCount * (b.bits / 8u), "coordinates");
+      if (raw.size() == sampleCount * (b.bits / 8u)) {
+        std::int16_t* out = d->coordinates.data();
+        const std::size_t modes = d->modes;
+        for (std::size_t k = 0; k < modes; ++k) {
+          for (std::size_t s = 0; s < b.sampleCount; ++s) {
+            const std::size_t at = k * b.sampleCount + s;
+            out[s * modes + k] = b.bits == 8 ? static_cast<std::int16_t>(static_cast<std::int8_t>(raw[at]))
+                                             : static_cast<std::int16_t>(static_cast<std::uint16_t>(
+                                                   raw[2 * at] | (static_cast<unsigned>(raw[2 * at + 1]) << 8)));
+          }
+        }
       }
     }
   }
@@ -345,39 +358,60 @@ Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> 
   return tile;
 }
 
-void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX, std::span<float> floorsY) {
-  std::fill(floorsX.begin(), floorsX.end(), 0.0f);
-  std::fill(floorsY.begin(), floorsY.end(), 0.0f);
-  if (h.floors == 0 || h.sampleCount == 0) return;
-  const double position = std::clamp((t - static_cast<double>(h.startSeconds)) * h.sampleRateHz, 0.0,
-                                     static_cast<double>(h.sampleCount - 1));
-  const auto i1 = static_cast<std::uint32_t>(position);
-  const std::uint32_t last = h.sampleCount - 1;
-  const std::uint32_t i0 = i1 > 0 ? i1 - 1 : 0;
-  const std::uint32_t i2 = std::min(i1 + 1, last);
-  const std::uint32_t i3 = std::min(i1 + 2, last);
+HistoryTap historyTap(float startSeconds, float sampleRateHz, std::uint32_t sampleCount, double t) {
+  const double position =
+      std::clamp((t - static_cast<double>(startSeconds)) * sampleRateHz, 0.0, static_cast<double>(sampleCount - 1));
+  HistoryTap tap;
+  tap.i1 = static_cast<std::uint32_t>(position);
+  const std::uint32_t last = sampleCount - 1;
+  tap.i0 = tap.i1 > 0 ? tap.i1 - 1 : 0;
+  tap.i2 = std::min(tap.i1 + 1, last);
+  tap.i3 = std::min(tap.i1 + 2, last);
   // Uniform Catmull-Rom weights (the cubic through the four nearest samples' tangents): with 8
   // samples a period it stays within 1 % of a sinusoid, where straight lines need 25.
-  const auto u = static_cast<float>(position - i1);
+  const auto u = static_cast<float>(position - tap.i1);
   const float u2 = u * u, u3 = u2 * u;
-  const float w0 = 0.5f * (-u3 + 2.0f * u2 - u);
-  const float w1 = 0.5f * (3.0f * u3 - 5.0f * u2 + 2.0f);
-  const float w2 = 0.5f * (-3.0f * u3 + 4.0f * u2 + u);
-  const float w3 = 0.5f * (u3 - u2);
-  // Floor levels 1..floors are written; both outputs must hold them (level 0 is the ground).
+  tap.w0 = 0.5f * (-u3 + 2.0f * u2 - u);
+  tap.w1 = 0.5f * (3.0f * u3 - 5.0f * u2 + 2.0f);
+  tap.w2 = 0.5f * (-3.0f * u3 + 4.0f * u2 + u);
+  tap.w3 = 0.5f * (u3 - u2);
+  return tap;
+}
+
+void modalCoordinates(const std::int16_t* coordinates, std::size_t modes, const float* scales, const HistoryTap& tap,
+                      float* out) {
+  const std::int16_t* q0 = coordinates + std::size_t{tap.i0} * modes;
+  const std::int16_t* q1 = coordinates + std::size_t{tap.i1} * modes;
+  const std::int16_t* q2 = coordinates + std::size_t{tap.i2} * modes;
+  const std::int16_t* q3 = coordinates + std::size_t{tap.i3} * modes;
+  for (std::size_t k = 0; k < std::min<std::size_t>(modes, kMaxModes); ++k) {
+    out[k] = (tap.w0 * static_cast<float>(q0[k]) + tap.w1 * static_cast<float>(q1[k]) +
+              tap.w2 * static_cast<float>(q2[k]) + tap.w3 * static_cast<float>(q3[k])) *
+             scales[k];
+  }
+}
+
+void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX, std::span<float> floorsY) {
+  // Level 0 (the ground) and any room beyond the building's floors stay at rest.
   const std::size_t room = std::min(floorsX.size(), floorsY.size());
-  const std::size_t floors = std::min<std::size_t>(h.floors, room > 0 ? room - 1 : 0);
+  const std::size_t floors = h.sampleCount == 0 ? 0 : std::min<std::size_t>(h.floors, room > 0 ? room - 1 : 0);
+  std::fill(floorsX.begin() + static_cast<std::ptrdiff_t>(std::min(floorsX.size(), floors + 1)), floorsX.end(), 0.0f);
+  std::fill(floorsY.begin() + static_cast<std::ptrdiff_t>(std::min(floorsY.size(), floors + 1)), floorsY.end(), 0.0f);
+  if (room > 0) floorsX[0] = floorsY[0] = 0.0f;
   if (floors == 0) return;
+  const HistoryTap tap = historyTap(h.startSeconds, h.sampleRateHz, h.sampleCount, t);
   const std::pair<const HistoryDirection*, std::span<float>> directions[] = {{&h.x, floorsX}, {&h.y, floorsY}};
   for (const auto& [d, out] : directions) {
-    for (std::size_t k = 0; k < d->modes; ++k) {
-      const std::int16_t* q = d->coordinates.data() + k * h.sampleCount;
-      const float coordinate = (w0 * static_cast<float>(q[i0]) + w1 * static_cast<float>(q[i1]) +
-                                w2 * static_cast<float>(q[i2]) + w3 * static_cast<float>(q[i3])) *
-                               d->scales[k];
-      for (std::size_t f = 0; f < floors; ++f) {
-        out[f + 1] += d->shapes[f * d->modes + k] * coordinate;
-      }
+    // The modal coordinates at t first, then each floor as the sum of its shape row times them:
+    // the shapes are read once, in order (floor-major).
+    const std::size_t modes = std::min<std::size_t>(d->modes, kMaxModes);
+    float coordinate[kMaxModes] = {};
+    modalCoordinates(d->coordinates.data(), d->modes, d->scales.data(), tap, coordinate);
+    const float* shape = d->shapes.data();
+    for (std::size_t f = 0; f < floors; ++f, shape += d->modes) {
+      float v = 0.0f;
+      for (std::size_t k = 0; k < modes; ++k) v += shape[k] * coordinate[k];
+      out[f + 1] = v;
     }
   }
 }

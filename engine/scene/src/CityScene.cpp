@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <unordered_map>
 
 #include "qv/core/Crc32.h"
@@ -85,8 +86,9 @@ struct CityScene::Animated {
   BuildingRef ref;
   std::uint32_t slot = 0;
   std::uint32_t floorBase = 0;
-  std::uint32_t rows = 0;  // storeys + 1
-  std::uint64_t frame = 0;
+  std::uint32_t rows = 0;     // storeys + 1
+  std::uint64_t choice = 0;   // the last choice (chooseAnimated) that kept it
+  bool peaksWritten = false;  // its peak drifts are in its floor rows
 };
 
 CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifestUrl, CitySceneOptions options,
@@ -334,6 +336,7 @@ void CityScene::finishTile(std::uint32_t node) {
                    boxes.size() * (sizeof(Box) * 2 + 12);
   writeBuildingRows(tile->slotBase, count);
   t.loaded = std::move(tile);
+  ++residencyGeneration_;
   t.lastUsed = frame_;
   t.attempts = 0;
   if (t.errorShown) {
@@ -465,6 +468,7 @@ void CityScene::requestHistory(std::uint32_t node) {
         }
         rt.historyBytes = bytes;
         rt.historyState = TileState::Loaded;
+        ++residencyGeneration_;
       },
       options_.requestTimeoutMs);
 }
@@ -480,6 +484,7 @@ void CityScene::reindexAnimated() {
 
 void CityScene::evict(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
+  ++residencyGeneration_;
   if (t.loaded) {
     // Buildings of this tile stop animating first (they hold floor rows).
     for (auto& a : animated_) {
@@ -514,6 +519,7 @@ void CityScene::enforceMemoryBudget() {
     if (tiles_[i]->history && tiles_[i]->historyUsed < frame_) {
       total -= tiles_[i]->historyBytes;
       tiles_[i]->history.reset();
+      ++residencyGeneration_;
       tiles_[i]->historyBytes = 0;
       tiles_[i]->historyState = TileState::Unloaded;
       if (total <= options_.memoryBudgetBytes) return;
@@ -607,17 +613,36 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     for (const IndexRange& r : t.visible) visibleBuildings += r.end - r.begin;
     items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin});
   }
-  // Damage states in view (for the panel), from the summaries of the drawn tiles.
-  damageInView_.fill(0);
+  // Damage states in view (for the panel), from the summaries of the drawn tiles: counted again
+  // only when the visible sets or the summaries behind them changed.
+  std::uint64_t viewSignature = 1469598103934665603ull;  // FNV-1a
+  auto mix = [&viewSignature](std::uint64_t v) {
+    viewSignature ^= v;
+    viewSignature *= 1099511628211ull;
+  };
   for (std::uint32_t i : selection_.draw) {
     const TileRuntime& t = *tiles_[i];
     if (!t.loaded) continue;
-    for (const IndexRange& r : t.visible) {
-      for (std::uint32_t p = r.begin; p < r.end; ++p) {
-        const std::uint32_t b = t.loaded->tree.order()[p];
-        const DamageState d =
-            t.summary && b < t.summary->buildings.size() ? t.summary->buildings[b].damage : DamageState::NoResult;
-        ++damageInView_[d == DamageState::NoResult ? 5 : static_cast<std::size_t>(d)];
+    mix(i);
+    mix(reinterpret_cast<std::uintptr_t>(t.summary.get()));
+    mix(t.visible.size());
+    for (const IndexRange& r : t.visible) mix((static_cast<std::uint64_t>(r.begin) << 32) | r.end);
+  }
+  mix(residencyGeneration_);
+  const bool viewChanged = viewSignature != viewSignature_;
+  viewSignature_ = viewSignature;
+  if (viewChanged) {
+    damageInView_.fill(0);
+    for (std::uint32_t i : selection_.draw) {
+      const TileRuntime& t = *tiles_[i];
+      if (!t.loaded) continue;
+      for (const IndexRange& r : t.visible) {
+        for (std::uint32_t p = r.begin; p < r.end; ++p) {
+          const std::uint32_t b = t.loaded->tree.order()[p];
+          const DamageState d =
+              t.summary && b < t.summary->buildings.size() ? t.summary->buildings[b].damage : DamageState::NoResult;
+          ++damageInView_[d == DamageState::NoResult ? 5 : static_cast<std::size_t>(d)];
+        }
       }
     }
   }
@@ -672,13 +697,29 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
 
 void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts) {
   const float radius = options_.animationRadiusM;
-  struct Candidate {
-    float distance2;
-    std::uint32_t node, index, position;
+  // The tiles within the radius keep (or fetch) their histories this frame. What they animate is
+  // chosen again only when something it depends on changed: the eye, the radius, the cap, a
+  // tile's residency or visible set. A still camera while playing costs only the sampling below.
+  std::uint64_t signature = 1469598103934665603ull;  // FNV-1a over the inputs of the choice
+  auto mix = [&signature](std::uint64_t v) {
+    signature ^= v;
+    signature *= 1099511628211ull;
   };
-  std::vector<Candidate> candidates;
+  auto bitsOf = [](float v) {
+    std::uint32_t b = 0;
+    std::memcpy(&b, &v, sizeof b);
+    return static_cast<std::uint64_t>(b);
+  };
+  mix(bitsOf(eye.x));
+  mix(bitsOf(eye.y));
+  mix(bitsOf(eye.z));
+  mix(bitsOf(radius));
+  mix(options_.maxAnimatedBuildings);
+  mix(residencyGeneration_);
+  mix(viewSignature_);  // the visible sets (culling) of every drawn tile
+  std::vector<std::uint32_t>& inRadius = animationTiles_;
+  inRadius.clear();
   if (radius > 0.0f) {
-    const double r2 = static_cast<double>(radius) * radius;
     for (std::uint32_t i : selection_.draw) {
       TileRuntime& t = *tiles_[i];
       const TileNode& n = tileset_->nodes[i];
@@ -691,19 +732,96 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
       requestHistory(i);
       t.historyUsed = frame_;
       if (t.historyState != TileState::Loaded) continue;
-      const LoadedTile& tile = *t.loaded;
-      for (const IndexRange& range : t.visible) {
-        for (std::uint32_t p = range.begin; p < range.end; ++p) {
-          const std::uint32_t b = tile.tree.order()[p];
-          const BuildingAttributes& a = tile.data.buildings[b].attributes;
-          // Distance from the eye to the building's axis at mid-height.
-          const double cx = a.centroidX + tile.data.originX - static_cast<double>(eye.x);
-          const double cy = a.centroidY + tile.data.originY - static_cast<double>(eye.y);
-          const double cz = 0.5 * static_cast<double>(a.heightM + a.minHeightM) - static_cast<double>(eye.z);
-          const double d2 = cx * cx + cy * cy + cz * cz;
-          if (d2 <= r2 && t.history->buildings[b].floors == a.storeys) {
-            candidates.push_back({static_cast<float>(d2), i, b, p});
+      inRadius.push_back(i);
+      mix(i);
+    }
+  }
+  if (signature != animationSignature_ || animated_.empty() != inRadius.empty() ||
+      samplers_.size() != animated_.size()) {
+    animationSignature_ = signature;
+    chooseAnimated(eye, inRadius);
+  }
+  if (floorRows_.size() < floorSlots_->highWater()) floorRows_.resize(floorSlots_->highWater());
+
+  // Every animated building's floors at this time, straight into its rows of the floor table,
+  // in two passes. What the sampling needs was packed in animation order when the buildings were
+  // chosen (read as one stream); only the coordinates around t are scattered over the heap. The
+  // first pass does nothing but interpolate those into modal coordinates, a short loop whose
+  // cache misses the processor overlaps (WebAssembly has no prefetch); the second turns them into
+  // floor displacements from the packed shapes.
+  const std::size_t count = animated_.size();
+  modal_.resize(count * 16);
+  for (std::size_t j = 0; j < count; ++j) {
+    const AnimatedSampler& sampler = samplers_[j];
+    float* out = modal_.data() + j * 16;
+    if (sampler.sampleCount == 0) continue;
+    const HistoryTap tap = historyTap(sampler.startSeconds, sampler.sampleRateHz, sampler.sampleCount, timeSeconds);
+    const float* scalesX = samplerArena_.data() + sampler.arenaOffset;
+    const float* scalesY = scalesX + sampler.modesX + std::size_t{sampler.floors} * sampler.modesX;
+    modalCoordinates(sampler.x, sampler.modesX, scalesX, tap, out);
+    modalCoordinates(sampler.y, sampler.modesY, scalesY, tap, out + 8);
+  }
+  for (std::size_t j = 0; j < count; ++j) {
+    const Animated& a = *animated_[j];
+    const AnimatedSampler& sampler = samplers_[j];
+    FloorGpuRecord* rows = floorRows_.data() + a.floorBase;
+    const std::size_t floors = std::min<std::size_t>(sampler.floors, a.rows - 1);
+    rows[0].dxMeters = rows[0].dyMeters = 0.0f;
+    if (sampler.sampleCount == 0 || floors == 0) {
+      for (std::size_t k = 1; k < a.rows; ++k) rows[k].dxMeters = rows[k].dyMeters = 0.0f;
+    } else {
+      const float* packed = samplerArena_.data() + sampler.arenaOffset;  // scales x, shapes x, scales y, shapes y
+      for (int direction = 0; direction < 2; ++direction) {
+        const std::size_t modes = direction == 0 ? sampler.modesX : sampler.modesY;
+        const float* coordinate = modal_.data() + j * 16 + (direction == 0 ? 0 : 8);
+        const float* shape = packed + modes;
+        for (std::size_t f = 0; f < floors; ++f, shape += modes) {
+          float v = 0.0f;
+          for (std::size_t k = 0; k < modes; ++k) v += shape[k] * coordinate[k];
+          (direction == 0 ? rows[f + 1].dxMeters : rows[f + 1].dyMeters) = v;
+        }
+        packed += modes + std::size_t{sampler.floors} * modes;
+      }
+    }
+    if (!a.peaksWritten) {
+      // The peak drifts do not change with time: written once, when the summary is there.
+      const TileRuntime& t = *tiles_[a.ref.node];
+      if (t.summary) {
+        if (a.ref.index < t.summary->buildings.size()) {
+          const BuildingResponse& summary = t.summary->buildings[a.ref.index];
+          for (std::uint32_t k = 0; k < a.rows; ++k) {
+            rows[k].peakDriftAbove = k < summary.storeys ? t.summary->storeyPeakDrift[summary.firstStorey + k] : 0.0f;
           }
+        }
+        animated_[j]->peaksWritten = true;
+      }
+    }
+  }
+  counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
+}
+
+void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles) {
+  const float radius = options_.animationRadiusM;
+  struct Candidate {
+    float distance2;
+    std::uint32_t node, index, position;
+  };
+  std::vector<Candidate> candidates;
+  const double r2 = static_cast<double>(radius) * radius;
+  for (std::uint32_t i : tiles) {
+    const TileRuntime& t = *tiles_[i];
+    const LoadedTile& tile = *t.loaded;
+    for (const IndexRange& range : t.visible) {
+      for (std::uint32_t p = range.begin; p < range.end; ++p) {
+        const std::uint32_t b = tile.tree.order()[p];
+        const BuildingAttributes& a = tile.data.buildings[b].attributes;
+        // Distance from the eye to the building's axis at mid-height.
+        const double cx = a.centroidX + tile.data.originX - static_cast<double>(eye.x);
+        const double cy = a.centroidY + tile.data.originY - static_cast<double>(eye.y);
+        const double cz = 0.5 * static_cast<double>(a.heightM + a.minHeightM) - static_cast<double>(eye.z);
+        const double d2 = cx * cx + cy * cy + cz * cz;
+        if (d2 <= r2 && t.history->buildings[b].floors == a.storeys) {
+          candidates.push_back({static_cast<float>(d2), i, b, p});
         }
       }
     }
@@ -716,7 +834,8 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   }
 
   // Keep the floor rows of buildings that stay animated; release the rest; allocate the new.
-  // (Each tile maps its buildings to their entries in animated_: no hashing per frame.)
+  // (Each tile maps its buildings to their entries in animated_: no hashing.)
+  ++choice_;
   for (const Candidate& c : candidates) {
     TileRuntime& t = *tiles_[c.node];
     const LoadedTile& tile = *t.loaded;
@@ -724,7 +843,7 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
       t.animatedIndex.assign(tile.data.buildings.size(), kNotAnimated);
     }
     if (const std::uint32_t k = t.animatedIndex[c.index]; k != kNotAnimated) {
-      animated_[k]->frame = frame_;
+      animated_[k]->choice = choice_;
       continue;
     }
     const std::uint32_t rows = tile.data.buildings[c.index].attributes.storeys + 1u;
@@ -735,7 +854,7 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     a->slot = tile.slotBase + c.position;
     a->floorBase = *base;
     a->rows = rows;
-    a->frame = frame_;
+    a->choice = choice_;
     buildingRows_[a->slot].floorBase = static_cast<float>(*base);
     writeBuildingRows(a->slot, 1);
     t.animatedIndex[c.index] = static_cast<std::uint32_t>(animated_.size());
@@ -743,7 +862,7 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   }
   bool released = false;
   for (auto& a : animated_) {
-    if (a->frame == frame_) continue;
+    if (a->choice == choice_) continue;
     TileRuntime& t = *tiles_[a->ref.node];
     if (t.loaded) {
       buildingRows_[a->slot].floorBase = -1.0f;
@@ -758,27 +877,27 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
     reindexAnimated();
   }
-  if (floorRows_.size() < floorSlots_->highWater()) floorRows_.resize(floorSlots_->highWater());
-
-  // Every animated building's floors at this time.
-  for (const auto& a : animated_) {
-    const TileRuntime& t = *tiles_[a->ref.node];
-    const BuildingHistory& h = t.history->buildings[a->ref.index];
-    scratchX_.resize(a->rows);
-    scratchY_.resize(a->rows);
-    sampleHistory(h, timeSeconds, scratchX_, scratchY_);
-    const BuildingResponse* summary =
-        t.summary && a->ref.index < t.summary->buildings.size() ? &t.summary->buildings[a->ref.index] : nullptr;
-    for (std::uint32_t k = 0; k < a->rows; ++k) {
-      FloorGpuRecord& r = floorRows_[a->floorBase + k];
-      r.dxMeters = scratchX_[k];
-      r.dyMeters = scratchY_[k];
-      r.peakDriftAbove = 0.0f;
-      if (summary != nullptr && k < summary->storeys)
-        r.peakDriftAbove = t.summary->storeyPeakDrift[summary->firstStorey + k];
+  // Their histories, in the same order, for the sampling loop (valid until the next choice: any
+  // change of residency changes the signature, and the choice is made again before sampling).
+  samplers_.resize(animated_.size());
+  samplerArena_.clear();
+  for (std::size_t j = 0; j < animated_.size(); ++j) {
+    const BuildingHistory& h = tiles_[animated_[j]->ref.node]->history->buildings[animated_[j]->ref.index];
+    AnimatedSampler& sampler = samplers_[j];
+    sampler.x = h.x.coordinates.data();
+    sampler.y = h.y.coordinates.data();
+    sampler.startSeconds = h.startSeconds;
+    sampler.sampleRateHz = h.sampleRateHz;
+    sampler.sampleCount = h.sampleCount;
+    sampler.floors = h.floors;
+    sampler.modesX = h.x.modes;
+    sampler.modesY = h.y.modes;
+    sampler.arenaOffset = static_cast<std::uint32_t>(samplerArena_.size());
+    for (const HistoryDirection* d : {&h.x, &h.y}) {
+      samplerArena_.insert(samplerArena_.end(), d->scales.begin(), d->scales.end());
+      samplerArena_.insert(samplerArena_.end(), d->shapes.begin(), d->shapes.end());
     }
   }
-  counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -241,10 +241,10 @@ float fillDirection(HistoryDirection& out, const DirectionPlan& p, const Directi
     for (std::uint32_t s = 0; s < samples; ++s) peak = std::max(peak, std::abs(at(s)));
     const float scale = peak > 0.0f ? peak / levels : 1.0f;
     out.scales[k] = scale;
-    std::int16_t* coordinates = out.coordinates.data() + k * samples;
+    // Time-major (HistoryDirection): sample s of mode k at s * modes + k.
     for (std::uint32_t s = 0; s < samples; ++s) {
       const float v = std::clamp(std::nearbyint(at(s) / scale), -levels, levels);
-      coordinates[s] = static_cast<std::int16_t>(v);
+      out.coordinates[s * modes + k] = static_cast<std::int16_t>(v);
     }
   }
   // What sampleHistory reconstructs at every frame (Catmull-Rom of the integer samples times the
@@ -254,15 +254,16 @@ float fillDirection(HistoryDirection& out, const DirectionPlan& p, const Directi
   const std::uint32_t last = samples - 1;
   scratch.resize((modes + 1) * m);
   for (std::size_t k = 0; k < modes; ++k) {
-    const std::int16_t* c = out.coordinates.data() + k * samples;
+    const std::int16_t* c = out.coordinates.data() + k;  // stride: modes
     const float scale = out.scales[k];
     float* r = scratch.data() + k * m;
     for (std::size_t i1 = 0; i1 * step < m; ++i1) {
       const auto j = static_cast<std::uint32_t>(i1);
       // Past the last sample every index clamps to it: sampleHistory holds the last value.
-      const float p0 = static_cast<float>(c[std::min(j > 0 ? j - 1 : 0, last)]);
-      const float p1 = static_cast<float>(c[std::min(j, last)]);
-      const float p2 = static_cast<float>(c[std::min(j + 1, last)]), p3 = static_cast<float>(c[std::min(j + 2, last)]);
+      const float p0 = static_cast<float>(c[std::min(j > 0 ? j - 1 : 0, last) * modes]);
+      const float p1 = static_cast<float>(c[std::min(j, last) * modes]);
+      const float p2 = static_cast<float>(c[std::min(j + 1, last) * modes]);
+      const float p3 = static_cast<float>(c[std::min(j + 2, last) * modes]);
       const std::size_t begin = i1 * step, end = std::min(m, begin + step);
       for (std::size_t f = begin; f < end; ++f) {
         const Weights& w = weights[f - begin];

@@ -62,7 +62,7 @@ struct HistoryDirection {
   std::uint8_t modes = 0;                 ///< basis vectors (0: no motion in this direction)
   std::vector<float> shapes;              ///< floors × modes, floor-major (floor 1 first), metres per unit
   std::vector<float> scales;              ///< modes: coordinate value of one quantization step
-  std::vector<std::int16_t> coordinates;  ///< modes × sampleCount, mode-major
+  std::vector<std::int16_t> coordinates;  ///< sampleCount × modes, time-major (in memory; files are mode-major)
 };
 
 struct BuildingHistory {
@@ -86,5 +86,19 @@ Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> 
 /// ground, is 0), Catmull-Rom interpolated; times beyond the history hold its last sample.
 void sampleHistory(const BuildingHistory& history, double timeSeconds, std::span<float> floorsX,
                    std::span<float> floorsY);
+
+/// Where time t falls in a history: the four samples around it and their Catmull-Rom weights
+/// (sampleHistory's interpolation, for callers that keep the mode shapes elsewhere).
+struct HistoryTap {
+  std::uint32_t i0 = 0, i1 = 0, i2 = 0, i3 = 0;
+  float w0 = 0.0f, w1 = 0.0f, w2 = 0.0f, w3 = 0.0f;
+};
+/// Requires sampleCount > 0.
+HistoryTap historyTap(float startSeconds, float sampleRateHz, std::uint32_t sampleCount, double timeSeconds);
+/// The modal coordinates of one direction at a tap (scaled to metres per unit shape): reads
+/// `coordinates` (time-major, `modes` per sample, as HistoryDirection holds them) and `scales`,
+/// and writes `modes` values (at most 8, the format's limit) to `out`.
+void modalCoordinates(const std::int16_t* coordinates, std::size_t modes, const float* scales, const HistoryTap& tap,
+                      float* out);
 
 }  // namespace qv

@@ -175,6 +175,9 @@ class CityScene {
   [[nodiscard]] BuildingListEntry listEntry(
       std::uint32_t index) const;  // of the root tile  // evicts what this frame did not use, least recently used first
   void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
+  /// Chooses the animated buildings (nearest first, up to the cap) among the visible buildings of
+  /// `tiles` (within the radius, histories loaded), keeping the floor rows of those that stay.
+  void chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles);
 
   RenderDevice& device_;
   Fetcher& fetcher_;
@@ -201,7 +204,25 @@ class CityScene {
   std::unique_ptr<class RangeAllocator> slots_;
   std::unique_ptr<class RangeAllocator> floorSlots_;
   std::vector<std::unique_ptr<Animated>> animated_;
-  std::vector<float> scratchX_, scratchY_;
+  /// What sampling one animated building needs, packed when the buildings are chosen (the
+  /// pointers stay valid until the next choice: any change of residency triggers one first).
+  struct AnimatedSampler {
+    const std::int16_t* x = nullptr;  // coordinates, time-major (HistoryDirection)
+    const std::int16_t* y = nullptr;
+    float startSeconds = 0.0f;
+    float sampleRateHz = 0.0f;
+    std::uint32_t sampleCount = 0;
+    std::uint32_t arenaOffset = 0;  // scales x, shapes x, scales y, shapes y in samplerArena_
+    std::uint16_t floors = 0;
+    std::uint8_t modesX = 0, modesY = 0;
+  };
+  std::vector<AnimatedSampler> samplers_;  // of animated_, same order
+  std::vector<float> samplerArena_;
+  std::vector<float> modal_;                   // per animated building: 8 x then 8 y modal coordinates this frame
+  std::vector<std::uint32_t> animationTiles_;  // this frame's tiles within the radius, histories loaded
+  std::uint64_t animationSignature_ = 0;       // inputs of the last choice of animated buildings
+  std::uint64_t choice_ = 0;                   // counts the choices
+  std::uint64_t residencyGeneration_ = 0;      // bumped when a tile or a history arrives or leaves
 
   std::string selected_;
   std::vector<std::uint32_t> detailWanted_;  // leaves to load for the selection
@@ -211,6 +232,7 @@ class CityScene {
   TileState searchState_ = TileState::Unloaded;
   std::vector<SearchEntry> searchIndex_;
   std::array<std::uint64_t, 6> damageInView_{};
+  std::uint64_t viewSignature_ = 0;  // visible sets and summaries behind damageInView_
   std::string seriesFor_;
   std::optional<BuildingSeries> series_;
 };
