@@ -197,6 +197,9 @@ void CityScene::request(std::uint32_t node, double now) {
   const std::string url = resolveUrl(manifestUrl_, tileset_->nodes[node].file);
   t.request = fetcher_.fetch(
       url, [this, node](FetchResponse r) { onTile(node, std::move(r), clock_); }, options_.requestTimeoutMs);
+  // Its response summary travels alongside (it colours the tile's first frame): both downloads
+  // overlap instead of the summary waiting for the tile to arrive and be decoded.
+  requestSummary(node);
 }
 
 void CityScene::failTile(std::uint32_t node, const std::string& message, bool transient, double now) {
@@ -346,6 +349,11 @@ void CityScene::finishTile(std::uint32_t node) {
   }
   states_[node] = TileState::Loaded;
   applyFlags(node);
+  // The summary was requested with the tile and may be here already (or may have failed).
+  if (t.summary)
+    applySummary(node);
+  else if (t.summaryState == TileState::Failed)
+    markNoResult(node);
   if (tileset_->nodes[node].response) requestSummary(node);
 }
 
