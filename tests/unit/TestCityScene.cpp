@@ -141,7 +141,9 @@ TEST_CASE("Each animated building moves by its own history", "[scene][city][anim
   CHECK(viewer.stats().latest.buildingsAnimated == 64);
   CHECK(viewer.duration() == 10.0);
 
-  for (double t : {0.37, 2.5, 7.91}) {
+  // Forward jumps, a jump back, small steps (the animator reuses the samples it already has) and
+  // the end of the history (where the samples clamp).
+  for (double t : {0.37, 2.5, 7.91, 1.2, 1.21, 1.23, 1.26, 9.99}) {
     REQUIRE(viewer.setTime(t));
     viewer.frame(1.0 / 60.0);
     std::set<long> distinct;

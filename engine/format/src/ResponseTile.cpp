@@ -378,12 +378,13 @@ HistoryTap historyTap(float startSeconds, float sampleRateHz, std::uint32_t samp
   return tap;
 }
 
-void modalCoordinates(const std::int16_t* coordinates, std::size_t modes, const float* scales, const HistoryTap& tap,
-                      float* out) {
-  const std::int16_t* q0 = coordinates + std::size_t{tap.i0} * modes;
-  const std::int16_t* q1 = coordinates + std::size_t{tap.i1} * modes;
-  const std::int16_t* q2 = coordinates + std::size_t{tap.i2} * modes;
-  const std::int16_t* q3 = coordinates + std::size_t{tap.i3} * modes;
+void modalCoordinates(const std::int16_t* coordinates, std::size_t rowStride, const float* scales,
+                      const HistoryTap& tap, float* out, std::size_t modes) {
+  if (modes == SIZE_MAX) modes = rowStride;
+  const std::int16_t* q0 = coordinates + std::size_t{tap.i0} * rowStride;
+  const std::int16_t* q1 = coordinates + std::size_t{tap.i1} * rowStride;
+  const std::int16_t* q2 = coordinates + std::size_t{tap.i2} * rowStride;
+  const std::int16_t* q3 = coordinates + std::size_t{tap.i3} * rowStride;
   for (std::size_t k = 0; k < std::min<std::size_t>(modes, kMaxModes); ++k) {
     out[k] = (tap.w0 * static_cast<float>(q0[k]) + tap.w1 * static_cast<float>(q1[k]) +
               tap.w2 * static_cast<float>(q2[k]) + tap.w3 * static_cast<float>(q3[k])) *

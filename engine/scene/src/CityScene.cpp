@@ -754,20 +754,43 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   // Every animated building's floors at this time, straight into its rows of the floor table,
   // in two passes. What the sampling needs was packed in animation order when the buildings were
   // chosen (read as one stream); only the coordinates around t are scattered over the heap. The
-  // first pass does nothing but interpolate those into modal coordinates, a short loop whose
-  // cache misses the processor overlaps (WebAssembly has no prefetch); the second turns them into
-  // floor displacements from the packed shapes.
+  // first pass turns them into modal coordinates. Each building keeps a window of the four
+  // samples it interpolates: from one frame to the next t moves by a fraction of a sample, so
+  // most frames reuse the window and the rest fetch one new sample (a cache miss the short loop
+  // lets the processor overlap with others; WebAssembly has no prefetch). The second pass turns
+  // modal coordinates into floor displacements from the packed shapes.
   const std::size_t count = animated_.size();
   modal_.resize(count * 16);
   for (std::size_t j = 0; j < count; ++j) {
-    const AnimatedSampler& sampler = samplers_[j];
+    AnimatedSampler& sampler = samplers_[j];
     float* out = modal_.data() + j * 16;
     if (sampler.sampleCount == 0) continue;
     const HistoryTap tap = historyTap(sampler.startSeconds, sampler.sampleRateHz, sampler.sampleCount, timeSeconds);
+    const std::uint32_t wanted[4] = {tap.i0, tap.i1, tap.i2, tap.i3};
+    if (!std::equal(wanted, wanted + 4, sampler.window)) {
+      SampleWindow& w = windows_[j];
+      SampleWindow fresh;
+      for (int slot = 0; slot < 4; ++slot) {
+        const std::uint32_t i = wanted[slot];
+        const auto kept = std::find(sampler.window, sampler.window + 4, i);
+        if (kept != sampler.window + 4) {
+          const auto from = static_cast<std::size_t>(kept - sampler.window);
+          std::copy_n(w.x + from * 8, 8, fresh.x + slot * 8);
+          std::copy_n(w.y + from * 8, 8, fresh.y + slot * 8);
+        } else {
+          std::copy_n(sampler.x + std::size_t{i} * sampler.modesX, sampler.modesX, fresh.x + slot * 8);
+          std::copy_n(sampler.y + std::size_t{i} * sampler.modesY, sampler.modesY, fresh.y + slot * 8);
+        }
+      }
+      w = fresh;
+      std::copy(wanted, wanted + 4, sampler.window);
+    }
+    const SampleWindow& w = windows_[j];
+    const HistoryTap local{0, 1, 2, 3, tap.w0, tap.w1, tap.w2, tap.w3};  // the window's rows, 8 apart
     const float* scalesX = samplerArena_.data() + sampler.arenaOffset;
     const float* scalesY = scalesX + sampler.modesX + std::size_t{sampler.floors} * sampler.modesX;
-    modalCoordinates(sampler.x, sampler.modesX, scalesX, tap, out);
-    modalCoordinates(sampler.y, sampler.modesY, scalesY, tap, out + 8);
+    modalCoordinates(w.x, 8, scalesX, local, out, sampler.modesX);
+    modalCoordinates(w.y, 8, scalesY, local, out + 8, sampler.modesY);
   }
   for (std::size_t j = 0; j < count; ++j) {
     const Animated& a = *animated_[j];
@@ -888,6 +911,7 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
   // Their histories, in the same order, for the sampling loop (valid until the next choice: any
   // change of residency changes the signature, and the choice is made again before sampling).
   samplers_.resize(animated_.size());
+  windows_.resize(animated_.size());
   samplerArena_.clear();
   for (std::size_t j = 0; j < animated_.size(); ++j) {
     const BuildingHistory& h = tiles_[animated_[j]->ref.node]->history->buildings[animated_[j]->ref.index];
@@ -901,6 +925,7 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
     sampler.modesX = h.x.modes;
     sampler.modesY = h.y.modes;
     sampler.arenaOffset = static_cast<std::uint32_t>(samplerArena_.size());
+    std::fill(sampler.window, sampler.window + 4, UINT32_MAX);  // nothing in its window yet
     for (const HistoryDirection* d : {&h.x, &h.y}) {
       samplerArena_.insert(samplerArena_.end(), d->scales.begin(), d->scales.end());
       samplerArena_.insert(samplerArena_.end(), d->shapes.begin(), d->shapes.end());

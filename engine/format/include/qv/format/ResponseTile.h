@@ -96,9 +96,10 @@ struct HistoryTap {
 /// Requires sampleCount > 0.
 HistoryTap historyTap(float startSeconds, float sampleRateHz, std::uint32_t sampleCount, double timeSeconds);
 /// The modal coordinates of one direction at a tap (scaled to metres per unit shape): reads
-/// `coordinates` (time-major, `modes` per sample, as HistoryDirection holds them) and `scales`,
-/// and writes `modes` values (at most 8, the format's limit) to `out`.
-void modalCoordinates(const std::int16_t* coordinates, std::size_t modes, const float* scales, const HistoryTap& tap,
-                      float* out);
+/// `coordinates` (time-major, sample i's row at i * rowStride, as HistoryDirection holds them with
+/// rowStride = modes) and `scales`, and writes `modes` values (at most 8, the format's limit) to
+/// `out`. `modes` defaults to rowStride.
+void modalCoordinates(const std::int16_t* coordinates, std::size_t rowStride, const float* scales,
+                      const HistoryTap& tap, float* out, std::size_t modes = SIZE_MAX);
 
 }  // namespace qv

@@ -215,7 +215,14 @@ class CityScene {
     std::uint32_t arenaOffset = 0;  // scales x, shapes x, scales y, shapes y in samplerArena_
     std::uint16_t floors = 0;
     std::uint8_t modesX = 0, modesY = 0;
+    std::uint32_t window[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // samples in its window
   };
+  /// The coordinates of the four samples an animated building interpolates (rows of 8, x and y).
+  struct SampleWindow {
+    std::int16_t x[32] = {};
+    std::int16_t y[32] = {};
+  };
+  std::vector<SampleWindow> windows_;      // of animated_, same order
   std::vector<AnimatedSampler> samplers_;  // of animated_, same order
   std::vector<float> samplerArena_;
   std::vector<float> modal_;                   // per animated building: 8 x then 8 y modal coordinates this frame
