@@ -129,12 +129,9 @@ inline std::size_t requireSkinningRule(const SkinnedMesh& skinned, const FloorLe
     const double z = skinned.mesh.positions[i].z;
     const int bone = skinned.bone[i];
     const float w = skinned.weight[i];
-    // Bone k gets 1 - w, bone k + 1 gets w: the two weights sum to 1 by construction; check each.
-    const float boneWeight = 1.0f - w;
-    const float nextWeight = w;
-    if (bone > floors.storeys || !(w >= 0.0f && w <= 1.0f) || !(boneWeight >= 0.0f && boneWeight <= 1.0f) ||
-        std::abs(boneWeight + nextWeight - 1.0f) > 1e-6f)
-      ++bad;
+    // Bone k gets 1 - w and bone k + 1 gets w. The weights on bones that exist sum to 1 only when
+    // w is in [0, 1) and bone k + 1 exists whenever w > 0 (no weight on a bone above the roof).
+    if (bone > floors.storeys || !(w >= 0.0f && w < 1.0f) || (w > 0.0f && bone + 1 > floors.storeys)) ++bad;
     const double nearest = std::round((z - floors.baseM) / floors.storeyHeightM);
     const bool atLevel =
         nearest >= 0 && nearest <= floors.storeys && std::abs(z - floors.levelM(static_cast<int>(nearest))) <= 1e-9;

@@ -156,6 +156,8 @@ TEST_CASE("lod2: Den Haag's models placed in the synthetic city replace the bloc
     }
     requireSkinningRule(model.skinned, floorLevels(model.attributes));
   }
+  INFO(replaced.size() << " of 4 models replaced a block");
+  CHECK(replaced.size() >= 1);
   CHECK(imported->report.replaced == replaced.size());
   CHECK(imported->report.imported == 4);
 }

@@ -1,6 +1,8 @@
 // Re-meshing, skinning and the far mesh: no triangle spans two storeys, area and enclosed volume
 // are kept, skin weights follow the rule, on a synthetic tower and on real CityJSON models.
+#include <map>
 #include <numbers>
+#include <utility>
 
 #include <catch2/catch.hpp>
 
@@ -45,6 +47,21 @@ Lod2Mesh syntheticTower() {
   return mesh;
 }
 
+/// Directed edges (a, b) of the mesh without exactly one reverse edge (b, a): 0 for a closed,
+/// consistently oriented mesh without T-junctions.
+std::size_t unmatchedDirectedEdges(const Lod2Mesh& mesh) {
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> uses;
+  for (std::size_t t = 0; t + 2 < mesh.triangles.size(); t += 3) {
+    for (std::size_t i = 0; i < 3; ++i) ++uses[{mesh.triangles[t + i], mesh.triangles[t + (i + 1) % 3]}];
+  }
+  std::size_t unmatched = 0;
+  for (const auto& [edge, n] : uses) {
+    const auto reverse = uses.find({edge.second, edge.first});
+    if (n != 1 || reverse == uses.end() || reverse->second != 1) ++unmatched;
+  }
+  return unmatched;
+}
+
 }  // namespace
 
 TEST_CASE("lod2: boneWeightAt: linear between floors, exact at floors, clamped at the ends", "[lod2][skin]") {
@@ -82,6 +99,10 @@ TEST_CASE("lod2: A synthetic tower: cut at every floor, split, skinned; area and
   CHECK(enclosedVolumeM3(*remeshed) == Approx(volume).epsilon(1e-3));
   CHECK(surfaceAreaM2(*remeshed) == Approx(area).epsilon(1e-9));  // exact up to rounding, in fact
   requireWithinStoreyBands(*remeshed, floors);
+  // Still closed: cut points and midpoints are shared by both triangles of an edge, so every
+  // directed edge has its reverse exactly once (a crack or T-junction would leave one unmatched).
+  CHECK(unmatchedDirectedEdges(tower) == 0);
+  CHECK(unmatchedDirectedEdges(*remeshed) == 0);
   // No edge longer than half a storey, except on the flat ground face's inside (moves as a whole).
   const double target = targetEdgeLengthM(floors, {});
   CHECK(target == Approx(58.0 / 30.0));
