@@ -1,5 +1,9 @@
 // Bad input never crashes or throws: each failure is a Result error with a specific message naming
 // the file and the place.
+#include <fstream>
+#include <random>
+#include <sstream>
+
 #include <catch2/catch.hpp>
 
 #include "Lod2TestData.h"
@@ -146,6 +150,59 @@ TEST_CASE("lod2: Import options are checked", "[lod2][errors]") {
   const Result<Lod2Import> missing = importModels(fixture("missing.city.json"), placedInSyntheticCity());
   REQUIRE_FALSE(missing.ok());
   CHECK(missing.error().find("missing.city.json") != std::string::npos);
+}
+
+TEST_CASE("lod2: Damaged CityJSON gives a result, never a crash: truncations and seeded byte changes",
+          "[lod2][errors][robustness]") {
+  std::ifstream in(fixture("geometry_types.city.json"), std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string original = buffer.str();
+  REQUIRE(original.size() > 5000);
+  // Every truncation before the closing brace is malformed JSON and says where.
+  const std::size_t closingBrace = original.find_last_of('}');
+  std::size_t truncationErrors = 0;
+  for (std::size_t size = 0; size <= closingBrace; size += 3) {
+    const Result<CityJsonFile> file = parseCityJson(std::string_view(original).substr(0, size), "t.json");
+    if (!file.ok() && file.error().rfind("t.json:", 0) == 0) ++truncationErrors;
+  }
+  CHECK(truncationErrors == closingBrace / 3 + 1);
+  // Digits changed: the JSON stays valid but vertex indices, coordinates, the transform, LODs and
+  // storeys break. Whole imports (placed, with a small vertex budget so that a model blown up by a
+  // changed coordinate fails fast) give either finished models or an error naming the file.
+  std::vector<std::size_t> digits;
+  for (std::size_t i = 0; i < original.size(); ++i) {
+    if (original[i] >= '0' && original[i] <= '9') digits.push_back(i);
+  }
+  TempFile damaged("lod2-damaged.city.json", "");
+  Lod2ImportOptions options = placedInSyntheticCity();
+  options.finish.remesh.maxVertices = 20000;
+  std::mt19937 random(7);
+  std::size_t ok = 0;
+  std::size_t failed = 0;
+  for (int round = 0; round < 40; ++round) {
+    std::string text = original;
+    const int changes = 1 + static_cast<int>(random() % 3);
+    for (int c = 0; c < changes; ++c) {
+      text[digits[random() % digits.size()]] = static_cast<char>('0' + random() % 10);
+    }
+    std::ofstream(damaged.path(), std::ios::binary | std::ios::trunc) << text;
+    const Result<Lod2Import> imported = importModels(damaged.path(), options);
+    if (imported.ok()) {
+      ++ok;
+      for (const Lod2Model& model : imported->models) {
+        CHECK(model.skinned.bone.size() == model.skinned.mesh.positions.size());
+        CHECK(model.attributes.heightM > model.attributes.minHeightM);
+      }
+    } else {
+      ++failed;
+      CHECK(imported.error().rfind(damaged.path() + ":", 0) == 0);
+    }
+  }
+  INFO(ok << " imported, " << failed << " refused");
+  CHECK(ok + failed == 40);
+  CHECK(ok > 0);
+  CHECK(failed > 0);
 }
 
 }  // namespace qv::prep::test

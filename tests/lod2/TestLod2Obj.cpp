@@ -1,4 +1,7 @@
 // OBJ models placed by the caller: anchor, rotation, scale, unit and up axis.
+#include <fstream>
+#include <sstream>
+
 #include <catch2/catch.hpp>
 
 #include "Lod2TestData.h"
@@ -156,6 +159,35 @@ TEST_CASE("lod2: Malformed OBJ files give clear errors", "[lod2][obj][errors]") 
     REQUIRE_FALSE(model.ok());
     CHECK(model.error().find("missing.obj") != std::string::npos);
   }
+}
+
+TEST_CASE("lod2: Every truncation of an OBJ file gives a model or an error naming the file", "[lod2][obj][errors]") {
+  std::ifstream in(fixture("box_cm_yup.obj"), std::ios::binary);
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  const std::string original = buffer.str();
+  REQUIRE(original.size() > 100);
+  const CityProjection projection(kPlaceLon, kPlaceLat);
+  const ObjPlacement placement{kPlaceLon, kPlaceLat};
+  TempFile truncated("lod2-truncated.obj", "");
+  std::size_t models = 0;
+  std::size_t errors = 0;
+  for (std::size_t size = 0; size <= original.size(); ++size) {
+    std::ofstream(truncated.path(), std::ios::binary | std::ios::trunc) << original.substr(0, size);
+    const Result<Lod2Model> model = readObjModel(truncated.path(), placement, projection);
+    if (model.ok()) {
+      ++models;
+      CHECK(model->skinned.mesh.kinds.size() == model->skinned.mesh.triangleCount());
+      CHECK(heightRange(model->skinned.mesh).maxZ > 0.0);
+    } else {
+      ++errors;
+      CHECK(model.error().rfind(truncated.path() + ": ", 0) == 0);
+    }
+  }
+  INFO(models << " models, " << errors << " errors");
+  CHECK(models + errors == original.size() + 1);
+  CHECK(models > 0);  // once enough faces are complete
+  CHECK(errors > 0);  // before any face
 }
 
 }  // namespace qv::prep::test
