@@ -8,6 +8,9 @@
 
 #include "Lod2TestData.h"
 #include "qv/prep/Lod2CityJson.h"
+#include "qv/prep/Lod2Finish.h"
+#include "qv/prep/Lod2Obj.h"
+#include "qv/prep/Projection.h"
 
 namespace qv::prep::test {
 
@@ -150,6 +153,78 @@ TEST_CASE("lod2: Import options are checked", "[lod2][errors]") {
   const Result<Lod2Import> missing = importModels(fixture("missing.city.json"), placedInSyntheticCity());
   REQUIRE_FALSE(missing.ok());
   CHECK(missing.error().find("missing.city.json") != std::string::npos);
+}
+
+TEST_CASE("lod2: Models too tall or too large for a building are skipped (CityJSON) or refused (OBJ)",
+          "[lod2][errors]") {
+  // A 10 x 10 m pyramid: apex height and the x of one base corner vary.
+  const auto pyramid = [](const std::string& apexZ, const std::string& cornerX) {
+    return R"({"type": "CityJSON", "version": "2.0", "vertices": [[0, 0, 0], [)" + cornerX +
+           R"(, 0, 0], [10, 10, 0], [0, 10, 0], [5, 5, )" + apexZ + R"(]],
+          "CityObjects": {"b": {"type": "Building", "geometry": [{"type": "MultiSurface", "lod": "2",
+            "boundaries": [[[0, 3, 2, 1]], [[0, 1, 4]], [[1, 2, 4]], [[2, 3, 4]], [[3, 0, 4]]]}]}}})";
+  };
+  struct Row {
+    const char* apexZ;
+    const char* cornerX;
+    const char* skipped;  ///< nullptr: imported
+    const char* warning;
+  };
+  const Row rows[] = {
+      {"9", "10", nullptr, nullptr},
+      {"9999", "10", nullptr, nullptr},
+      {"10001", "10", "too-tall",
+       "h.json: cj:b skipped: 10001 m tall (more than 10000 m): broken coordinates or a "
+       "wrong unit?"},
+      {"1e40", "10", "too-tall", "h.json: cj:b skipped: 1e+40 m tall (more than 10000 m)"},
+      {"9", "2500", "too-large", "h.json: cj:b skipped: 2500 m wide (more than 2000 m)"},
+  };
+  for (const Row& row : rows) {
+    INFO("apex " << row.apexZ << ", corner x " << row.cornerX);
+    const Result<CityJsonFile> file = parseCityJson(pyramid(row.apexZ, row.cornerX), "h.json");
+    REQUIRE(file.ok());
+    REQUIRE(file->buildings.size() == 1);
+    Lod2ImportReport report;
+    const Result<std::vector<Lod2Model>> models =
+        georeferenceCityJson(*file, "h.json", placedInSyntheticCity(), &report);
+    REQUIRE(models.ok());
+    if (row.skipped == nullptr) {
+      REQUIRE(models->size() == 1);
+      CHECK(report.skipped.empty());
+      Lod2Model model = models->front();
+      CHECK(finishModel(model).ok() == (std::string(row.apexZ) == "9"));  // 9999 m: more storeys than bones
+      continue;
+    }
+    CHECK(models->empty());
+    CHECK(report.skipped == std::map<std::string, std::uint64_t>{{row.skipped, 1}});
+    REQUIRE(report.warnings.size() == 1);
+    CHECK(report.warnings[0].rfind(row.warning, 0) == 0);
+  }
+
+  SECTION("finishing refuses more storeys than bones before re-meshing") {
+    const Result<CityJsonFile> file = parseCityJson(pyramid("9999", "10"), "h.json");
+    REQUIRE(file.ok());
+    Result<std::vector<Lod2Model>> models = georeferenceCityJson(*file, "h.json", placedInSyntheticCity(), nullptr);
+    REQUIRE(models.ok());
+    Lod2Model& model = models->front();
+    CHECK(model.attributes.storeys > 255);
+    FinishOptions options;
+    options.remesh.maxVertices = 10;  // re-meshing would fail with another message
+    const Status s = finishModel(model, options);
+    REQUIRE_FALSE(s.ok());
+    CHECK(s.error() == "cj:b: " + std::to_string(model.attributes.storeys) +
+                           " storeys: a skinned mesh holds at most 255 (one byte per bone index)");
+  }
+  SECTION("an OBJ in the wrong unit") {
+    ObjPlacement placement{kPlaceLon, kPlaceLat};
+    placement.scale = 1000.0;  // a centimetre model read as metres, scaled again
+    const Result<Lod2Model> model =
+        readObjModel(fixture("box_cm_yup.obj"), placement, CityProjection(kPlaceLon, kPlaceLat));
+    REQUIRE_FALSE(model.ok());
+    CHECK(model.error() == fixture("box_cm_yup.obj") +
+                               ": the model measures 200000 x 100000 x 1e+06 m (at most 2000 m wide and 10000 m "
+                               "tall): are the unit and scale right?");
+  }
 }
 
 TEST_CASE("lod2: Damaged CityJSON gives a result, never a crash: truncations and seeded byte changes",

@@ -12,6 +12,10 @@ Status finishModel(Lod2Model& model, const FinishOptions& options) {
     return Error{model.id + ": height " + std::to_string(model.attributes.heightM) + " m is not above its base " +
                  std::to_string(model.attributes.minHeightM) + " m"};
   const FloorLevels floors = floorLevels(model.attributes);
+  // Checked before the re-meshing, whose cost grows with the storeys.
+  if (floors.storeys > kMaxSkinnedStoreys)
+    return Error{model.id + ": " + std::to_string(floors.storeys) + " storeys: a skinned mesh holds at most " +
+                 std::to_string(kMaxSkinnedStoreys) + " (one byte per bone index)"};
   Lod2Mesh original = weldVertices(model.skinned.mesh);
   Result<Lod2Mesh> remeshed = remeshForFloors(original, floors, options.remesh);
   if (!remeshed.ok()) return Error{model.id + ": " + remeshed.error()};

@@ -35,6 +35,13 @@ std::string number(double value, int decimals) {
   return text;
 }
 
+/// 6 significant digits: "8", "304.8", "1e+30".
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", value);
+  return text;
+}
+
 struct Box2 {
   glm::dvec2 min{std::numeric_limits<double>::max()};
   glm::dvec2 max{std::numeric_limits<double>::lowest()};
@@ -162,8 +169,22 @@ Result<std::vector<Lod2Model>> georeferenceCityJson(const CityJsonFile& file, co
     }
     mesh.triangles = b.triangles;
     mesh.kinds = b.kinds;
-    if (!(heightRange(mesh).maxZ > 0.0)) {
+    const double top = heightRange(mesh).maxZ;
+    if (!(top > 0.0)) {
       ++out.skipped["flat-model"];
+      continue;
+    }
+    Box2 extent;
+    for (const glm::dvec3& p : mesh.positions) extent.expand(glm::dvec2(p));
+    const glm::dvec2 size = extent.max - extent.min;
+    if (!(top <= kMaxModelHeightM) || !(size.x <= kMaxModelExtentM) || !(size.y <= kMaxModelExtentM)) {
+      const bool tall = !(top <= kMaxModelHeightM);
+      ++out.skipped[tall ? "too-tall" : "too-large"];
+      out.warnings.push_back(fileName + ": " + id + " skipped: " +
+                             (tall ? shortNumber(top) + " m tall (more than " + shortNumber(kMaxModelHeightM) + " m)"
+                                   : shortNumber(std::max(size.x, size.y)) + " m wide (more than " +
+                                         shortNumber(kMaxModelExtentM) + " m)") +
+                             ": broken coordinates or a wrong unit?");
       continue;
     }
     Lod2Model model;

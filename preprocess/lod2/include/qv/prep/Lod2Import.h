@@ -78,7 +78,9 @@ Result<Lod2Import> importModels(const std::string& path, const Lod2ImportOptions
 
 /// Georeferences a CityJSON file already read (the middle of importModels, for callers that read
 /// several files): models in the city frame with new-building attributes, not yet matched or
-/// finished; `report` (may be null) receives the counts and warnings.
+/// finished; `report` (may be null) receives the counts and warnings. Buildings without height are
+/// skipped as "flat-model", taller than kMaxModelHeightM as "too-tall", wider or deeper than
+/// kMaxModelExtentM as "too-large" (with a warning naming them).
 Result<std::vector<Lod2Model>> georeferenceCityJson(const CityJsonFile& file, const std::string& fileName,
                                                     const Lod2ImportOptions& options, Lod2ImportReport* report);
 

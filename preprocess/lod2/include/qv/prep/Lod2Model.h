@@ -20,6 +20,12 @@
 
 namespace qv::prep {
 
+/// Largest model the importers accept: height above its ground, and width or depth (the footprint
+/// rule of docs/attributes.md, "too-large"), metres. Larger ones come from broken coordinates or a
+/// wrong unit, and would overflow the float attributes and the re-meshing budget.
+inline constexpr double kMaxModelHeightM = 10000.0;
+inline constexpr double kMaxModelExtentM = 2000.0;
+
 /// What a triangle is part of. Values may be stored: never renumber, only append.
 enum class SurfaceKind : std::uint8_t { Wall = 0, Roof = 1, Ground = 2, Other = 3 };
 

@@ -41,8 +41,8 @@ struct ObjPlacement {
 /// "obj:<file name>", kinds by normal, ground at the lowest vertex, attributes of a new building
 /// (use "unknown", height from the geometry, storeys inferred), lod 2. Not yet re-meshed (see
 /// finishModel). Fails, naming the file and the line or face, for unreadable or malformed files
-/// (tinyobjloader's message), vertex indices out of range, non-finite coordinates and files without
-/// faces.
+/// (tinyobjloader's message), vertex indices out of range, non-finite coordinates, files without
+/// faces, flat models and models larger than kMaxModelExtentM / kMaxModelHeightM (a wrong unit).
 Result<Lod2Model> readObjModel(const std::string& path, const ObjPlacement& placement,
                                const CityProjection& projection);
 
