@@ -131,6 +131,28 @@ TEST_CASE("lod2: A tagged storey count survives a taller model; finished models 
   CHECK(*std::max_element(model.skinned.bone.begin(), model.skinned.bone.end()) == 5);
 }
 
+TEST_CASE("lod2: Models that already replace a building (OSM parts) keep it only when it is in the city",
+          "[lod2][match]") {
+  const std::vector<ExistingBuilding> city = {existing("w1", 0, 0, 20, 30.0f, 8, ValueSource::Tagged),
+                                              existing("w2", 100, 0, 20, 30.0f, 8, ValueSource::Tagged)};
+  std::vector<Lod2Model> models;
+  models.push_back(boxModel("w1", 0, 0, 20, 30.0));     // its own building
+  models.push_back(boxModel("w99", 100, 0, 20, 30.0));  // not in this city, standing on w2
+  models.push_back(boxModel("cj:x", 1, 1, 18, 30.0));   // on w1, which is taken
+  for (Lod2Model& model : models) model.replacesExisting = model.id.rfind("w", 0) == 0;
+  const Result<MatchResult> result = matchModels(models, city);
+  REQUIRE(result.ok());
+  CHECK(result->byId == 1);
+  CHECK(result->byOverlap == 0);  // w99 is settled as new: it does not take w2 by overlap
+  CHECK(result->added == 2);
+  CHECK(models[0].id == "w1");
+  CHECK(models[0].replacesExisting);
+  CHECK(models[1].id == "w99");
+  CHECK_FALSE(models[1].replacesExisting);
+  CHECK(models[2].id == "cj:x");
+  CHECK_FALSE(models[2].replacesExisting);
+}
+
 TEST_CASE("lod2: Den Haag's models placed in the synthetic city replace the blocks they stand on",
           "[lod2][match][data]") {
   const SyntheticCity& city = syntheticCity();

@@ -82,15 +82,24 @@ Result<MatchResult> matchModels(std::vector<Lod2Model>& models, const std::vecto
   std::vector<bool> taken(existing.size(), false);
   std::vector<std::optional<std::size_t>> assigned(models.size());
 
-  // Models that already are a building of the city (OSM parts) keep it.
-  for (const Lod2Model& model : models) {
+  // Models that already are a building of the city (OSM parts) keep it; one whose building is not
+  // in this city is a new building with its own id.
+  std::vector<bool> settled(models.size(), false);
+  for (std::size_t m = 0; m < models.size(); ++m) {
+    Lod2Model& model = models[m];
     if (!model.replacesExisting) continue;
-    if (const auto it = indexOf.find(model.id); it != indexOf.end()) taken[it->second] = true;
-    ++result.byId;
+    settled[m] = true;
+    if (const auto it = indexOf.find(model.id); it != indexOf.end()) {
+      taken[it->second] = true;
+      ++result.byId;
+    } else {
+      model.replacesExisting = false;
+      ++result.added;
+    }
   }
   // 1. By id: the model's id or, for cj:X and obj:X, the bare X.
   for (std::size_t m = 0; m < models.size(); ++m) {
-    if (models[m].replacesExisting) continue;
+    if (settled[m]) continue;
     const std::string& id = models[m].id;
     std::vector<std::string> candidates{id};
     for (const char* prefix : {"cj:", "obj:"}) {
@@ -112,7 +121,7 @@ Result<MatchResult> matchModels(std::vector<Lod2Model>& models, const std::vecto
   for (const ExistingBuilding& e : existing) existingBounds.push_back(boundsOf(e.footprint));
   std::vector<std::tuple<double, std::size_t, std::size_t>> pairs;  // overlap, model, existing
   for (std::size_t m = 0; m < models.size(); ++m) {
-    if (models[m].replacesExisting || assigned[m] || models[m].footprint.size() < 3) continue;
+    if (settled[m] || assigned[m] || models[m].footprint.size() < 3) continue;
     const Bounds2 bounds = boundsOf(models[m].footprint);
     for (std::size_t e = 0; e < existing.size(); ++e) {
       if (taken[e] || existing[e].footprint.size() < 3 || !bounds.intersects(existingBounds[e])) continue;
@@ -131,7 +140,7 @@ Result<MatchResult> matchModels(std::vector<Lod2Model>& models, const std::vecto
 
   for (std::size_t m = 0; m < models.size(); ++m) {
     Lod2Model& model = models[m];
-    if (model.replacesExisting) continue;
+    if (settled[m]) continue;
     if (!assigned[m]) {
       ++result.added;
       continue;

@@ -48,8 +48,9 @@ double footprintOverlap(const std::vector<glm::dvec2>& a, const std::vector<glm:
 /// obj:X ids the bare X, equals an existing id), then by footprint overlap >= minOverlap, the best
 /// overlaps first, each existing building replaced at most once. A matched model takes the existing
 /// id, replacesExisting = true and replacementAttributes(); models already replacing a building
-/// (OSM parts) keep their id. Models that were finished (skinned) before and whose floor levels
-/// changed are finished again; a failure there is returned.
+/// (OSM parts) keep their id and count as replaced by id when that building is in `existing`, else
+/// they become new buildings (replacesExisting = false). Models that were finished (skinned) before and whose floor
+/// levels changed are finished again; a failure there is returned.
 Result<MatchResult> matchModels(std::vector<Lod2Model>& models, const std::vector<ExistingBuilding>& existing,
                                 const MatchOptions& options = {});
 
