@@ -27,8 +27,9 @@ Lod2Mesh simplifyFarMesh(const Lod2Mesh& mesh, const FarMeshOptions& options) {
   }
   const std::size_t indexCount = welded.triangles.size();
   const double ratio = std::clamp(options.targetTriangleRatio, 0.0, 1.0);
+  const std::size_t triangleCount = indexCount / 3;
   const std::size_t targetIndexCount =
-      std::max<std::size_t>(3, static_cast<std::size_t>(std::llround(static_cast<double>(indexCount / 3) * ratio)) * 3);
+      std::max<std::size_t>(3, static_cast<std::size_t>(std::llround(static_cast<double>(triangleCount) * ratio)) * 3);
   std::vector<std::uint32_t> simplified(indexCount);
   float resultError = 0.0f;
   const std::size_t count = meshopt_simplify(simplified.data(), welded.triangles.data(), indexCount, positions.data(),

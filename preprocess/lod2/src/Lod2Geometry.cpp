@@ -87,7 +87,7 @@ bool makeExactPolygon(const std::vector<glm::dvec2>& ring, ExactPolygon& out) {
   const CGAL::Orientation orientation = polygon.orientation();
   if (orientation == CGAL::COLLINEAR) return false;
   if (orientation == CGAL::CLOCKWISE) polygon.reverse_orientation();
-  out = std::move(polygon);
+  out = polygon;  // CGAL 5.5 Polygon_2 copies: it has no move assignment
   return true;
 }
 
