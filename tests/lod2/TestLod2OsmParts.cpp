@@ -60,7 +60,6 @@ TEST_CASE("lod2: The Empire State Building from its OSM parts: setbacks, 443.2 m
   // The footprint (union of the parts' outlines) is the lot, about 424 ft x 187 ft.
   REQUIRE(model->footprint.size() >= 4);
   CHECK(std::abs(signedRingArea(model->footprint.data(), model->footprint.size())) == Approx(7700.0).epsilon(0.03));
-  CHECK(model->footprint.size() >= 4);
 
   // Finished: one bone per floor level, cut at all 103 levels.
   const double area = surfaceAreaM2(model->skinned.mesh);
