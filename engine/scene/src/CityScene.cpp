@@ -555,8 +555,25 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   }
   clock_ = static_cast<double>(std::chrono::duration<double>(frameStart.time_since_epoch()).count());
 
-  // LOD: which tiles to draw and to load.
+  // Decode and mesh what arrived, within the time budget (at least one tile per frame), before
+  // choosing tiles: a tile decoded now lets its children be requested in this same frame. When
+  // frames are slow anyway (a software renderer drawing a million triangles), the budget grows
+  // with the frame interval, so loading is not held back by drawing.
   auto t0 = Clock::now();
+  const double intervalMs =
+      lastUpdate_ ? std::chrono::duration<double, std::milli>(frameStart - *lastUpdate_).count() : 0.0;
+  lastUpdate_ = frameStart;
+  const double budgetMs = std::max(options_.workBudgetMs, std::min(0.5 * intervalMs, 200.0));
+  while (!decodeQueue_.empty()) {
+    const std::uint32_t node = decodeQueue_.front();
+    decodeQueue_.erase(decodeQueue_.begin());
+    finishTile(node);
+    if (msSince(t0) > budgetMs) break;
+  }
+  const double streamingMs = msSince(t0);
+
+  // LOD: which tiles to draw and to load.
+  t0 = Clock::now();
   TileSelectorOptions selectorOptions;
   selectorOptions.maxScreenSpaceError = options_.maxScreenSpaceError;
   selectorOptions.maxDrawTiles = options_.maxDrawTiles;
@@ -592,16 +609,6 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= clock_) request(i, clock_);
   }
   times.lod += msSince(t0);
-
-  // Decode and mesh what arrived, within the time budget (at least one tile per frame).
-  t0 = Clock::now();
-  while (!decodeQueue_.empty()) {
-    const std::uint32_t node = decodeQueue_.front();
-    decodeQueue_.erase(decodeQueue_.begin());
-    finishTile(node);
-    if (msSince(t0) > options_.workBudgetMs) break;
-  }
-  const double streamingMs = msSince(t0);
 
   // Cull: tile boxes first, then the buildings of partly visible tiles.
   t0 = Clock::now();
