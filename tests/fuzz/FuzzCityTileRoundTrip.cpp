@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <utility>
 
 #include "CityTileChecks.h"
 #include "FuzzSupport.h"
@@ -80,6 +81,42 @@ CityTile makeTile(FuzzedDataProvider& in) {
     a.centroidX = static_cast<float>(in.ConsumeFloatingPointInRange(-1.0e5, 1.0e5));
     a.centroidY = static_cast<float>(in.ConsumeFloatingPointInRange(-1.0e5, 1.0e5));
     t.buildings.push_back(building);
+  }
+  // LOD2 models (MESH) for some buildings whose storeys fit a skeleton.
+  for (std::uint32_t b = 0; b < t.buildings.size(); ++b) {
+    const std::uint16_t storeys = t.buildings[b].attributes.storeys;
+    if (storeys > kMaxMeshStoreys || !in.ConsumeBool()) continue;
+    TileMesh m;
+    m.building = b;
+    m.source = static_cast<MeshSource>(in.ConsumeIntegralInRange(0, 2));
+    m.storeys = storeys;
+    m.verticesBefore = in.ConsumeIntegral<std::uint32_t>();
+    m.topM = in.ConsumeFloatingPointInRange(0.01f, 10000.0f);  // the decoder's range
+    const auto vertices = in.ConsumeIntegralInRange<std::uint32_t>(1, in.ConsumeBool() ? 70000 : 60);
+    for (std::uint32_t i = 0; i < vertices; ++i) {
+      m.positions.push_back({in.ConsumeFloatingPointInRange(0.0f, t.extent),
+                             in.ConsumeFloatingPointInRange(0.0f, t.extent),
+                             in.ConsumeFloatingPointInRange(0.0f, m.topM)});
+      m.bones.push_back(in.ConsumeIntegralInRange<std::uint8_t>(0, static_cast<std::uint8_t>(storeys)));
+      m.weights.push_back(in.ConsumeFloatingPointInRange(0.0f, 1.0f));
+    }
+    for (std::uint32_t& n : m.trianglesPerKind) {
+      n = in.ConsumeIntegralInRange<std::uint32_t>(0, 20);
+      for (std::uint32_t i = 0; i < n * 3; ++i)
+        m.triangles.push_back(in.ConsumeIntegralInRange<std::uint32_t>(0, vertices - 1));
+    }
+    const auto farVertices = in.ConsumeIntegralInRange<std::uint16_t>(1, 40);
+    for (std::uint16_t i = 0; i < farVertices; ++i) {
+      m.farPositions.push_back({in.ConsumeFloatingPointInRange(0.0f, t.extent),
+                                in.ConsumeFloatingPointInRange(0.0f, t.extent),
+                                in.ConsumeFloatingPointInRange(0.0f, m.topM)});
+    }
+    const int farTriangles = in.ConsumeIntegralInRange(0, 20);
+    for (int i = 0; i < farTriangles * 3; ++i) {
+      m.farTriangles.push_back(
+          in.ConsumeIntegralInRange<std::uint16_t>(0, static_cast<std::uint16_t>(farVertices - 1)));
+    }
+    t.meshes.push_back(std::move(m));
   }
   return t;
 }

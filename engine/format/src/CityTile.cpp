@@ -43,6 +43,28 @@ const std::uint32_t kRing = tag("RING");
 const std::uint32_t kVert = tag("VERT");
 const std::uint32_t kTris = tag("TRIS");
 const std::uint32_t kStrs = tag("STRS");
+const std::uint32_t kMesh = tag("MESH");
+
+// MESH: a u32 model count, the model records, then each model's data in record order.
+constexpr std::size_t kMeshRecordSize = 44;
+constexpr std::size_t kSkinnedVertexSize = 8;  // qx, qy, qz u16, bone u8, weight u8
+constexpr std::size_t kFarVertexSize = 6;      // qx, qy, qz u16
+// A centimetre at least: below, top / 65535 nears the denormal floats and heights lose precision.
+constexpr float kMinMeshTopM = 0.01f;
+constexpr float kMaxMeshTopM = 10000.0f;
+
+std::uint64_t padded4(std::uint64_t n) {
+  return (n + 3) / 4 * 4;
+}
+
+/// Bytes of one model's data after the records; u32 indices when the skinned mesh has more
+/// vertices than u16 can index.
+std::uint64_t meshDataBytes(std::uint64_t vertices, std::uint64_t triangles, std::uint64_t farVertices,
+                            std::uint64_t farTriangles) {
+  const std::uint64_t indexSize = vertices > 65535 ? 4 : 2;
+  return vertices * kSkinnedVertexSize + padded4(triangles * 3 * indexSize) +
+         padded4(farVertices * kFarVertexSize + farTriangles * 3 * 2);
+}
 
 struct RoofName {
   RoofShape shape;
@@ -66,7 +88,201 @@ std::uint16_t quantize(float v, float extent) {
   return static_cast<std::uint16_t>(std::clamp(q, 0.0f, 65535.0f));
 }
 
+void encodeMeshes(const CityTile& tile, float extent, ByteWriter& out) {
+  out.u32(static_cast<std::uint32_t>(tile.meshes.size()));
+  for (const TileMesh& m : tile.meshes) {
+    out.u32(m.building);
+    out.u8(static_cast<std::uint8_t>(m.source));
+    out.u8(0);
+    out.u16(m.storeys);
+    out.u32(static_cast<std::uint32_t>(m.positions.size()));
+    for (std::uint32_t n : m.trianglesPerKind) out.u32(n);
+    out.u32(static_cast<std::uint32_t>(m.farPositions.size()));
+    out.u32(static_cast<std::uint32_t>(m.farTriangles.size() / 3));
+    out.u32(m.verticesBefore);
+    out.f32(m.topM);
+  }
+  for (const TileMesh& m : tile.meshes) {
+    const float top = m.topM > 0.0f ? m.topM : 1.0f;
+    for (std::size_t i = 0; i < m.positions.size(); ++i) {
+      out.u16(quantize(m.positions[i].x, extent));
+      out.u16(quantize(m.positions[i].y, extent));
+      out.u16(quantize(m.positions[i].z, top));
+      out.u8(m.bones[i]);
+      out.u8(static_cast<std::uint8_t>(std::round(std::clamp(m.weights[i], 0.0f, 1.0f) * 255.0f)));
+    }
+    const bool wide = m.positions.size() > 65535;
+    for (std::uint32_t index : m.triangles) {
+      if (wide)
+        out.u32(index);
+      else
+        out.u16(static_cast<std::uint16_t>(index));
+    }
+    out.align(4);
+    for (const glm::vec3& p : m.farPositions) {
+      out.u16(quantize(p.x, extent));
+      out.u16(quantize(p.y, extent));
+      out.u16(quantize(p.z, top));
+    }
+    for (std::uint16_t index : m.farTriangles) out.u16(index);
+    out.align(4);
+  }
+}
+
+/// Decodes the MESH section into tile.meshes once the buildings are known. Every count is checked
+/// against the limits and the bytes left before anything is allocated.
+Status decodeMeshes(std::span<const std::uint8_t> data, std::size_t sectionOffset, CityTile& tile,
+                    const CityTileLimits& limits) {
+  auto error = [&](std::size_t at, const std::string& message) {
+    return Error{"section MESH at byte " + std::to_string(at) + ": " + message};
+  };
+  ByteReader r(data, sectionOffset);
+  const std::uint32_t count = r.u32("mesh count");
+  if (!r.ok()) return Error{"section MESH: " + r.error()};
+  if (count > limits.maxMeshes) {
+    return error(sectionOffset,
+                 std::to_string(count) + " models exceeds the limit of " + std::to_string(limits.maxMeshes));
+  }
+  if (std::uint64_t{count} * kMeshRecordSize > r.remaining()) {
+    return error(sectionOffset, std::to_string(count) + " models need " +
+                                    std::to_string(std::uint64_t{count} * kMeshRecordSize) +
+                                    " bytes of records, the section holds " + std::to_string(r.remaining()));
+  }
+  struct Record {
+    std::uint32_t vertices = 0, farVertices = 0, farTriangles = 0;
+    std::uint64_t triangles = 0;
+    std::size_t offset = 0;
+  };
+  std::vector<Record> records(count);
+  tile.meshes.resize(count);
+  std::uint64_t vertexTotal = 0, triangleTotal = 0, dataBytes = 0;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    TileMesh& m = tile.meshes[k];
+    Record& rec = records[k];
+    rec.offset = r.offset();
+    m.building = r.u32("mesh building index");
+    const std::uint8_t source = r.u8("mesh source");
+    r.u8("reserved");
+    m.storeys = r.u16("mesh storeys");
+    rec.vertices = r.u32("mesh vertex count");
+    for (std::uint32_t& n : m.trianglesPerKind) {
+      n = r.u32("mesh triangle count");
+      rec.triangles += n;
+    }
+    rec.farVertices = r.u32("far vertex count");
+    rec.farTriangles = r.u32("far triangle count");
+    m.verticesBefore = r.u32("vertices before re-meshing");
+    m.topM = r.f32("mesh top");
+    m.source =
+        source <= static_cast<std::uint8_t>(MeshSource::OsmParts) ? static_cast<MeshSource>(source) : MeshSource::Other;
+    if (m.building >= tile.buildings.size()) {
+      return error(rec.offset, "model " + std::to_string(k) + " names building " + std::to_string(m.building) + " of " +
+                                   std::to_string(tile.buildings.size()));
+    }
+    if (k > 0 && m.building <= tile.meshes[k - 1].building) {
+      return error(rec.offset, "model " + std::to_string(k) + ": building indices are not increasing");
+    }
+    const std::uint16_t buildingStoreys = tile.buildings[m.building].attributes.storeys;
+    if (m.storeys == 0 || m.storeys > kMaxMeshStoreys || m.storeys != buildingStoreys) {
+      return error(rec.offset, "model " + std::to_string(k) + " has " + std::to_string(m.storeys) +
+                                   " storeys, its building " + std::to_string(buildingStoreys) + " (at most " +
+                                   std::to_string(kMaxMeshStoreys) + ")");
+    }
+    if (!(m.topM >= kMinMeshTopM && m.topM <= kMaxMeshTopM)) {
+      return error(rec.offset,
+                   "model " + std::to_string(k) + ": top " + std::to_string(m.topM) + " m is outside [0.01, 10000] m");
+    }
+    if (rec.farVertices > 65535) {
+      return error(rec.offset, "model " + std::to_string(k) + ": " + std::to_string(rec.farVertices) +
+                                   " far vertices (at most 65535)");
+    }
+    vertexTotal += std::uint64_t{rec.vertices} + rec.farVertices;
+    triangleTotal += rec.triangles + rec.farTriangles;
+    if (vertexTotal > limits.maxMeshVertices || triangleTotal > limits.maxMeshTriangles) {
+      return error(rec.offset, "the models declare " + std::to_string(vertexTotal) + " vertices and " +
+                                   std::to_string(triangleTotal) + " triangles, more than the limits of " +
+                                   std::to_string(limits.maxMeshVertices) + " and " +
+                                   std::to_string(limits.maxMeshTriangles));
+    }
+    dataBytes += meshDataBytes(rec.vertices, rec.triangles, rec.farVertices, rec.farTriangles);
+  }
+  if (!r.ok()) return Error{"section MESH: " + r.error()};
+  if (dataBytes != r.remaining()) {
+    return error(r.offset(), "the models declare " + std::to_string(dataBytes) + " bytes of vertices and triangles, " +
+                                 "the section holds " + std::to_string(r.remaining()));
+  }
+
+  const float scaleXY = tile.extent / 65535.0f;
+  for (std::uint32_t k = 0; k < count; ++k) {
+    TileMesh& m = tile.meshes[k];
+    const Record& rec = records[k];
+    const float scaleZ = m.topM / 65535.0f;
+    m.positions.resize(rec.vertices);
+    m.bones.resize(rec.vertices);
+    m.weights.resize(rec.vertices);
+    for (std::uint32_t i = 0; i < rec.vertices; ++i) {
+      const std::size_t at = r.offset();
+      const float x = static_cast<float>(r.u16("vertex x")) * scaleXY;
+      const float y = static_cast<float>(r.u16("vertex y")) * scaleXY;
+      const float z = static_cast<float>(r.u16("vertex z")) * scaleZ;
+      m.positions[i] = {x, y, z};
+      m.bones[i] = r.u8("bone");
+      m.weights[i] = static_cast<float>(r.u8("weight")) / 255.0f;
+      if (m.bones[i] > m.storeys) {
+        return error(at, "model " + std::to_string(k) + " vertex " + std::to_string(i) + ": bone " +
+                             std::to_string(m.bones[i]) + " beyond its " + std::to_string(m.storeys) + " storeys");
+      }
+    }
+    const bool wide = rec.vertices > 65535;
+    m.triangles.resize(static_cast<std::size_t>(rec.triangles) * 3);
+    for (std::uint32_t& index : m.triangles) {
+      const std::size_t at = r.offset();
+      index = wide ? r.u32("triangle index") : r.u16("triangle index");
+      if (index >= rec.vertices) {
+        return error(at, "model " + std::to_string(k) + ": triangle index " + std::to_string(index) + " beyond its " +
+                             std::to_string(rec.vertices) + " vertices");
+      }
+    }
+    const std::uint64_t indexBytes = m.triangles.size() * std::uint64_t{wide ? 4u : 2u};
+    r.skip(static_cast<std::size_t>(padded4(indexBytes) - indexBytes), "padding");
+    m.farPositions.resize(rec.farVertices);
+    for (glm::vec3& p : m.farPositions) {
+      const float x = static_cast<float>(r.u16("far vertex x")) * scaleXY;
+      const float y = static_cast<float>(r.u16("far vertex y")) * scaleXY;
+      const float z = static_cast<float>(r.u16("far vertex z")) * scaleZ;
+      p = {x, y, z};
+    }
+    m.farTriangles.resize(std::size_t{rec.farTriangles} * 3);
+    for (std::uint16_t& index : m.farTriangles) {
+      const std::size_t at = r.offset();
+      index = r.u16("far triangle index");
+      if (index >= rec.farVertices) {
+        return error(at, "model " + std::to_string(k) + ": far triangle index " + std::to_string(index) +
+                             " beyond its " + std::to_string(rec.farVertices) + " far vertices");
+      }
+    }
+    const std::uint64_t farBytes = m.farPositions.size() * std::uint64_t{kFarVertexSize} + m.farTriangles.size() * 2;
+    r.skip(static_cast<std::size_t>(padded4(farBytes) - farBytes), "padding");
+  }
+  if (!r.ok()) return Error{"section MESH: " + r.error()};
+  return {};
+}
+
 }  // namespace
+
+std::string_view meshSourceName(MeshSource source) {
+  switch (source) {
+    case MeshSource::CityJson:
+      return "cityjson";
+    case MeshSource::Obj:
+      return "obj";
+    case MeshSource::OsmParts:
+      return "osm-parts";
+    case MeshSource::Other:
+      break;
+  }
+  return "other";
+}
 
 RoofShape parseRoofShape(std::string_view value) {
   if (value.empty()) return RoofShape::Flat;
@@ -128,13 +344,17 @@ std::vector<std::uint8_t> encodeCityTile(const CityTile& tile) {
     vert.u16(quantize(v.y, extent));
   }
   for (std::uint16_t i : tile.roofTriangles) tris.u16(i);
+  ByteWriter mesh;
+  if (!tile.meshes.empty()) encodeMeshes(tile, extent, mesh);
 
   struct Section {
     std::uint32_t id;
     const ByteWriter* data;
   };
-  const std::array<Section, 6> sections = {
-      {{kBldg, &bldg}, {kPart, &part}, {kRing, &ring}, {kVert, &vert}, {kTris, &tris}, {kStrs, &strs}}};
+  std::vector<Section> sections = {{kBldg, &bldg}, {kPart, &part}, {kRing, &ring},
+                                   {kVert, &vert}, {kTris, &tris}, {kStrs, &strs}};
+  // Optional: a tile without LOD2 models is byte for byte what readers before MESH wrote.
+  if (!tile.meshes.empty()) sections.push_back({kMesh, &mesh});
 
   ByteWriter out;
   out.bytes(kMagic);
@@ -228,7 +448,7 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
     std::size_t offset = 0;
     bool present = false;
   };
-  Found bldg, part, ring, vert, tris, strs;
+  Found bldg, part, ring, vert, tris, strs, mesh;
   ByteReader table(bytes.subspan(kHeaderSize), kHeaderSize);
   for (std::uint16_t i = 0; i < sectionCount; ++i) {
     const std::uint32_t id = table.u32("section id");
@@ -252,6 +472,8 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
       tris = f;
     else if (id == kStrs)
       strs = f;
+    else if (id == kMesh)
+      mesh = f;
     // Unknown sections are skipped: version 1 readers ignore sections added later.
   }
   for (const auto& [f, n] : {std::pair{&bldg, "BLDG"}, std::pair{&part, "PART"}, std::pair{&ring, "RING"},
@@ -408,6 +630,10 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
   if (partCursor != partCount) {
     return error("section BLDG at byte " + std::to_string(bldg.offset) + ": the buildings use " +
                  std::to_string(partCursor) + " parts, the header declares " + std::to_string(partCount));
+  }
+  if (mesh.present) {
+    const Status meshes = decodeMeshes(mesh.data, mesh.offset, tile, limits);
+    if (!meshes.ok()) return error(meshes.error());
   }
   return tile;
 }

@@ -6,6 +6,8 @@
 // north of the tileset origin) in float; on disk they are 16-bit quantized over `extent` metres.
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -13,6 +15,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "qv/core/Result.h"
 #include "qv/format/BuildingAttributes.h"
@@ -28,6 +31,9 @@ struct CityTileLimits {
   std::uint32_t maxRings = 1u << 23;
   std::uint32_t maxVertices = 1u << 25;
   std::uint32_t maxTriangles = 1u << 25;
+  std::uint32_t maxMeshes = 1u << 16;         ///< LOD2 models (MESH section)
+  std::uint32_t maxMeshVertices = 1u << 24;   ///< skinned and far vertices, all models together
+  std::uint32_t maxMeshTriangles = 1u << 24;  ///< skinned and far triangles, all models together
 };
 
 enum class RoofShape : std::uint8_t {
@@ -68,6 +74,39 @@ struct TileBuilding {
   std::uint16_t partCount = 0;
 };
 
+/// Where a LOD2 model came from. Stored as a number: only ever gains values.
+enum class MeshSource : std::uint8_t { CityJson = 0, Obj = 1, OsmParts = 2, Other = 255 };
+std::string_view meshSourceName(MeshSource source);  ///< "cityjson", "obj", "osm-parts", "other"
+
+/// Surface kinds of LOD2 triangles, in the order their groups are stored.
+enum class MeshSurfaceKind : std::uint8_t { Wall = 0, Roof = 1, Ground = 2, Other = 3 };
+inline constexpr std::size_t kMeshSurfaceKinds = 4;
+
+/// At most this many storeys in a skinned mesh (bones 0 … storeys fit one byte).
+inline constexpr std::uint16_t kMaxMeshStoreys = 255;
+
+/// A LOD2 building model (MESH section): a skinned mesh with one bone per floor level (0 = ground,
+/// storeys = roof) and a simplified static far mesh. Positions are tile-local metres in x and y
+/// (like `CityTile::vertices`) and metres above the building's ground in z, in [0, topM].
+/// Triangles are counter-clockwise seen from outside. Inner (coarse) tiles carry only far meshes.
+struct TileMesh {
+  std::uint32_t building = 0;  ///< index into CityTile::buildings; strictly increasing over meshes
+  MeshSource source = MeshSource::Other;
+  std::uint16_t storeys = 1;         ///< = the building's storeys, ≤ kMaxMeshStoreys
+  std::uint32_t verticesBefore = 0;  ///< vertex count as imported, before re-meshing (for `info`)
+  float topM = 1.0f;                 ///< z quantization extent: qz × topM / 65535, [0.01, 10000] m
+  std::vector<glm::vec3> positions;  ///< skinned vertices
+  std::vector<std::uint8_t> bones;   ///< per vertex: floor level at or below it, ≤ storeys
+  /// Per vertex: weight of bone + 1, in [0, 1]; bone gets 1 - weight. Stored as round(w × 255).
+  std::vector<float> weights;
+  /// 3 indices per triangle into `positions`, grouped by kind: trianglesPerKind[0] wall
+  /// triangles first, then roof, ground, other.
+  std::vector<std::uint32_t> triangles;
+  std::array<std::uint32_t, kMeshSurfaceKinds> trianglesPerKind{};
+  std::vector<glm::vec3> farPositions;      ///< at most 65535
+  std::vector<std::uint16_t> farTriangles;  ///< 3 indices per triangle into farPositions
+};
+
 struct CityTile {
   bool coarse = false;              ///< an inner node's simplified prisms (no floor rings are drawn)
   double originX = 0.0;             ///< metres east of the tileset origin
@@ -79,10 +118,13 @@ struct CityTile {
   std::vector<std::uint16_t> roofTriangles;
   std::vector<TilePart> parts;
   std::vector<TileBuilding> buildings;
+  /// LOD2 models of some buildings (optional MESH section; empty: the section is not written).
+  std::vector<TileMesh> meshes;
 };
 
-/// Serializes a tile. Vertices outside [0, extent] are clamped; the caller chooses origin and
-/// extent to cover its buildings (quantization step = extent / 65535). The decoder accepts
+/// Serializes a tile. Vertices outside [0, extent] are clamped (mesh z outside [0, topM] too); the
+/// caller chooses origin and extent to cover its buildings and meshes (quantization step =
+/// extent / 65535). Meshes must satisfy the contract of TileMesh (sizes, indices, order). The decoder accepts
 /// |origin| <= 1e7 m and extent in [1e-6, 1e8] m, part and building heights in [-1000, 10000] m.
 std::vector<std::uint8_t> encodeCityTile(const CityTile& tile);
 

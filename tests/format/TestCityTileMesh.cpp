@@ -1,0 +1,373 @@
+// The optional MESH section of city tiles (LOD2 models): docs/formats.md, "MESH".
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "qv/core/Crc32.h"
+#include "qv/format/CityTile.h"
+
+using namespace qv;
+
+namespace {
+
+// One building of 4 storeys, 12 m tall, on a triangular part.
+CityTile tileWithoutMesh() {
+  CityTile t;
+  t.originX = 100.0;
+  t.originY = 200.0;
+  t.extent = 10.0f;
+  t.vertices = {{0.0f, 0.0f}, {10.0f, 0.0f}, {0.0f, 10.0f}};
+  t.ringVertexCounts = {3};
+  t.roofTriangles = {0, 1, 2};
+  TilePart p;
+  p.ringCount = 1;
+  p.triangleCount = 1;
+  p.heightM = 12.0f;
+  t.parts = {p};
+  TileBuilding b;
+  b.partCount = 1;
+  b.attributes.id = "s1";
+  b.attributes.heightM = 12.0f;
+  b.attributes.storeys = 4;
+  b.attributes.lod = 2;
+  b.attributes.footprintAreaM2 = 50.0f;
+  t.buildings = {b};
+  return t;
+}
+
+// A tetrahedron skinned to the building's 5 floor levels, with a one-triangle far mesh.
+CityTile tinyMeshTile() {
+  CityTile t = tileWithoutMesh();
+  TileMesh m;
+  m.building = 0;
+  m.source = MeshSource::CityJson;
+  m.storeys = 4;
+  m.verticesBefore = 4;
+  m.topM = 12.0f;
+  m.positions = {{0.0f, 0.0f, 0.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 10.0f, 0.0f}, {0.0f, 0.0f, 12.0f}};
+  m.bones = {0, 0, 0, 4};
+  m.weights = {0.0f, 0.0f, 0.0f, 0.0f};
+  m.triangles = {0, 1, 3, 1, 2, 3, 2, 0, 3, 0, 2, 1};  // 2 walls, 1 roof, 1 ground
+  m.trianglesPerKind = {2, 1, 1, 0};
+  m.farPositions = {{0.0f, 0.0f, 0.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 12.0f}};
+  m.farTriangles = {0, 1, 2};
+  t.meshes = {m};
+  return t;
+}
+
+std::string hex(const std::vector<std::uint8_t>& bytes) {
+  static const char* digits = "0123456789abcdef";
+  std::string out;
+  for (std::uint8_t b : bytes) {
+    out += digits[b >> 4];
+    out += digits[b & 15];
+  }
+  return out;
+}
+
+void fixCrc(std::vector<std::uint8_t>& bytes) {
+  const std::uint32_t crc = crc32(std::span(bytes).subspan(16));
+  for (std::size_t i = 0; i < 4; ++i) bytes[12 + i] = static_cast<std::uint8_t>(crc >> (8 * i));
+}
+
+std::uint32_t readU32(const std::vector<std::uint8_t>& bytes, std::size_t at) {
+  return static_cast<std::uint32_t>(bytes[at]) | static_cast<std::uint32_t>(bytes[at + 1]) << 8 |
+         static_cast<std::uint32_t>(bytes[at + 2]) << 16 | static_cast<std::uint32_t>(bytes[at + 3]) << 24;
+}
+
+/// Offset of the MESH section (the seventh table entry) in an encoded tile.
+std::size_t meshOffset(const std::vector<std::uint8_t>& bytes) {
+  return readU32(bytes, 48 + 6 * 12 + 4);
+}
+
+}  // namespace
+
+TEST_CASE("City tile MESH section is pinned by golden bytes", "[format][tile][mesh]") {
+  // Checked by hand against docs/formats.md ("MESH"). The sections before MESH are those of the
+  // version 1 golden tile in TestCityTile.cpp (here with no strings but the id, LOD 2).
+  const std::string golden =
+      "51564354"
+      "0100"
+      "0000"
+      "64010000"
+      "117f8469"  // "QVCT", version 1, flags 0, 356 bytes, CRC-32
+      "01000000"
+      "01000000"
+      "0000000000005940"
+      "0000000000006940"
+      "00002041"
+      "0700"
+      "0000"  // extent 10.0f, 7 sections
+      "424c4447"
+      "84000000"
+      "28000000"
+      "50415254"
+      "ac000000"
+      "14000000"
+      "52494e47"
+      "c0000000"
+      "02000000"
+      "56455254"
+      "c4000000"
+      "0c000000"
+      "54524953"
+      "d0000000"
+      "06000000"
+      "53545253"
+      "d8000000"
+      "09000000"
+      "4d455348"
+      "e4000000"
+      "80000000"                                                                          // MESH at 228, 128 bytes
+      "01000000000040410000000004000000000000000200000000004842000000000000000000000000"  // BLDG, LOD 2
+      "0100000001000000000000000000404100000000"                                          // PART
+      "03000000"                                                                          // RING
+      "00000000ffff00000000ffff"                                                          // VERT
+      "0000010002000000"                                                                  // TRIS
+      "027331000000000000000000"  // STRS: "s1" and six empty strings, padding
+      // MESH: 1 model
+      "01000000"
+      // record: building 0, CityJSON, reserved, 4 storeys, 4 vertices, triangles 2 wall 1 roof
+      // 1 ground 0 other, 3 far vertices, 1 far triangle, 4 vertices before, top 12.0f
+      "00000000"
+      "00"
+      "00"
+      "0400"
+      "04000000"
+      "02000000"
+      "01000000"
+      "01000000"
+      "00000000"
+      "03000000"
+      "01000000"
+      "04000000"
+      "00004041"
+      // skinned vertices (qx, qy, qz, bone, weight)
+      "0000000000000000"
+      "ffff000000000000"
+      "0000ffff00000000"
+      "00000000ffff0400"
+      // triangles, u16 (4 vertices): walls 0 1 3, 1 2 3; roof 2 0 3; ground 0 2 1
+      "000001000300"
+      "010002000300"
+      "020000000300"
+      "000002000100"
+      // far vertices (qx, qy, qz), far triangle 0 1 2
+      "000000000000"
+      "ffff00000000"
+      "00000000ffff"
+      "000001000200";
+  const auto bytes = encodeCityTile(tinyMeshTile());
+  CHECK(hex(bytes) == golden);
+  const auto decoded = decodeCityTile(bytes, "golden");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->meshes.size() == 1);
+  CHECK(decoded->meshes[0].positions[3].z == 12.0f);
+}
+
+TEST_CASE("Tiles with LOD2 meshes round-trip through the codec", "[format][tile][mesh]") {
+  const bool wide = GENERATE(false, true);
+  CityTile t = tinyMeshTile();
+  // A second building with 3 storeys and a mesh with in-between weights.
+  t.vertices.insert(t.vertices.end(), {{1, 1}, {9, 1}, {9, 9}});
+  t.ringVertexCounts.push_back(3);
+  t.roofTriangles.insert(t.roofTriangles.end(), {0, 1, 2});
+  TilePart p;
+  p.ringCount = 1;
+  p.triangleCount = 1;
+  p.heightM = 9.0f;
+  t.parts.push_back(p);
+  TileBuilding b;
+  b.partCount = 1;
+  b.firstPart = 1;
+  b.attributes.id = "cj:x";
+  b.attributes.heightM = 9.0f;
+  b.attributes.storeys = 3;
+  b.attributes.lod = 2;
+  t.buildings.push_back(b);
+  TileMesh m;
+  m.building = 1;
+  m.source = MeshSource::OsmParts;
+  m.storeys = 3;
+  m.verticesBefore = 6;
+  m.topM = 9.0f;
+  // Enough vertices for u32 indices in the wide case.
+  const std::size_t n = wide ? 70000 : 300;
+  for (std::size_t i = 0; i < n; ++i) {
+    const float z = 9.0f * static_cast<float>(i) / static_cast<float>(n - 1);
+    m.positions.push_back({static_cast<float>(i % 10), static_cast<float>(i % 7), z});
+    const float level = std::min(z / 3.0f, 3.0f);
+    const auto bone = static_cast<std::uint8_t>(std::floor(level));
+    m.bones.push_back(bone);
+    m.weights.push_back(bone == 3 ? 0.0f : static_cast<float>(std::round((level - bone) * 255.0f) / 255.0f));
+  }
+  for (std::uint32_t i = 0; i + 2 < n; i += 3) m.triangles.insert(m.triangles.end(), {i, i + 1, i + 2});
+  m.triangles.insert(m.triangles.end(), {static_cast<std::uint32_t>(n - 1), 0, 1});
+  const auto triangles = static_cast<std::uint32_t>(m.triangles.size() / 3);
+  m.trianglesPerKind = {triangles - 3, 1, 0, 2};
+  m.farPositions = {{1, 1, 0}, {9, 1, 0}, {9, 9, 9}, {1, 9, 9}};
+  m.farTriangles = {0, 1, 2, 0, 2, 3};
+  t.meshes.push_back(m);
+
+  const auto decoded = decodeCityTile(encodeCityTile(t), "round-trip");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->meshes.size() == 2);
+  CHECK(decoded->buildings.size() == 2);
+  const TileMesh& d = decoded->meshes[1];
+  CHECK(d.building == 1);
+  CHECK(d.source == MeshSource::OsmParts);
+  CHECK(meshSourceName(d.source) == "osm-parts");
+  CHECK(d.storeys == 3);
+  CHECK(d.verticesBefore == 6);
+  CHECK(d.topM == 9.0f);
+  CHECK(d.triangles == m.triangles);
+  CHECK(d.trianglesPerKind == m.trianglesPerKind);
+  CHECK(d.bones == m.bones);
+  CHECK(d.farTriangles == m.farTriangles);
+  REQUIRE(d.positions.size() == n);
+  REQUIRE(d.weights.size() == n);
+  float worstXY = 0.0f, worstZ = 0.0f;
+  for (std::size_t i = 0; i < n; ++i) {
+    worstXY = std::max(
+        {worstXY, std::fabs(d.positions[i].x - m.positions[i].x), std::fabs(d.positions[i].y - m.positions[i].y)});
+    worstZ = std::max(worstZ, std::fabs(d.positions[i].z - m.positions[i].z));
+  }
+  CHECK(worstXY <= 10.0f / 65535.0f);
+  CHECK(worstZ <= 9.0f / 65535.0f);
+  CHECK(d.weights == m.weights);  // multiples of 1/255 come back exactly
+  REQUIRE(d.farPositions.size() == 4);
+  CHECK(d.farPositions[2].z == 9.0f);
+  // Encoding the decoded tile again gives the same bytes (quantization is idempotent).
+  CHECK(encodeCityTile(*decoded) == encodeCityTile(t));
+}
+
+TEST_CASE("A vertex on a floor keeps weight 0 and weights round to 1/255", "[format][tile][mesh]") {
+  CityTile t = tinyMeshTile();
+  t.meshes[0].weights = {0.0f, 0.5f, 1.0f / 510.0f, 0.0f};
+  const auto decoded = decodeCityTile(encodeCityTile(t), "weights");
+  REQUIRE(decoded.ok());
+  CHECK(decoded->meshes[0].weights[0] == 0.0f);
+  CHECK(decoded->meshes[0].weights[1] == 128.0f / 255.0f);
+  CHECK(std::fabs(decoded->meshes[0].weights[2] - 1.0f / 510.0f) <= 1.0f / 510.0f);
+}
+
+TEST_CASE("Tiles without meshes have no MESH section and readers skip unknown sections", "[format][tile][mesh]") {
+  const auto plain = encodeCityTile(tileWithoutMesh());
+  CHECK(plain[44] == 6);  // section count: no MESH
+  const auto decoded = decodeCityTile(plain, "plain");
+  REQUIRE(decoded.ok());
+  CHECK(decoded->meshes.empty());
+}
+
+TEST_CASE("Corrupt and truncated MESH sections are rejected with a specific message", "[format][tile][mesh]") {
+  const std::vector<std::uint8_t> good = encodeCityTile(tinyMeshTile());
+  const std::size_t mesh = meshOffset(good);
+  REQUIRE(mesh == 228);
+  const std::size_t record = mesh + 4;
+  const std::size_t vertices = record + 44;
+  const std::size_t triangles = vertices + 4 * 8;
+  const std::size_t farTriangles = triangles + 24 + 18;
+  auto messageFor = [](std::vector<std::uint8_t> bytes) {
+    fixCrc(bytes);
+    const auto r = decodeCityTile(bytes, "tiles/3-1-2.qvt");
+    REQUIRE_FALSE(r.ok());
+    CHECK(r.error().rfind("tiles/3-1-2.qvt: section MESH", 0) == 0);
+    return r.error();
+  };
+  auto setU32 = [](std::vector<std::uint8_t>& bytes, std::size_t at, std::uint32_t v) {
+    for (std::size_t i = 0; i < 4; ++i) bytes[at + i] = static_cast<std::uint8_t>(v >> (8 * i));
+  };
+
+  SECTION("an absurd model count is refused before allocating") {
+    auto bad = good;
+    setU32(bad, mesh, 0xFFFFFFFFu);
+    CHECK(messageFor(bad) == "tiles/3-1-2.qvt: section MESH at byte 228: 4294967295 models exceeds the limit of 65536");
+  }
+  SECTION("more model records than bytes") {
+    auto bad = good;
+    setU32(bad, mesh, 3);
+    CHECK(messageFor(bad) ==
+          "tiles/3-1-2.qvt: section MESH at byte 228: 3 models need 132 bytes of records, the section holds 124");
+  }
+  SECTION("a vertex count beyond the bytes present") {
+    auto bad = good;
+    setU32(bad, record + 8, 1000);
+    const std::string message = messageFor(bad);
+    INFO(message);
+    CHECK(message.find("section MESH at byte 276: the models declare 8048 bytes of vertices and "
+                       "triangles, the section holds 80") != std::string::npos);
+  }
+  SECTION("a vertex count beyond the limits") {
+    auto bad = good;
+    setU32(bad, record + 8, 0xFFFFFFF0u);
+    CHECK(messageFor(bad).find("section MESH at byte 232: the models declare 4294967283 vertices") !=
+          std::string::npos);
+  }
+  SECTION("a section cut short (the table says fewer bytes)") {
+    auto bad = good;
+    setU32(bad, 48 + 6 * 12 + 8, 100);  // MESH size 128 -> 100
+    CHECK(messageFor(bad).find("section MESH at byte 276: the models declare 80 bytes of vertices and triangles, "
+                               "the section holds 52") != std::string::npos);
+  }
+  SECTION("a building index beyond BLDG") {
+    auto bad = good;
+    setU32(bad, record, 1);
+    CHECK(messageFor(bad) == "tiles/3-1-2.qvt: section MESH at byte 232: model 0 names building 1 of 1");
+  }
+  SECTION("storeys other than the building's") {
+    auto bad = good;
+    bad[record + 6] = 5;
+    CHECK(messageFor(bad) ==
+          "tiles/3-1-2.qvt: section MESH at byte 232: model 0 has 5 storeys, its building 4 (at most 255)");
+  }
+  SECTION("a NaN top") {
+    auto bad = good;
+    setU32(bad, record + 40, 0x7FC00000u);
+    CHECK(messageFor(bad).find("section MESH at byte 232: model 0: top nan m is outside [0.01, 10000] m") !=
+          std::string::npos);
+  }
+  SECTION("a denormal top") {
+    auto bad = good;
+    setU32(bad, record + 40, 0x00404000u);
+    CHECK(messageFor(bad).find("model 0: top 0.000000 m is outside [0.01, 10000] m") != std::string::npos);
+  }
+  SECTION("a bone beyond the storeys") {
+    auto bad = good;
+    bad[vertices + 3 * 8 + 6] = 5;
+    CHECK(messageFor(bad) ==
+          "tiles/3-1-2.qvt: section MESH at byte 300: model 0 vertex 3: bone 5 beyond its 4 storeys");
+  }
+  SECTION("a triangle index beyond the vertices") {
+    auto bad = good;
+    bad[triangles + 2] = 4;
+    CHECK(messageFor(bad) ==
+          "tiles/3-1-2.qvt: section MESH at byte 310: model 0: triangle index 4 beyond its 4 vertices");
+  }
+  SECTION("a far triangle index beyond the far vertices") {
+    auto bad = good;
+    bad[farTriangles + 4] = 3;
+    CHECK(messageFor(bad) ==
+          "tiles/3-1-2.qvt: section MESH at byte 354: model 0: far triangle index 3 beyond its 3 far vertices");
+  }
+  SECTION("too many far vertices for u16 indices") {
+    auto bad = good;
+    setU32(bad, record + 28, 70000);
+    CHECK(messageFor(bad) == "tiles/3-1-2.qvt: section MESH at byte 232: model 0: 70000 far vertices (at most 65535)");
+  }
+  SECTION("the whole section truncated") {
+    auto bad = good;
+    setU32(bad, 48 + 6 * 12 + 8, 2);
+    CHECK(messageFor(bad).find("section MESH: ") != std::string::npos);
+  }
+}
+
+TEST_CASE("Meshes of two models must name increasing buildings", "[format][tile][mesh]") {
+  CityTile t = tinyMeshTile();
+  t.meshes.push_back(t.meshes[0]);
+  const auto r = decodeCityTile(encodeCityTile(t), "tiles/0-0-0.qvt");
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error() == "tiles/0-0-0.qvt: section MESH at byte 276: model 1: building indices are not increasing");
+}
