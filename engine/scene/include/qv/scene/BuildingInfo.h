@@ -2,7 +2,9 @@
 // The shape of `quakeview.building(id)` / `pick(x, y)` and of the inspection window.
 #pragma once
 
+#include <glm/vec3.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -36,5 +38,11 @@ struct PrismView {
   float minZ = 0.0f, maxZ = 0.0f;
 };
 std::optional<float> rayPrism(const float origin[3], const float direction[3], const PrismView& prism);
+
+/// Picking a LOD2 model: where a ray first meets a triangle of `positions` (+ `offset`), either
+/// side, as t >= 0, or nullopt. `triangles` holds 3 indices per triangle (out-of-range skipped).
+template <typename Index>
+std::optional<float> rayTriangles(const float origin[3], const float direction[3], std::span<const glm::vec3> positions,
+                                  std::span<const Index> triangles, const glm::vec3& offset);
 
 }  // namespace qv
