@@ -354,6 +354,9 @@ TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with th
   const auto info = viewer.building(MiniCity::kLod2Id);
   REQUIRE(info.has_value());
   CHECK(info->attributes.lod == 2);
+  CHECK(info->modelSource == "cityjson");
+  CHECK(info->modelTriangles == 6);
+  CHECK(buildingInfoJson(*info).find("\"modelSource\":\"cityjson\"") != std::string::npos);
 
   // Its spire, 30 m up where the footprint's prism (17.5 m) has long ended, picks it ...
   const auto spire = viewer.worldToScreen(x, y, 30.0);

@@ -36,6 +36,10 @@ std::string buildingInfoJson(const BuildingInfo& info) {
   w.endArray();
   w.field("startYear", static_cast<int>(a.startYear));
   w.field("responseSource", info.hasResponse ? responseSourceName(info.response.source) : std::string_view("none"));
+  if (!info.modelSource.empty()) {
+    w.field("modelSource", info.modelSource);
+    w.field("modelTriangles", info.modelTriangles);
+  }
   w.field("detailed", info.detailed).field("tile", info.tile);
   w.endObject();
   return w.take();

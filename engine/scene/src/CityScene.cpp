@@ -1073,6 +1073,10 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
   info.attributes.centroidY += d.originY;
   info.detailed = !d.coarse;
   info.tile = tileset_->nodes[ref.node].key();
+  if (const TileMesh* m = t.loaded->meshOf(ref.index)) {
+    info.modelSource = meshSourceName(m->source);
+    info.modelTriangles = static_cast<std::uint32_t>((d.coarse ? m->farTriangles.size() : m->triangles.size()) / 3);
+  }
   if (t.summary && ref.index < t.summary->buildings.size()) {
     info.hasResponse = true;
     info.response = t.summary->buildings[ref.index];

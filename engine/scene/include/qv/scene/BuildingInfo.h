@@ -20,12 +20,17 @@ struct BuildingInfo {
   bool hasResponse = false;
   BuildingResponse response;           ///< damage, peaks (meaningful when hasResponse)
   std::vector<float> storeyPeakDrift;  ///< per storey, ground up (empty without a response)
+  /// LOD2 buildings whose tile carries the model: where it came from ("cityjson", "obj",
+  /// "osm-parts") and the triangles drawn (empty and 0 otherwise).
+  std::string modelSource;
+  std::uint32_t modelTriangles = 0;
 };
 
 /// `quakeview.building(id)` JSON: {id, name, use, address, x, y, heightM, heightSource, storeys,
 /// storeysSource, structuralType, codeEra, importance, lod, damageState, peakDriftRatio: [...],
 /// peakRoofDisplacementM, pgaG} plus informative extras (minHeightM, footprintAreaM2,
-/// structuralTypeDescription, importanceReasons, startYear, responseSource, detailed).
+/// structuralTypeDescription, importanceReasons, startYear, responseSource, detailed, and for
+/// LOD2 models modelSource and modelTriangles).
 std::string buildingInfoJson(const BuildingInfo& info);
 
 /// Picking: where a ray first meets a building (an extruded polygon with holes between two
