@@ -388,3 +388,31 @@ TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with th
   const auto hidden = viewer.pick(spire->x, spire->y);
   CHECK((!hidden.has_value() || hidden->attributes.id != MiniCity::kLod2Id));
 }
+
+TEST_CASE("Hostile city addresses are refused before any request, with a message", "[scene][city][errors]") {
+  CHECK(dataUrlProblem("/city/tileset.json").empty());
+  CHECK(dataUrlProblem("city/tileset.json").empty());
+  CHECK(dataUrlProblem("tiles/a:b/tileset.json").empty());
+  CHECK(dataUrlProblem("https://example.org/city/tileset.json").empty());
+  CHECK(dataUrlProblem("HTTP://example.org/tileset.json").empty());
+  CHECK(isAbsoluteHttpUrl("https://example.org/t.json"));
+  CHECK_FALSE(isAbsoluteHttpUrl("/t.json"));
+  const std::vector<std::string> hostile = {
+      "javascript:alert(1)", "file:///etc/passwd",  "data:application/json,{}", "JaVaScRiPt:x", "",
+      "city\ntileset.json",  std::string(5000, 'a')};
+  for (const std::string& bad : hostile) {
+    CAPTURE(bad.substr(0, 40));
+    CHECK_FALSE(dataUrlProblem(bad).empty());
+  }
+
+  FakeFetcher fetcher;
+  RecordingDevice device;
+  Viewer viewer(device);
+  viewer.openCity("javascript:alert(1)", fetcher, CitySceneOptions{});
+  runFrames(viewer, 3);
+  CHECK(fetcher.requested.empty());
+  CHECK(viewer.settled());
+  REQUIRE(viewer.errors().size() == 1);
+  CHECK(viewer.errors()[0].find("only http:// and https://") != std::string::npos);
+  CHECK(viewer.errors()[0].find("javascript:") != std::string::npos);
+}

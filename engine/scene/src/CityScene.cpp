@@ -107,6 +107,11 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
       onError_(std::move(onError)),
       slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
       floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
+  if (const std::string problem = dataUrlProblem(manifestUrl_); !problem.empty()) {
+    manifestFailed_ = true;  // refused before any request: settled, with the message
+    onError_("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
+    return;
+  }
   ++inFlight_;
   manifestRequest_ = fetcher_.fetch(
       manifestUrl_, [this](FetchResponse r) { onManifest(std::move(r)); }, options_.requestTimeoutMs);
@@ -127,8 +132,13 @@ void CityScene::onManifest(FetchResponse response) {
   manifestRequest_ = 0;
   if (!response.ok()) {
     manifestFailed_ = true;
-    onError_("The city could not be loaded from " + manifestUrl_ + ": " +
-             (response.status == 0 ? response.error : "HTTP " + std::to_string(response.status)));
+    std::string why = response.status == 0 ? response.error : "HTTP " + std::to_string(response.status);
+    if (response.status == 0 && isAbsoluteHttpUrl(manifestUrl_)) {
+      why +=
+          " (a server on another site must also allow this page to read its files: "
+          "Access-Control-Allow-Origin)";
+    }
+    onError_("The city could not be loaded from " + manifestUrl_ + ": " + why);
     return;
   }
   const std::string_view text(reinterpret_cast<const char*>(response.bytes.data()), response.bytes.size());
