@@ -21,6 +21,8 @@ namespace {
 
 // Two time steps are the same when they differ by less than this fraction (text round trips).
 constexpr double kTimeTolerance = 1e-6;
+/// Displacements beyond this (metres, after units) are not a building's: a wrong unit or garbage.
+constexpr double kMaxDisplacementM = 1000.0;
 
 std::string formatNumber(double v) {
   char buffer[32];
@@ -110,6 +112,10 @@ Status readJsonDirection(dom::element value, const std::string& path, double sca
       double d = 0.0;
       if (v.get_double().get(d) != simdjson::SUCCESS || !std::isfinite(d)) {
         return Error{floorPath + "[" + std::to_string(f) + "]: not a finite number"};
+      }
+      if (!(std::abs(d * scale) <= kMaxDisplacementM)) {
+        return Error{floorPath + "[" + std::to_string(f) + "]: " + formatNumber(d) +
+                     " is not a building's displacement (more than 1 km; check the units)"};
       }
       out[f * b.floors + i] = static_cast<float>(d * scale);
       ++f;
@@ -344,11 +350,14 @@ Status readCsv(const std::string& path, std::optional<DisplacementUnit> units, I
                    "\" is not a floor number (1 is the first floor above ground)"};
     }
     const auto x = parseDouble(fields[static_cast<std::size_t>(cX)]);
-    if (!x) return Error{place + ": x \"" + std::string(fields[static_cast<std::size_t>(cX)]) + "\" is not a number"};
+    // (Finite, and within float range: the plausibility check follows once the units are known.)
+    if (!x || !(std::abs(*x) <= 1e30))
+      return Error{place + ": x \"" + std::string(fields[static_cast<std::size_t>(cX)]) + "\" is not a number"};
     double y = 0.0;
     if (cY >= 0) {
       const auto v = parseDouble(fields[static_cast<std::size_t>(cY)]);
-      if (!v) return Error{place + ": y \"" + std::string(fields[static_cast<std::size_t>(cY)]) + "\" is not a number"};
+      if (!v || !(std::abs(*v) <= 1e30))
+        return Error{place + ": y \"" + std::string(fields[static_cast<std::size_t>(cY)]) + "\" is not a number"};
       y = *v;
     }
     auto [it, inserted] = rows.try_emplace(id);
@@ -402,8 +411,14 @@ Status readCsv(const std::string& path, std::optional<DisplacementUnit> units, I
                        " s (expected " + formatNumber(b.startSeconds + static_cast<double>(f) * dt) +
                        " s); resample to a uniform step"};
         }
-        b.x[f * floors + i] = row.x * scale;
-        if (cY >= 0) b.y[f * floors + i] = row.y * scale;
+        for (const double v : {static_cast<double>(row.x), cY >= 0 ? static_cast<double>(row.y) : 0.0}) {
+          if (!(std::abs(v * scale) <= kMaxDisplacementM)) {
+            return Error{where + ": " + formatNumber(v) +
+                         " is not a building's displacement (more than 1 km; check the units)"};
+          }
+        }
+        b.x[f * floors + i] = static_cast<float>(row.x * scale);
+        if (cY >= 0) b.y[f * floors + i] = static_cast<float>(row.y * scale);
       }
     }
     if (Status s = checkTimeStep(results, dt, b.place); !s.ok()) return s;
