@@ -151,6 +151,28 @@ TEST_CASE("A model over a synthetic building replaces it and keeps its id", "[lo
   std::filesystem::remove_all(dir);
 }
 
+TEST_CASE("lod2 places an OBJ model with its unit and rotation", "[lod2][cli]") {
+  const std::string dir = "/tmp/qv-lod2-cli-obj-" + std::to_string(getpid());
+  REQUIRE(run("synth-city --buildings 10 --seed 1 --out '" + dir + "'").exitCode == 0);
+  const std::string obj = std::string(QUAKEVIEW_LOD2_DATA_DIR) + "/box_cm_yup.obj";
+  // In metres the box would be 286 storeys tall: refused, and the city stays as it was.
+  const Run metres = run("lod2 --city '" + dir + "' --input '" + obj + "' --place -73.995,40.71,30 --obj-centre", true);
+  CHECK(metres.exitCode == 1);
+  CHECK(metres.output.find("no model could be imported") != std::string::npos);
+  const Run r =
+      run("lod2 --city '" + dir + "' --input '" + obj + "' --place -73.995,40.71,30 --obj-centre --obj-unit cm");
+  INFO(r.output);
+  REQUIRE(r.exitCode == 0);
+  CHECK(countAfter(r.output, "added") == 1);
+  Json j;
+  parse(j, run("info '" + dir + "' --building obj:box_cm_yup --json").output);
+  CHECK(j.doc["lod"].get_uint64().value() == 2);
+  CHECK(std::string_view(j.doc["lod2"]["source"].get_string().value()) == "obj");
+  CHECK(j.doc["lod2"]["vertices_before"].get_uint64().value() == 8);
+  CHECK(run("info '" + dir + "' --verify").exitCode == 0);
+  std::filesystem::remove_all(dir);
+}
+
 TEST_CASE("lod2 usage and data errors leave the city unchanged", "[lod2][cli]") {
   const std::string dir = "/tmp/qv-lod2-cli-errors-" + std::to_string(getpid());
   REQUIRE(run("synth-city --buildings 6 --seed 2 --out '" + dir + "'").exitCode == 0);
