@@ -83,7 +83,9 @@ struct MiniCity {
     return amplitude(i, j) * std::sin(2.0 * 3.14159265358979 * t / period(i, j));
   }
 
-  explicit MiniCity(bool withResponse = true) {
+  /// withMeshes: every building also carries a small LOD2 model in its tiles' MESH sections (the
+  /// viewer ignores them for now and draws the LOD1 prisms).
+  explicit MiniCity(bool withResponse = true, bool withMeshes = false) : withMeshes_(withMeshes) {
     const std::string prefix = "city/";
     tileset.generator = "test";
     tileset.originLon = -74.0;
@@ -126,6 +128,8 @@ struct MiniCity {
   static double centreY(int j) { return (j - kSide / 2 + 0.5) * 40.0; }
 
  private:
+  bool withMeshes_ = false;
+
   TileNode makeNode(std::uint8_t level, std::uint32_t x, std::uint32_t y, const std::vector<std::pair<int, int>>& cells,
                     bool coarse, bool withResponse, const std::string& prefix) {
     CityTile tile;
@@ -164,6 +168,26 @@ struct MiniCity {
       b.attributes.centroidX = cx;
       b.attributes.centroidY = cy;
       tile.buildings.push_back(b);
+      if (withMeshes_) {
+        TileMesh m;
+        m.building = static_cast<std::uint32_t>(tile.buildings.size() - 1);
+        m.source = MeshSource::CityJson;
+        m.storeys = kStoreys;
+        m.verticesBefore = 4;
+        m.topM = part.heightM;
+        const std::vector<glm::vec3> tetra = {
+            {cx - 10, cy - 10, 0.0f}, {cx + 10, cy - 10, 0.0f}, {cx, cy + 10, 0.0f}, {cx, cy, part.heightM}};
+        m.farPositions = tetra;
+        m.farTriangles = {0, 1, 3, 1, 2, 3, 2, 0, 3, 0, 2, 1};
+        if (!coarse) {
+          m.positions = tetra;
+          m.bones = {0, 0, 0, kStoreys};
+          m.weights = {0.0f, 0.0f, 0.0f, 0.0f};
+          m.triangles = {0, 1, 3, 1, 2, 3, 2, 0, 3, 0, 2, 1};
+          m.trianglesPerKind = {3, 0, 1, 0};
+        }
+        tile.meshes.push_back(std::move(m));
+      }
 
       BuildingResponse r;
       r.source = ResponseSource::Model;

@@ -124,6 +124,29 @@ TEST_CASE("A streamed city loads coarse tiles first and refines where the camera
   CHECK(withDamage > 0);
 }
 
+TEST_CASE("Tiles with LOD2 models (MESH sections) load and draw their buildings as before", "[scene][city][lod2]") {
+  MiniCity city(true, true);
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 5);
+  REQUIRE(viewer.city()->manifestLoaded());
+  CHECK(viewer.errors().empty());
+  CHECK(viewer.stats().latest.buildingsLoaded == 64);
+  viewer.setCamera(CameraState{-80.0, -80.0, 150.0, 0.0, 45.0, 45.0});
+  runFrames(viewer, 10);
+  CHECK(viewer.settled());
+  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 1);
+  CHECK(viewer.city()->tileCounts().loaded >= 2);
+  CHECK(viewer.errors().empty());
+}
+
 TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {
   MiniCity city;
   FakeFetcher fetcher;
