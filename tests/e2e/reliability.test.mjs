@@ -1,7 +1,8 @@
 // Reliability in the browser: a failing tile server (500s, slow answers, truncated bodies, wrong
-// content, dropped connections) and a deliberately small memory budget.
+// content, dropped connections), a deliberately small memory budget and hostile ?data= addresses.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
+import http from 'node:http';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
 import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
@@ -130,5 +131,48 @@ test('a small memory budget: flying over a city several times larger keeps the h
   } finally {
     await close();
     await server.close();
+  }
+});
+
+test('hostile ?data= addresses: not JSON, missing, another site without CORS, other schemes; each says why and the page stays usable', async () => {
+  const server = await serveSite({});
+  // Another origin (another port) that answers JSON without Access-Control-Allow-Origin.
+  const other = http.createServer((req, res) => {
+    res.writeHead(200, { 'Content-Type': 'application/json' });
+    res.end('{"format":"quakeview-tileset"}');
+  });
+  await new Promise((resolve) => other.listen(0, '127.0.0.1', resolve));
+  const otherUrl = `http://127.0.0.1:${other.address().port}/tileset.json`;
+  const cases = [
+    { data: '/quakeview.css', expect: /quakeview\.css: not valid JSON/ },
+    { data: '/nowhere/tileset.json', expect: /\/nowhere\/tileset\.json: HTTP 404/ },
+    { data: otherUrl, expect: /Access-Control-Allow-Origin/ },
+    { data: 'javascript:alert(1)', expect: /only http:\/\/ and https:\/\/ addresses .* not "javascript:"/ },
+    { data: 'file:///etc/passwd', expect: /not "file:"/ },
+  ];
+  const { context, close } = await launchBrowser();
+  try {
+    for (const c of cases) {
+      const { page, problems } = await openPage(context, `${server.url}/?data=${encodeURIComponent(c.data)}`);
+      // The page settles (never hangs) and says what went wrong, naming the address.
+      assert.deepEqual(await waitReady(page, 30000), { ok: true }, c.data);
+      const errors = await page.evaluate(() => window.quakeview.errors());
+      assert.ok(errors.some((e) => c.expect.test(e)), `${c.data}: ${JSON.stringify(errors)}`);
+      const text = await page.evaluate(() => window.quakeview.uiText());
+      assert.match(text, /== Errors ==/, c.data);
+      // Still a working page: the API answers and the frame loop runs.
+      await page.evaluate(() => window.quakeview.play());
+      const t0 = await page.evaluate(() => window.quakeview.time());
+      await page.waitForTimeout(300);
+      assert.ok(Number.isFinite(await page.evaluate(() => window.quakeview.time())) && t0 >= 0, c.data);
+      // No script errors: only the browser's own reports of the failed request itself.
+      const own = problems.filter((p) => !/Failed to load resource|CORS policy|net::ERR_/.test(p));
+      assert.deepEqual(own, [], c.data);
+      await page.close();
+    }
+  } finally {
+    await close();
+    await server.close();
+    other.close();
   }
 });

@@ -16,7 +16,7 @@ warn() { printf '[seeds] warning: %s\n' "$*" >&2; }
 
 rm -rf "$out" && mkdir -p "$out" "$work"
 for t in city_tile city_tile_roundtrip tileset search_index search_index_roundtrip response_summary \
-         response_history response_roundtrip ground_motion osm geojson; do
+         response_history response_roundtrip ground_motion osm geojson response_import cityjson obj; do
   mkdir -p "$out/$t"
   if [ -d "$root/tests/fuzz/seeds/$t" ]; then cp "$root/tests/fuzz/seeds/$t"/* "$out/$t/" 2>/dev/null; fi
 done
@@ -60,6 +60,15 @@ if command -v osmium >/dev/null 2>&1 && [ -f "$midtown" ] &&
 else
   warn "osmium or $midtown missing: no OSM cuts"
 fi
+
+# LOD2 models: the real CityJSON files (the two small ones whole, the larger ones as they are:
+# libFuzzer truncates to -max_len) and the LOD2 test fixtures.
+for f in "$shared"/cityjson/*.json "$root"/tests/lod2/data/*.json; do
+  [ -f "$f" ] && cp "$f" "$out/cityjson/"
+done
+for f in "$root"/tests/lod2/data/*.obj; do
+  [ -f "$f" ] && cp "$f" "$out/obj/"
+done
 
 # Files the tools write.
 if [ -n "$prep" ] && [ -x "$prep" ]; then

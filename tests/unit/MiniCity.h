@@ -83,9 +83,12 @@ struct MiniCity {
     return amplitude(i, j) * std::sin(2.0 * 3.14159265358979 * t / period(i, j));
   }
 
-  /// withMeshes: every building also carries a small LOD2 model in its tiles' MESH sections (the
-  /// viewer ignores them for now and draws the LOD1 prisms).
-  explicit MiniCity(bool withResponse = true, bool withMeshes = false) : withMeshes_(withMeshes) {
+  /// The building with a LOD2 model when `withLod2` (cell 0, 0): its 20 m square footprint carries
+  /// a pyramid rising to kSpireTopM, far above the 17.5 m prism the footprint alone would give.
+  static constexpr float kSpireTopM = 40.0f;
+  static constexpr const char* kLod2Id = "s1";
+
+  explicit MiniCity(bool withResponse = true, bool withLod2 = false) : withLod2_(withLod2) {
     const std::string prefix = "city/";
     tileset.generator = "test";
     tileset.originLon = -74.0;
@@ -128,8 +131,6 @@ struct MiniCity {
   static double centreY(int j) { return (j - kSide / 2 + 0.5) * 40.0; }
 
  private:
-  bool withMeshes_ = false;
-
   TileNode makeNode(std::uint8_t level, std::uint32_t x, std::uint32_t y, const std::vector<std::pair<int, int>>& cells,
                     bool coarse, bool withResponse, const std::string& prefix) {
     CityTile tile;
@@ -167,27 +168,33 @@ struct MiniCity {
       b.attributes.footprintAreaM2 = 400.0f;
       b.attributes.centroidX = cx;
       b.attributes.centroidY = cy;
-      tile.buildings.push_back(b);
-      if (withMeshes_) {
+      if (withLod2_ && i == 0 && j == 0) {
+        b.attributes.lod = 2;
         TileMesh m;
-        m.building = static_cast<std::uint32_t>(tile.buildings.size() - 1);
+        m.building = static_cast<std::uint32_t>(tile.buildings.size());
         m.source = MeshSource::CityJson;
         m.storeys = kStoreys;
-        m.verticesBefore = 4;
-        m.topM = part.heightM;
-        const std::vector<glm::vec3> tetra = {
-            {cx - 10, cy - 10, 0.0f}, {cx + 10, cy - 10, 0.0f}, {cx, cy + 10, 0.0f}, {cx, cy, part.heightM}};
-        m.farPositions = tetra;
-        m.farTriangles = {0, 1, 3, 1, 2, 3, 2, 0, 3, 0, 2, 1};
-        if (!coarse) {
-          m.positions = tetra;
-          m.bones = {0, 0, 0, kStoreys};
-          m.weights = {0.0f, 0.0f, 0.0f, 0.0f};
-          m.triangles = {0, 1, 3, 1, 2, 3, 2, 0, 3, 0, 2, 1};
-          m.trianglesPerKind = {3, 0, 1, 0};
+        m.verticesBefore = 5;
+        m.topM = kSpireTopM;
+        m.positions = {{cx - 10, cy - 10, 0},
+                       {cx + 10, cy - 10, 0},
+                       {cx + 10, cy + 10, 0},
+                       {cx - 10, cy + 10, 0},
+                       {cx, cy, kSpireTopM}};
+        for (const glm::vec3& q : m.positions) {
+          const float floorLevel = std::min(q.z / kStoreyHeight, static_cast<float>(kStoreys));
+          const auto bone = static_cast<std::uint8_t>(std::min(static_cast<int>(floorLevel), kStoreys));
+          m.bones.push_back(bone);
+          m.weights.push_back(bone == kStoreys ? 0.0f : floorLevel - static_cast<float>(bone));
         }
+        // Four walls (counter-clockwise from outside), then the two ground triangles.
+        m.triangles = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4, 0, 2, 1, 0, 3, 2};
+        m.trianglesPerKind = {4, 0, 2, 0};
+        m.farPositions = m.positions;
+        m.farTriangles.assign(m.triangles.begin(), m.triangles.end());
         tile.meshes.push_back(std::move(m));
       }
+      tile.buildings.push_back(b);
 
       BuildingResponse r;
       r.source = ResponseSource::Model;
@@ -248,6 +255,8 @@ struct MiniCity {
     }
     return n;
   }
+
+  bool withLod2_ = false;
 };
 
 }  // namespace qv::test

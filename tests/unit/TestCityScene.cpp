@@ -20,6 +20,7 @@ class RecordingDevice final : public RenderDevice {
   std::map<std::uint32_t, BuildingGpuRecord> buildings;  // slot -> row
   std::vector<FloorGpuRecord> floors;
   std::map<std::uint32_t, std::map<std::uint32_t, glm::vec2>> slotCentres;  // mesh -> slot -> local centre
+  std::map<std::uint32_t, std::map<std::uint32_t, int>> slotVertices;       // mesh -> slot -> vertex count
   std::vector<DrawItem> lastItems;
   NullRenderDevice counter;
 
@@ -31,7 +32,10 @@ class RecordingDevice final : public RenderDevice {
       a.first += glm::vec2(v.x, v.y);
       a.second += 1;
     }
-    for (const auto& [slot, a] : acc) slotCentres[h.id][slot] = a.first / static_cast<float>(a.second);
+    for (const auto& [slot, a] : acc) {
+      slotCentres[h.id][slot] = a.first / static_cast<float>(a.second);
+      slotVertices[h.id][slot] = a.second;
+    }
     return h;
   }
   void destroyMesh(MeshHandle m) override {
@@ -54,6 +58,19 @@ class RecordingDevice final : public RenderDevice {
   }
   DeviceFrameStats lastFrameStats() const override { return counter.lastFrameStats(); }
   std::size_t gpuBytes() const override { return counter.gpuBytes(); }
+
+  /// Vertices drawn for the building whose centre is at `world` (within 0.5 m), 0 when none.
+  int verticesAt(glm::vec2 world) const {
+    for (const DrawItem& item : lastItems) {
+      const auto it = slotCentres.find(item.mesh.id);
+      if (it == slotCentres.end()) continue;
+      for (const auto& [slot, c] : it->second) {
+        const glm::vec2 d = c + glm::vec2(item.origin.x, item.origin.y) - world;
+        if (d.x * d.x + d.y * d.y < 0.25f) return slotVertices.at(item.mesh.id).at(slot);
+      }
+    }
+    return 0;
+  }
 
   /// World centre of every drawn slot.
   std::map<std::uint32_t, glm::vec2> drawnSlots() const {
@@ -122,29 +139,6 @@ TEST_CASE("A streamed city loads coarse tiles first and refines where the camera
   int withDamage = 0;
   for (const auto& [slot, row] : device.buildings) withDamage += row.damageState >= 0.0f ? 1 : 0;
   CHECK(withDamage > 0);
-}
-
-TEST_CASE("Tiles with LOD2 models (MESH sections) load and draw their buildings as before", "[scene][city][lod2]") {
-  MiniCity city(true, true);
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
-  viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
-  runFrames(viewer, 5);
-  REQUIRE(viewer.city()->manifestLoaded());
-  CHECK(viewer.errors().empty());
-  CHECK(viewer.stats().latest.buildingsLoaded == 64);
-  viewer.setCamera(CameraState{-80.0, -80.0, 150.0, 0.0, 45.0, 45.0});
-  runFrames(viewer, 10);
-  CHECK(viewer.settled());
-  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 1);
-  CHECK(viewer.city()->tileCounts().loaded >= 2);
-  CHECK(viewer.errors().empty());
 }
 
 TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {
@@ -340,4 +334,85 @@ TEST_CASE("Picking finds the building under the cursor; hidden kinds and filters
   (void)viewer.city()->filteredList(1000, &passing);
   CHECK(passing > 0);
   CHECK(passing < 64 + 1);
+}
+
+TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with the LOD2 switch", "[scene][city][lod2]") {
+  MiniCity city(true, true);
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  const double x = MiniCity::centreX(0), y = MiniCity::centreY(0);
+  // Close to the model, from the side: the leaf (skinned mesh) is drawn.
+  viewer.setCamera(CameraState{x, y, 150.0, 30.0, 20.0, 45.0});
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  const auto info = viewer.building(MiniCity::kLod2Id);
+  REQUIRE(info.has_value());
+  CHECK(info->attributes.lod == 2);
+  CHECK(info->modelSource == "cityjson");
+  CHECK(info->modelTriangles == 6);
+  CHECK(buildingInfoJson(*info).find("\"modelSource\":\"cityjson\"") != std::string::npos);
+
+  // Its spire, 30 m up where the footprint's prism (17.5 m) has long ended, picks it ...
+  const auto spire = viewer.worldToScreen(x, y, 30.0);
+  REQUIRE(spire.has_value());
+  const auto picked = viewer.pick(spire->x, spire->y);
+  REQUIRE(picked.has_value());
+  CHECK(picked->attributes.id == MiniCity::kLod2Id);
+  // ... and so does its wall low down; a point beside the spire at 30 m (inside the prism's
+  // outline, outside the pyramid) does not pick it.
+  const auto wall = viewer.worldToScreen(x, y - 9.0, 2.0);
+  REQUIRE(wall.has_value());
+  const auto pickedWall = viewer.pick(wall->x, wall->y);
+  REQUIRE(pickedWall.has_value());
+  CHECK(pickedWall->attributes.id == MiniCity::kLod2Id);
+  const auto beside = viewer.worldToScreen(x + 9.0, y + 9.0, 30.0);
+  REQUIRE(beside.has_value());
+  const auto pickedBeside = viewer.pick(beside->x, beside->y);
+  CHECK((!pickedBeside.has_value() || pickedBeside->attributes.id != MiniCity::kLod2Id));
+
+  // The drawn mesh holds the model's six triangles for its slot (flat-shaded: 18 vertices), not
+  // an extruded prism.
+  CHECK(device.verticesAt(glm::vec2(x, y)) == 18);
+  // Its neighbour, a LOD1 building, is an extruded prism with a ring per floor.
+  CHECK(device.verticesAt(glm::vec2(MiniCity::centreX(1), y)) > 18);
+
+  // LOD2 hidden: not pickable any more (the LOD1 buildings still are).
+  viewer.city()->setLodVisibility(true, false);
+  runFrames(viewer, 2);
+  const auto hidden = viewer.pick(spire->x, spire->y);
+  CHECK((!hidden.has_value() || hidden->attributes.id != MiniCity::kLod2Id));
+}
+
+TEST_CASE("Hostile city addresses are refused before any request, with a message", "[scene][city][errors]") {
+  CHECK(dataUrlProblem("/city/tileset.json").empty());
+  CHECK(dataUrlProblem("city/tileset.json").empty());
+  CHECK(dataUrlProblem("tiles/a:b/tileset.json").empty());
+  CHECK(dataUrlProblem("https://example.org/city/tileset.json").empty());
+  CHECK(dataUrlProblem("HTTP://example.org/tileset.json").empty());
+  CHECK(isAbsoluteHttpUrl("https://example.org/t.json"));
+  CHECK_FALSE(isAbsoluteHttpUrl("/t.json"));
+  const std::vector<std::string> hostile = {
+      "javascript:alert(1)", "file:///etc/passwd",  "data:application/json,{}", "JaVaScRiPt:x", "",
+      "city\ntileset.json",  std::string(5000, 'a')};
+  for (const std::string& bad : hostile) {
+    CAPTURE(bad.substr(0, 40));
+    CHECK_FALSE(dataUrlProblem(bad).empty());
+  }
+
+  FakeFetcher fetcher;
+  RecordingDevice device;
+  Viewer viewer(device);
+  viewer.openCity("javascript:alert(1)", fetcher, CitySceneOptions{});
+  runFrames(viewer, 3);
+  CHECK(fetcher.requested.empty());
+  CHECK(viewer.settled());
+  REQUIRE(viewer.errors().size() == 1);
+  CHECK(viewer.errors()[0].find("only http:// and https://") != std::string::npos);
+  CHECK(viewer.errors()[0].find("javascript:") != std::string::npos);
 }

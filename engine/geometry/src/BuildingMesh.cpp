@@ -84,4 +84,43 @@ void triangulateConvexRing(std::uint32_t first, std::uint32_t count, std::vector
   }
 }
 
+std::size_t appendTriangleMesh(MeshData& mesh, const TriangleMeshInput& in) {
+  std::size_t appended = 0;
+  const std::size_t n = in.positions.size();
+  for (std::size_t t = 0; t + 2 < in.triangles.size(); t += 3) {
+    std::uint32_t index[3] = {in.triangles[t], in.triangles[t + 1], in.triangles[t + 2]};
+    if (index[0] >= n || index[1] >= n || index[2] >= n) continue;
+    glm::vec3 p[3];
+    for (int k = 0; k < 3; ++k) p[k] = in.positions[index[k]] + in.offset;
+    const glm::vec3 u = p[1] - p[0], v = p[2] - p[0];
+    const glm::vec3 c{u.y * v.z - u.z * v.y, u.z * v.x - u.x * v.z, u.x * v.y - u.y * v.x};
+    const float length = std::sqrt(c.x * c.x + c.y * c.y + c.z * c.z);
+    if (!(length > 1e-9f)) continue;
+    const glm::vec3 normal = c / length;
+    std::uint8_t kind = kWall;
+    if (t / 3 < in.kinds.size() && in.kinds[t / 3] != kKindFromNormal) {
+      kind = in.kinds[t / 3];
+    } else if (normal.z > 0.7f) {
+      kind = kRoof;
+    } else if (normal.z < -0.7f) {
+      kind = kGround;
+    }
+    // Rotate (keeping the winding) so the lowest vertex comes last.
+    int lowest = 0;
+    for (int k = 1; k < 3; ++k) {
+      if (p[k].z < p[lowest].z) lowest = k;
+    }
+    const int first = (lowest + 1) % 3;
+    const auto base = static_cast<std::uint32_t>(mesh.vertices.size());
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3& q = p[(first + k) % 3];
+      mesh.vertices.push_back(
+          {q.x, q.y, q.z, packNormal(normal.x), packNormal(normal.y), packNormal(normal.z), kind, in.slot});
+    }
+    mesh.indices.insert(mesh.indices.end(), {base, base + 1, base + 2});
+    ++appended;
+  }
+  return appended;
+}
+
 }  // namespace qv

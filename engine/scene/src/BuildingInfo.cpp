@@ -1,5 +1,7 @@
 #include "qv/scene/BuildingInfo.h"
 
+#include <glm/geometric.hpp>
+
 #include <cmath>
 
 #include "qv/core/JsonWriter.h"
@@ -34,6 +36,10 @@ std::string buildingInfoJson(const BuildingInfo& info) {
   w.endArray();
   w.field("startYear", static_cast<int>(a.startYear));
   w.field("responseSource", info.hasResponse ? responseSourceName(info.response.source) : std::string_view("none"));
+  if (!info.modelSource.empty()) {
+    w.field("modelSource", info.modelSource);
+    w.field("modelTriangles", info.modelTriangles);
+  }
   w.field("detailed", info.detailed).field("tile", info.tile);
   w.endObject();
   return w.take();
@@ -86,5 +92,40 @@ std::optional<float> rayPrism(const float o[3], const float d[3], const PrismVie
   if (!std::isfinite(best)) return std::nullopt;
   return best;
 }
+
+template <typename Index>
+std::optional<float> rayTriangles(const float o[3], const float d[3], std::span<const glm::vec3> positions,
+                                  std::span<const Index> triangles, const glm::vec3& offset) {
+  // Möller–Trumbore, both faces.
+  const glm::vec3 origin(o[0], o[1], o[2]), dir(d[0], d[1], d[2]);
+  float best = INFINITY;
+  for (std::size_t t = 0; t + 2 < triangles.size(); t += 3) {
+    if (triangles[t] >= positions.size() || triangles[t + 1] >= positions.size() ||
+        triangles[t + 2] >= positions.size())
+      continue;
+    const glm::vec3 a = positions[triangles[t]] + offset;
+    const glm::vec3 e1 = positions[triangles[t + 1]] + offset - a;
+    const glm::vec3 e2 = positions[triangles[t + 2]] + offset - a;
+    const glm::vec3 p = glm::cross(dir, e2);
+    const float det = glm::dot(e1, p);
+    if (std::abs(det) < 1e-12f) continue;
+    const float inv = 1.0f / det;
+    const glm::vec3 s = origin - a;
+    const float u = glm::dot(s, p) * inv;
+    if (u < 0.0f || u > 1.0f) continue;
+    const glm::vec3 q = glm::cross(s, e1);
+    const float v = glm::dot(dir, q) * inv;
+    if (v < 0.0f || u + v > 1.0f) continue;
+    const float hit = glm::dot(e2, q) * inv;
+    if (hit >= 0.0f && hit < best) best = hit;
+  }
+  if (best == INFINITY) return std::nullopt;
+  return best;
+}
+
+template std::optional<float> rayTriangles<std::uint32_t>(const float[3], const float[3], std::span<const glm::vec3>,
+                                                          std::span<const std::uint32_t>, const glm::vec3&);
+template std::optional<float> rayTriangles<std::uint16_t>(const float[3], const float[3], std::span<const glm::vec3>,
+                                                          std::span<const std::uint16_t>, const glm::vec3&);
 
 }  // namespace qv

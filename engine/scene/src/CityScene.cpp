@@ -54,6 +54,13 @@ struct CityScene::LoadedTile {
   std::uint64_t cpuBytes = 0;
   std::uint64_t gpuBytes = 0;
   glm::vec3 origin{0.0f};
+  std::vector<std::int32_t> meshIndex;  // building index -> index in data.meshes, or -1 (LOD1)
+
+  [[nodiscard]] const TileMesh* meshOf(std::uint32_t building) const {
+    return building < meshIndex.size() && meshIndex[building] >= 0
+               ? &data.meshes[static_cast<std::size_t>(meshIndex[building])]
+               : nullptr;
+  }
 };
 
 struct CityScene::TileRuntime {
@@ -100,6 +107,11 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
       onError_(std::move(onError)),
       slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
       floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
+  if (const std::string problem = dataUrlProblem(manifestUrl_); !problem.empty()) {
+    manifestFailed_ = true;  // refused before any request: settled, with the message
+    onError_("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
+    return;
+  }
   ++inFlight_;
   manifestRequest_ = fetcher_.fetch(
       manifestUrl_, [this](FetchResponse r) { onManifest(std::move(r)); }, options_.requestTimeoutMs);
@@ -120,8 +132,13 @@ void CityScene::onManifest(FetchResponse response) {
   manifestRequest_ = 0;
   if (!response.ok()) {
     manifestFailed_ = true;
-    onError_("The city could not be loaded from " + manifestUrl_ + ": " +
-             (response.status == 0 ? response.error : "HTTP " + std::to_string(response.status)));
+    std::string why = response.status == 0 ? response.error : "HTTP " + std::to_string(response.status);
+    if (response.status == 0 && isAbsoluteHttpUrl(manifestUrl_)) {
+      why +=
+          " (a server on another site must also allow this page to read its files: "
+          "Access-Control-Allow-Origin)";
+    }
+    onError_("The city could not be loaded from " + manifestUrl_ + ": " + why);
     return;
   }
   const std::string_view text(reinterpret_cast<const char*>(response.bytes.data()), response.bytes.size());
@@ -259,6 +276,14 @@ void CityScene::finishTile(std::uint32_t node) {
   CityTile& d = tile->data;
   tile->origin = glm::vec3(static_cast<float>(d.originX), static_cast<float>(d.originY), 0.0f);
 
+  // LOD2 models (MESH section), by building: drawn instead of the building's prisms, the skinned
+  // mesh in leaves and the simplified far mesh in coarse tiles.
+  tile->meshIndex.assign(d.buildings.size(), -1);
+  for (std::size_t k = 0; k < d.meshes.size(); ++k) {
+    if (d.meshes[k].building < d.buildings.size()) tile->meshIndex[d.meshes[k].building] = static_cast<std::int32_t>(k);
+  }
+  auto meshOf = [&tile](std::size_t b) { return tile->meshOf(static_cast<std::uint32_t>(b)); };
+
   // Boxes per building in the city frame, then the BoxTree's Morton order for slots and mesh.
   std::vector<Box> boxes(d.buildings.size());
   for (std::size_t b = 0; b < d.buildings.size(); ++b) {
@@ -270,6 +295,11 @@ void CityScene::finishTile(std::uint32_t node) {
         box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.minHeightM);
         box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.heightM);
       }
+    }
+    if (const TileMesh* m = meshOf(b)) {
+      const float ground = tb.attributes.minHeightM;
+      for (const glm::vec3& q : d.coarse ? m->farPositions : m->positions)
+        box.expand(q.x + tile->origin.x, q.y + tile->origin.y, q.z + ground);
     }
     boxes[b] = box;
   }
@@ -292,7 +322,8 @@ void CityScene::finishTile(std::uint32_t node) {
   // The merged mesh: one vertex ring per floor level for leaves, plain prisms for coarse tiles.
   MeshData mesh;
   std::vector<float> levels;
-  std::vector<std::uint32_t> ringEnds, roof;
+  std::vector<std::uint32_t> ringEnds, roof, meshIndices;
+  std::vector<std::uint8_t> meshKinds;
   for (std::uint32_t p = 0; p < order.size(); ++p) {
     const TileBuilding& tb = d.buildings[order[p]];
     const BuildingAttributes& a = tb.attributes;
@@ -304,6 +335,30 @@ void CityScene::finishTile(std::uint32_t node) {
     row.baseZ = a.minHeightM;
     // Results on their way: plain (not hatched as "no result") until the summary arrives.
     if (tileset_->nodes[node].response) row.damageState = kDamagePending;
+    if (const TileMesh* m = meshOf(order[p])) {
+      // The LOD2 model. Its vertices lie on the floor planes it was re-meshed at (one bone per
+      // floor level): the vertex shader blends the displacements of the floors below and above
+      // each vertex by height, which are the bone weights the model stores.
+      TriangleMeshInput in;
+      in.offset = glm::vec3(0.0f, 0.0f, a.minHeightM);
+      in.slot = tile->slotBase + p;
+      if (d.coarse) {
+        meshIndices.assign(m->farTriangles.begin(), m->farTriangles.end());
+        in.positions = m->farPositions;
+        in.triangles = meshIndices;
+        appendTriangleMesh(mesh, in);
+      } else {
+        meshKinds.clear();
+        constexpr std::uint8_t kKinds[kMeshSurfaceKinds] = {kWall, kRoof, kGround, kKindFromNormal};
+        for (std::size_t k = 0; k < kMeshSurfaceKinds; ++k)
+          meshKinds.insert(meshKinds.end(), m->trianglesPerKind[k], kKinds[k]);
+        in.positions = m->positions;
+        in.triangles = m->triangles;
+        in.kinds = meshKinds;
+        appendTriangleMesh(mesh, in);
+      }
+      continue;
+    }
     for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
       const TilePart& part = d.parts[pi];
       levels.clear();
@@ -336,7 +391,11 @@ void CityScene::finishTile(std::uint32_t node) {
   tile->gpuBytes = mesh.vertices.size() * sizeof(BuildingVertex) + mesh.indices.size() * sizeof(std::uint32_t);
   tile->cpuBytes = d.vertices.size() * sizeof(glm::vec2) + d.roofTriangles.size() * 2 + d.ringVertexCounts.size() * 2 +
                    d.parts.size() * sizeof(TilePart) + d.buildings.size() * (sizeof(TileBuilding) + 64) +
-                   boxes.size() * (sizeof(Box) * 2 + 12);
+                   boxes.size() * (sizeof(Box) * 2 + 12) + tile->meshIndex.size() * 4;
+  for (const TileMesh& m : d.meshes) {
+    tile->cpuBytes += sizeof(TileMesh) + m.positions.size() * (sizeof(glm::vec3) + 5) + m.triangles.size() * 4 +
+                      m.farPositions.size() * sizeof(glm::vec3) + m.farTriangles.size() * 2;
+  }
   writeBuildingRows(tile->slotBase, count);
   t.loaded = std::move(tile);
   ++residencyGeneration_;
@@ -555,8 +614,25 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   }
   clock_ = static_cast<double>(std::chrono::duration<double>(frameStart.time_since_epoch()).count());
 
-  // LOD: which tiles to draw and to load.
+  // Decode and mesh what arrived, within the time budget (at least one tile per frame), before
+  // choosing tiles: a tile decoded now lets its children be requested in this same frame. When
+  // frames are slow anyway (a software renderer drawing a million triangles), the budget grows
+  // with the frame interval, so loading is not held back by drawing.
   auto t0 = Clock::now();
+  const double intervalMs =
+      lastUpdate_ ? std::chrono::duration<double, std::milli>(frameStart - *lastUpdate_).count() : 0.0;
+  lastUpdate_ = frameStart;
+  const double budgetMs = std::max(options_.workBudgetMs, std::min(0.5 * intervalMs, 200.0));
+  while (!decodeQueue_.empty()) {
+    const std::uint32_t node = decodeQueue_.front();
+    decodeQueue_.erase(decodeQueue_.begin());
+    finishTile(node);
+    if (msSince(t0) > budgetMs) break;
+  }
+  const double streamingMs = msSince(t0);
+
+  // LOD: which tiles to draw and to load.
+  t0 = Clock::now();
   TileSelectorOptions selectorOptions;
   selectorOptions.maxScreenSpaceError = options_.maxScreenSpaceError;
   selectorOptions.maxDrawTiles = options_.maxDrawTiles;
@@ -592,16 +668,6 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= clock_) request(i, clock_);
   }
   times.lod += msSince(t0);
-
-  // Decode and mesh what arrived, within the time budget (at least one tile per frame).
-  t0 = Clock::now();
-  while (!decodeQueue_.empty()) {
-    const std::uint32_t node = decodeQueue_.front();
-    decodeQueue_.erase(decodeQueue_.begin());
-    finishTile(node);
-    if (msSince(t0) > options_.workBudgetMs) break;
-  }
-  const double streamingMs = msSince(t0);
 
   // Cull: tile boxes first, then the buildings of partly visible tiles.
   t0 = Clock::now();
@@ -1017,6 +1083,10 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
   info.attributes.centroidY += d.originY;
   info.detailed = !d.coarse;
   info.tile = tileset_->nodes[ref.node].key();
+  if (const TileMesh* m = t.loaded->meshOf(ref.index)) {
+    info.modelSource = meshSourceName(m->source);
+    info.modelTriangles = static_cast<std::uint32_t>((d.coarse ? m->farTriangles.size() : m->triangles.size()) / 3);
+  }
   if (t.summary && ref.index < t.summary->buildings.size()) {
     info.hasResponse = true;
     info.response = t.summary->buildings[ref.index];
@@ -1096,6 +1166,18 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
       const std::uint32_t b = tile.tree.order()[position];
       const TileBuilding& tb = tile.data.buildings[b];
       if (tb.attributes.lod == 2 ? !showLod2_ : !showLod1_) continue;  // hidden: not pickable
+      if (const TileMesh* m = tile.meshOf(b)) {
+        // A LOD2 model is picked on its own triangles (the far mesh in coarse tiles).
+        const glm::vec3 offset(tile.origin.x, tile.origin.y, tb.attributes.minHeightM);
+        const auto tHit = tile.data.coarse
+                              ? rayTriangles<std::uint16_t>(o, dir, m->farPositions, m->farTriangles, offset)
+                              : rayTriangles<std::uint32_t>(o, dir, m->positions, m->triangles, offset);
+        if (tHit && *tHit < best) {
+          best = *tHit;
+          hit = BuildingRef{node, b};
+        }
+        continue;
+      }
       for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
         const TilePart& part = tile.data.parts[p];
         PrismView prism;

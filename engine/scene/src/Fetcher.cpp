@@ -11,4 +11,36 @@ std::string resolveUrl(const std::string& base, const std::string& relative) {
   return dir + relative;
 }
 
+namespace {
+
+std::string lowerPrefix(const std::string& url, std::size_t n) {
+  std::string out = url.substr(0, n);
+  for (char& c : out) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+  return out;
+}
+
+}  // namespace
+
+bool isAbsoluteHttpUrl(const std::string& url) {
+  return lowerPrefix(url, 7) == "http://" || lowerPrefix(url, 8) == "https://";
+}
+
+std::string dataUrlProblem(const std::string& url) {
+  if (url.empty()) return "no address given";
+  if (url.size() > 4096) return "the address is longer than 4096 characters";
+  for (const char c : url) {
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) return "the address contains control characters";
+  }
+  if (isAbsoluteHttpUrl(url)) return {};
+  // A scheme is letters, digits, '+', '-' or '.' before the first ':' that comes before any '/',
+  // '?' or '#'; "//host/..." (scheme-relative) is another site too, over the page's own scheme.
+  const auto colon = url.find(':');
+  const auto stop = url.find_first_of("/?#");
+  if (colon != std::string::npos && (stop == std::string::npos || colon < stop)) {
+    return "only http:// and https:// addresses and paths on this site are allowed, not \"" + url.substr(0, colon + 1) +
+           "\"";
+  }
+  return {};
+}
+
 }  // namespace qv

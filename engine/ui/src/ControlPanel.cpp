@@ -384,7 +384,16 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
     }
     if (!why.empty()) importance += " (" + why + ")";
     w.field("Importance", importance);
-    w.field("Model", a.lod == 2 ? "LOD2 detailed model" : "LOD1 extruded footprint");
+    if (a.lod == 2 && !info->modelSource.empty()) {
+      const std::string_view source = info->modelSource == "cityjson"    ? "CityJSON"
+                                      : info->modelSource == "obj"       ? "OBJ"
+                                      : info->modelSource == "osm-parts" ? "OpenStreetMap building parts"
+                                                                         : "other source";
+      w.field("Model", ui::format("LOD2 detailed model from %s, %u triangles%s", std::string(source).c_str(),
+                                  info->modelTriangles, info->detailed ? "" : " (simplified at this distance)"));
+    } else {
+      w.field("Model", a.lod == 2 ? "LOD2 detailed model" : "LOD1 extruded footprint");
+    }
     if (a.id.size() > 1 && (a.id[0] == 'w' || a.id[0] == 'r') &&
         a.id.find_first_not_of("0123456789", 1) == std::string::npos) {
       const std::string path = (a.id[0] == 'w' ? "way/" : "relation/") + a.id.substr(1);

@@ -5,8 +5,8 @@
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
-#include <list>
 #include <utility>
+#include <vector>
 
 namespace qv::prep {
 namespace {
@@ -26,13 +26,13 @@ using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_con
 
 // Flood-fills nesting levels from the infinite face across constrained edges (the CGAL manual's
 // "Triangulating a Polygonal Domain" example, 2D Triangulations §8.4).
-void markDomains(Cdt& cdt, Cdt::Face_handle start, int index, std::list<Cdt::Edge>& border) {
+void markDomains(Cdt& cdt, Cdt::Face_handle start, int index, std::vector<Cdt::Edge>& border) {
   if (start->info().nesting != -1) return;
-  std::list<Cdt::Face_handle> queue;
+  std::vector<Cdt::Face_handle> queue;  // order does not matter for a flood fill
   queue.push_back(start);
   while (!queue.empty()) {
-    Cdt::Face_handle fh = queue.front();
-    queue.pop_front();
+    Cdt::Face_handle fh = queue.back();
+    queue.pop_back();
     if (fh->info().nesting != -1) continue;
     fh->info().nesting = index;
     for (int i = 0; i < 3; ++i) {
@@ -99,14 +99,18 @@ bool triangulatePolygon(std::span<const glm::dvec2> points, std::span<const std:
   }
   try {
     Cdt cdt;
+    std::vector<Cdt::Vertex_handle> ring;
     std::uint32_t begin = 0;
     for (std::uint32_t end : ringEnds) {
       if (end > points.size() || end < begin + 3) return false;
-      std::vector<Cdt::Vertex_handle> ring;
-      ring.reserve(end - begin);
+      ring.clear();
+      // Each vertex is located from the previous one (ring neighbours are close): no walk from
+      // an arbitrary face.
+      Cdt::Face_handle hint;
       for (std::uint32_t i = begin; i < end; ++i) {
-        Cdt::Vertex_handle v = cdt.insert(Kernel::Point_2(points[i].x, points[i].y));
+        Cdt::Vertex_handle v = cdt.insert(Kernel::Point_2(points[i].x, points[i].y), hint);
         v->info() = i;
+        hint = v->face();
         ring.push_back(v);
       }
       for (std::size_t i = 0; i < ring.size(); ++i) {
@@ -117,11 +121,11 @@ bool triangulatePolygon(std::span<const glm::dvec2> points, std::span<const std:
       begin = end;
     }
     for (Cdt::Face_handle f : cdt.all_face_handles()) f->info().nesting = -1;
-    std::list<Cdt::Edge> border;
+    std::vector<Cdt::Edge> border;
     markDomains(cdt, cdt.infinite_face(), 0, border);
-    while (!border.empty()) {
-      const Cdt::Edge e = border.front();
-      border.pop_front();
+    // Breadth-first over the borders (first in, first out), so each domain gets its nesting level.
+    for (std::size_t next = 0; next < border.size(); ++next) {
+      const Cdt::Edge e = border[next];
       Cdt::Face_handle n = e.first->neighbor(e.second);
       if (n->info().nesting == -1) markDomains(cdt, n, e.first->info().nesting + 1, border);
     }

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 namespace qv {
 
@@ -27,6 +28,7 @@ struct BuildingVertex {
 static_assert(sizeof(BuildingVertex) == 20);
 
 enum VertexKind : std::uint8_t { kWall = 0, kRoof = 1, kGround = 2 };
+inline constexpr std::uint8_t kKindFromNormal = 255;  ///< TriangleMeshInput::kinds: decide by the normal
 
 struct MeshData {
   std::vector<BuildingVertex> vertices;
@@ -55,6 +57,24 @@ struct ExtrusionInput {
 /// Appends the walls (and roof) of `input` to `mesh`. Degenerate edges (shorter than 1 mm) are
 /// skipped. Returns the number of triangles appended.
 std::size_t appendExtrusion(MeshData& mesh, const ExtrusionInput& input);
+
+/// A triangle mesh (a LOD2 model) to append with flat shading.
+struct TriangleMeshInput {
+  std::span<const glm::vec3> positions;      ///< relative to the mesh origin, before `offset`
+  std::span<const std::uint32_t> triangles;  ///< 3 indices per triangle, counter-clockwise from outside
+  /// VertexKind per triangle, or kKindFromNormal; empty: all from the normal (up: roof, down:
+  /// ground, else wall).
+  std::span<const std::uint8_t> kinds;
+  glm::vec3 offset{0.0f};  ///< added to every position (metres)
+  std::uint32_t slot = 0;
+};
+
+/// Appends `input` flat-shaded: each triangle gets three vertices of its own with its face normal.
+/// Each triangle's lowest vertex is made its last (the provoking vertex, which carries the storey
+/// the shader colours it by: re-meshed models have no triangle spanning two storeys, and a vertex
+/// on the floor plane above belongs to the next storey). Triangles with an index out of range or
+/// no area are skipped. Returns the number of triangles appended.
+std::size_t appendTriangleMesh(MeshData& mesh, const TriangleMeshInput& input);
 
 /// The heights of the floor levels strictly between baseZ and topZ for a building whose storeys
 /// are `storeyHeight` metres tall starting at ground level (z = 0), appended to `out`.

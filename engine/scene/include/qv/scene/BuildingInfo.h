@@ -2,7 +2,9 @@
 // The shape of `quakeview.building(id)` / `pick(x, y)` and of the inspection window.
 #pragma once
 
+#include <glm/vec3.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,12 +20,17 @@ struct BuildingInfo {
   bool hasResponse = false;
   BuildingResponse response;           ///< damage, peaks (meaningful when hasResponse)
   std::vector<float> storeyPeakDrift;  ///< per storey, ground up (empty without a response)
+  /// LOD2 buildings whose tile carries the model: where it came from ("cityjson", "obj",
+  /// "osm-parts") and the triangles drawn (empty and 0 otherwise).
+  std::string modelSource;
+  std::uint32_t modelTriangles = 0;
 };
 
 /// `quakeview.building(id)` JSON: {id, name, use, address, x, y, heightM, heightSource, storeys,
 /// storeysSource, structuralType, codeEra, importance, lod, damageState, peakDriftRatio: [...],
 /// peakRoofDisplacementM, pgaG} plus informative extras (minHeightM, footprintAreaM2,
-/// structuralTypeDescription, importanceReasons, startYear, responseSource, detailed).
+/// structuralTypeDescription, importanceReasons, startYear, responseSource, detailed, and for
+/// LOD2 models modelSource and modelTriangles).
 std::string buildingInfoJson(const BuildingInfo& info);
 
 /// Picking: where a ray first meets a building (an extruded polygon with holes between two
@@ -36,5 +43,11 @@ struct PrismView {
   float minZ = 0.0f, maxZ = 0.0f;
 };
 std::optional<float> rayPrism(const float origin[3], const float direction[3], const PrismView& prism);
+
+/// Picking a LOD2 model: where a ray first meets a triangle of `positions` (+ `offset`), either
+/// side, as t >= 0, or nullopt. `triangles` holds 3 indices per triangle (out-of-range skipped).
+template <typename Index>
+std::optional<float> rayTriangles(const float origin[3], const float direction[3], std::span<const glm::vec3> positions,
+                                  std::span<const Index> triangles, const glm::vec3& offset);
 
 }  // namespace qv

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -32,7 +33,9 @@ namespace qv {
 struct CitySceneOptions {
   float maxScreenSpaceError = 12.0f;  ///< device pixels before a coarse tile is refined
   std::uint32_t maxDrawTiles = 240;   ///< draw-call budget for city tiles
-  std::uint32_t maxRequestsInFlight = 6;
+  /// Tile, summary and history requests issued and not yet answered (the browser queues them
+  /// over its own connections; more than its six lets a tile arrive while others are queued).
+  std::uint32_t maxRequestsInFlight = 16;
   std::uint32_t requestTimeoutMs = 20000;
   float animationRadiusM = 1000.0f;  ///< around the eye (metres); 0 animates nothing
   std::uint32_t maxAnimatedBuildings = 20000;
@@ -194,7 +197,8 @@ class CityScene {
   std::vector<std::uint32_t> decodeQueue_;
   std::uint32_t inFlight_ = 0;
   std::uint64_t frame_ = 0;
-  double clock_ = 0.0;  // seconds since creation (for retries)
+  double clock_ = 0.0;                                               // seconds since creation (for retries)
+  std::optional<std::chrono::steady_clock::time_point> lastUpdate_;  // the previous frame's start
   TileSelection selection_;
 
   // GPU tables and their CPU mirrors.

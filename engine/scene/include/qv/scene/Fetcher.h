@@ -38,4 +38,13 @@ class Fetcher {
 /// "tiles/0.qvt" -> "a/b/tiles/0.qvt". Absolute URLs and paths in `relative` are returned as is.
 std::string resolveUrl(const std::string& base, const std::string& relative);
 
+/// Why `url` cannot be a city's address (the page's ?data=), or empty when it can: only paths on
+/// this site and http(s) URLs are fetched; other schemes (javascript:, file:, data:, ...) and
+/// empty or over-long addresses are refused before any request.
+std::string dataUrlProblem(const std::string& url);
+
+/// True when `url` names another site (an absolute http(s) URL), whose server must allow the page
+/// to read its files (CORS) for a request to succeed.
+bool isAbsoluteHttpUrl(const std::string& url);
+
 }  // namespace qv
