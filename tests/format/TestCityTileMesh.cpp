@@ -371,3 +371,37 @@ TEST_CASE("Meshes of two models must name increasing buildings", "[format][tile]
   REQUIRE_FALSE(r.ok());
   CHECK(r.error() == "tiles/0-0-0.qvt: section MESH at byte 276: model 1: building indices are not increasing");
 }
+
+TEST_CASE("MESH indices are u16 up to 65535 vertices and u32 beyond", "[format][tile][mesh]") {
+  struct Case {
+    std::uint32_t vertices;
+    std::size_t sectionBytes;
+    std::string indexBytes;
+  };
+  // 4-byte count + 44-byte record + 8 bytes per vertex, then one triangle (last, 0, 1): three u16
+  // and 2 bytes of padding, or three u32.
+  const Case cases[] = {{65535, 4 + 44 + 65535 * 8 + 8, "feff000001000000"},
+                        {65536, 4 + 44 + 65536 * 8 + 12, "ffff00000000000001000000"}};
+  for (const Case& c : cases) {
+    CityTile t = tileWithoutMesh();
+    TileMesh m;
+    m.storeys = 4;
+    m.topM = 12.0f;
+    m.positions.assign(c.vertices, glm::vec3(1.0f, 2.0f, 3.0f));
+    m.bones.assign(c.vertices, 1);
+    m.weights.assign(c.vertices, 0.0f);
+    m.triangles = {c.vertices - 1, 0, 1};
+    m.trianglesPerKind = {1, 0, 0, 0};
+    t.meshes = {m};
+    const auto bytes = encodeCityTile(t);
+    const std::size_t mesh = meshOffset(bytes);
+    CHECK(readU32(bytes, 48 + 6 * 12 + 8) == c.sectionBytes);
+    const std::size_t indices = mesh + 4 + 44 + std::size_t{c.vertices} * 8;
+    CHECK(hex(std::vector<std::uint8_t>(
+              bytes.begin() + static_cast<std::ptrdiff_t>(indices),
+              bytes.begin() + static_cast<std::ptrdiff_t>(indices + c.indexBytes.size() / 2))) == c.indexBytes);
+    const auto decoded = decodeCityTile(bytes, "wide");
+    REQUIRE(decoded.ok());
+    CHECK(decoded->meshes[0].triangles == m.triangles);
+  }
+}

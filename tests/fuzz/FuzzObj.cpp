@@ -13,15 +13,16 @@
 #include "qv/prep/Projection.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string path = qv::fuzz::writeInput(std::string_view(reinterpret_cast<const char*>(data), size), "model.obj");
+  const std::string path =
+      qv::fuzz::writeInput(std::string_view(reinterpret_cast<const char*>(data), size), "model.obj");
   const qv::prep::CityProjection projection(-74.0, 40.71);
   qv::prep::ObjPlacement placement;
   placement.lon = -74.0;
   placement.lat = 40.71;
   auto model = qv::prep::readObjModel(path, placement, projection);
   if (!model.ok()) {
-    qv::fuzz::check(model.error().find("model.obj") != std::string::npos, "OBJ error does not name the file:",
-                    model.error());
+    qv::fuzz::check(model.error().find("model.obj") != std::string::npos,
+                    "OBJ error does not name the file:", model.error());
     return 0;
   }
   qv::prep::FinishOptions options;

@@ -16,8 +16,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   qv::prep::ImportedResults results;
   const qv::Status read = qv::prep::readImportedResponse(path, std::nullopt, results);
   if (!read.ok()) {
-    qv::fuzz::check(read.error().find("results.input") != std::string::npos, "import error does not name the file:",
-                    read.error());
+    qv::fuzz::check(read.error().find("results.input") != std::string::npos,
+                    "import error does not name the file:", read.error());
     return 0;
   }
   if (!results.buildings.empty()) {

@@ -117,8 +117,8 @@ int runCity(const CommandArgs& argv) {
       static_cast<unsigned long long>(stats.partsAttached), static_cast<unsigned long long>(stats.partsStandalone),
       static_cast<unsigned long long>(stats.geojsonFeatures));
   printTilingSummary(stdout, *model, *report, seconds);
-  std::printf("            (reading %.2f s, cleaning and inference %.2f s, tiling and writing %.2f s)\n", stats.readSeconds,
-              stats.buildSeconds,
+  std::printf("            (reading %.2f s, cleaning and inference %.2f s, tiling and writing %.2f s)\n",
+              stats.readSeconds, stats.buildSeconds,
               std::chrono::duration<double>(std::chrono::steady_clock::now() - tilingStart).count());
   return kExitOk;
 }

@@ -65,6 +65,23 @@ void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNod
   w.field("tile", node.key());
 }
 
+// A LOD2 building's model as the tile's MESH section stores it: "lod2": {source, vertex and
+// triangle counts}, or null.
+void writeMeshJson(JsonWriter& w, const CityTile& tile, std::size_t buildingIndex) {
+  for (const TileMesh& m : tile.meshes) {
+    if (m.building != buildingIndex) continue;
+    w.key("lod2").beginObject();
+    w.field("source", meshSourceName(m.source));
+    w.field("vertices_before", std::uint64_t{m.verticesBefore});
+    w.field("vertices", static_cast<std::uint64_t>(m.positions.size()));
+    w.field("triangles", static_cast<std::uint64_t>(m.triangles.size() / 3));
+    w.field("far_triangles", static_cast<std::uint64_t>(m.farTriangles.size() / 3));
+    w.endObject();
+    return;
+  }
+  w.key("lod2").null();
+}
+
 constexpr const char* kDamageKeys[6] = {"none", "slight", "moderate", "extensive", "complete", "no_result"};
 
 // Buildings per damage state as the response recorded them; buildings the response does not know
@@ -172,6 +189,7 @@ int runInfo(const CommandArgs& argv) {
           JsonWriter w;
           w.beginObject();
           writeBuildingJson(w, a, node, *tile);
+          writeMeshJson(w, *tile, index);
           w.field("damage_state", damage);
           w.field("response_source", responseSourceName(hasResult ? r->summary.source : ResponseSource::None));
           w.key("peak_drift_ratio").beginArray();

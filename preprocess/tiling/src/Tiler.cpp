@@ -99,6 +99,44 @@ void addAttributes(CityTile& tile, const Building& b, std::uint16_t partCount, b
   tile.buildings.push_back(std::move(tb));
 }
 
+// The building just added to `tile` gets its LOD2 model: the skinned mesh in leaves, only the far
+// mesh in coarse tiles. Models whose bones do not match the building's storeys are not written
+// (the building keeps its LOD1 prism).
+void addMesh(CityTile& tile, const Building& b, bool coarse) {
+  if (!b.mesh || b.attributes.storeys == 0 || b.attributes.storeys > kMaxMeshStoreys) return;
+  const BuildingMesh& m = *b.mesh;
+  if (m.farPositions.size() > 65535) return;
+  for (std::uint8_t bone : m.bones) {
+    if (bone > b.attributes.storeys) return;
+  }
+  TileMesh tm;
+  tm.building = static_cast<std::uint32_t>(tile.buildings.size() - 1);
+  tm.source = m.source;
+  tm.storeys = b.attributes.storeys;
+  tm.verticesBefore = m.verticesBefore;
+  double top = 0.0;
+  for (const auto* points : {&m.positions, &m.farPositions}) {
+    for (const glm::dvec3& p : *points) top = std::max(top, p.z);
+  }
+  tm.topM = static_cast<float>(std::clamp(top, 0.01, 10000.0));
+  auto local = [&](const glm::dvec3& p) {
+    return glm::vec3(static_cast<float>(p.x - tile.originX), static_cast<float>(p.y - tile.originY),
+                     static_cast<float>(p.z));
+  };
+  if (!coarse) {
+    tm.positions.reserve(m.positions.size());
+    for (const glm::dvec3& p : m.positions) tm.positions.push_back(local(p));
+    tm.bones = m.bones;
+    tm.weights = m.weights;
+    tm.triangles = m.triangles;
+    tm.trianglesPerKind = m.trianglesPerKind;
+  }
+  tm.farPositions.reserve(m.farPositions.size());
+  for (const glm::dvec3& p : m.farPositions) tm.farPositions.push_back(local(p));
+  tm.farTriangles = m.farTriangles;
+  tile.meshes.push_back(std::move(tm));
+}
+
 CityTile leafTile(const CityModel& model, const std::vector<BuildingInfo>& info, const Node& node, Rect& bounds) {
   CityTile tile;
   frame(info, node.buildings, tile, bounds);
@@ -129,6 +167,7 @@ CityTile leafTile(const CityModel& model, const std::vector<BuildingInfo>& info,
       ++parts;
     }
     addAttributes(tile, b, parts, false);
+    addMesh(tile, b, false);
   }
   return tile;
 }
@@ -182,6 +221,7 @@ CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& inf
     for (std::uint32_t i : triangles) tile.roofTriangles.push_back(static_cast<std::uint16_t>(i));
     tile.parts.push_back(tp);
     addAttributes(tile, b, 1, true);
+    addMesh(tile, b, true);
   }
   geometricError = static_cast<float>(std::min(worst, node.cellSize / 8.0));
   return tile;
@@ -226,6 +266,20 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
         if (p.points.size() > 65535 || p.ringEnds.size() > 65535) continue;
         if (triangulatePolygon(p.points, p.ringEnds, bi.roofs[pi])) anyPart = true;
         bi.leafBytes += 20 + p.ringEnds.size() * 2 + p.points.size() * 4 + bi.roofs[pi].size() * 2;
+      }
+      if (b.mesh) {
+        // The tile's quantization frame must hold the mesh too (overhangs, pieces beside the
+        // footprint's largest polygon).
+        for (const auto* points : {&b.mesh->positions, &b.mesh->farPositions}) {
+          for (const glm::dvec3& q : *points) {
+            bi.minX = std::min(bi.minX, q.x);
+            bi.minY = std::min(bi.minY, q.y);
+            bi.maxX = std::max(bi.maxX, q.x);
+            bi.maxY = std::max(bi.maxY, q.y);
+          }
+        }
+        bi.leafBytes += 44 + b.mesh->positions.size() * 8 + b.mesh->triangles.size() * 4 +
+                        b.mesh->farPositions.size() * 6 + b.mesh->farTriangles.size() * 2;
       }
       bi.valid = anyPart && bi.minX <= bi.maxX;
       bi.cx = b.attributes.centroidX;
@@ -343,6 +397,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   t.projection = model.projection;
   t.buildings = kept.size();
   t.buildingsRevision = options.buildingsRevision;
+  t.response = options.response;
   t.sources = model.sources;
   t.bounds = nodes[0].bounds;
   t.maxHeightM = nodes[0].maxHeight;

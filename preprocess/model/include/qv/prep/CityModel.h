@@ -3,14 +3,18 @@
 // metres east and north of the origin, transverse Mercator centred on the data).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "qv/format/BuildingAttributes.h"
+#include "qv/format/CityTile.h"
 
 namespace qv::prep {
 
@@ -32,9 +36,28 @@ struct BuildingPart {
   [[nodiscard]] std::size_t ringCount() const { return ringEnds.size(); }
 };
 
+/// A LOD2 model of a building as the tiles store it (docs/formats.md, "MESH"): a mesh skinned to
+/// one bone per floor level and a simplified far mesh. Positions are in the city frame (metres
+/// east and north of the origin) with z in metres above the building's ground.
+struct BuildingMesh {
+  MeshSource source = MeshSource::Other;
+  std::uint32_t verticesBefore = 0;  ///< as imported, before re-meshing
+  std::vector<glm::dvec3> positions;
+  std::vector<std::uint8_t> bones;  ///< per vertex: floor level at or below it (0 … storeys)
+  std::vector<float> weights;       ///< per vertex: weight of bone + 1, [0, 1]
+  /// 3 indices per triangle, grouped by kind (wall, roof, ground, other) as counted below.
+  std::vector<std::uint32_t> triangles;
+  std::array<std::uint32_t, kMeshSurfaceKinds> trianglesPerKind{};
+  std::vector<glm::dvec3> farPositions;     ///< at most 65535
+  std::vector<std::uint16_t> farTriangles;  ///< 3 indices per triangle into farPositions
+};
+
 struct Building {
   BuildingAttributes attributes;
-  std::vector<BuildingPart> parts;  ///< at least one
+  std::vector<BuildingPart> parts;  ///< at least one (a LOD2 building: its footprint, the LOD1 fallback)
+  /// LOD2 model (attributes.lod == 2), written to the tiles' MESH section; its bones follow
+  /// attributes.storeys.
+  std::optional<BuildingMesh> mesh;
 };
 
 /// Why a footprint or building was dropped, counted and printed in the summary.

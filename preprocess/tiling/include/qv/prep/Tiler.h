@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,10 @@ struct TilerOptions {
   std::string generator = "quakeview-prep";
   std::uint64_t buildingsRevision = 1;
   bool showProgress = true;
+  /// Written into the manifest as is. A tool that changes the buildings of a city with a response
+  /// passes the old record (its buildingsRevision older than `buildingsRevision`), so the city
+  /// reports its response as out of date; no tile refers to the old response files.
+  std::optional<ResponseInfo> response;
 };
 
 struct TilerReport {

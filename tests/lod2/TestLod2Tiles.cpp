@@ -1,0 +1,116 @@
+// LOD2 models as city buildings and in the tiles the tiler writes (MESH sections): the footprint as
+// the LOD1 fallback, triangles grouped by kind, skinned meshes in leaves and far meshes in inner
+// tiles, positions within a quantization step.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <map>
+#include <string>
+
+#include "Lod2TestData.h"
+#include "qv/format/CityTile.h"
+#include "qv/format/Tileset.h"
+#include "qv/prep/Files.h"
+#include "qv/prep/Lod2CityModel.h"
+#include "qv/prep/Tiler.h"
+
+namespace qv::prep::test {
+
+TEST_CASE("lod2: a finished model becomes a building with its footprint and grouped triangles", "[lod2][tiles]") {
+  const Result<Lod2Import>& imported = placedImport("DH_01_subs.city.json");
+  REQUIRE(imported.ok());
+  for (const Lod2Model& model : imported->models) {
+    INFO(model.id);
+    const Result<Building> b = buildingFromModel(model);
+    REQUIRE(b.ok());
+    CHECK(b->attributes.lod == 2);
+    CHECK(b->attributes.id == model.id);
+    REQUIRE(b->parts.size() == 1);
+    CHECK(b->parts[0].points.size() == model.footprint.size());
+    double twiceArea = 0.0;
+    const auto& ring = b->parts[0].points;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      twiceArea += ring[i].x * ring[(i + 1) % ring.size()].y - ring[(i + 1) % ring.size()].x * ring[i].y;
+    }
+    CHECK(twiceArea > 0.0);  // counter-clockwise
+    REQUIRE(b->mesh.has_value());
+    const BuildingMesh& m = *b->mesh;
+    CHECK(m.source == MeshSource::CityJson);
+    CHECK(m.positions.size() == model.skinned.mesh.positions.size());
+    CHECK(m.triangles.size() == model.skinned.mesh.triangles.size());
+    std::array<std::uint32_t, kMeshSurfaceKinds> perKind{};
+    for (SurfaceKind k : model.skinned.mesh.kinds) ++perKind[static_cast<std::size_t>(k)];
+    CHECK(m.trianglesPerKind == perKind);
+    CHECK(m.farTriangles.size() == model.farMesh.triangles.size());
+  }
+
+  Lod2Model unfinished = imported->models[0];
+  unfinished.skinned.bone.clear();
+  const Result<Building> refused = buildingFromModel(unfinished);
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error().find("not finished") != std::string::npos);
+}
+
+TEST_CASE("lod2: the tiler writes skinned meshes to leaves and far meshes to inner tiles", "[lod2][tiles]") {
+  const Result<Lod2Import>& imported = placedImport("DH_01_subs.city.json");
+  REQUIRE(imported.ok());
+  CityModel city = syntheticCity().model;
+  std::map<std::string, const Lod2Model*> models;
+  for (const Lod2Model& model : imported->models) {
+    Result<Building> b = buildingFromModel(model);
+    REQUIRE(b.ok());
+    city.buildings.push_back(std::move(*b));
+    models[model.id] = &model;
+  }
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("qv-lod2-tiles-" + std::to_string(::getpid()))).string();
+  TilerOptions options;
+  options.maxBuildingsPerLeaf = 8;  // several leaves and an inner tile
+  options.threads = 1;
+  options.showProgress = false;
+  const Result<TilerReport> report = writeCityTiles(city, dir, options);
+  REQUIRE(report.ok());
+  REQUIRE(report->tiles > report->leaves);
+
+  std::size_t leafMeshes = 0, innerMeshes = 0;
+  for (const TileNode& node : report->tileset.nodes) {
+    const auto bytes = readFile(dir + "/" + node.file);
+    REQUIRE(bytes.ok());
+    const Result<CityTile> tile = decodeCityTile(*bytes, node.file);
+    REQUIRE(tile.ok());
+    const float stepXY = tile->extent / 65535.0f;
+    for (const TileMesh& m : tile->meshes) {
+      const BuildingAttributes& a = tile->buildings[m.building].attributes;
+      INFO(node.file << " " << a.id);
+      REQUIRE(models.count(a.id) == 1);
+      const Lod2Model& model = *models[a.id];
+      CHECK(a.lod == 2);
+      CHECK(m.storeys == a.storeys);
+      CHECK(m.farPositions.size() == model.farMesh.positions.size());
+      if (node.coarse) {
+        ++innerMeshes;
+        CHECK(m.positions.empty());
+        CHECK(m.triangles.empty());
+        continue;
+      }
+      ++leafMeshes;
+      REQUIRE(m.positions.size() == model.skinned.mesh.positions.size());
+      CHECK(m.bones == model.skinned.bone);
+      double worstXY = 0.0, worstZ = 0.0;
+      for (std::size_t i = 0; i < m.positions.size(); ++i) {
+        const glm::dvec3& p = model.skinned.mesh.positions[i];
+        worstXY = std::max({worstXY, std::abs(m.positions[i].x + tile->originX - p.x),
+                            std::abs(m.positions[i].y + tile->originY - p.y)});
+        worstZ = std::max(worstZ, std::abs(m.positions[i].z - p.z));
+        // A vertex on a floor keeps weight 0 exactly.
+        if (model.skinned.weight[i] == 0.0f) CHECK(m.weights[i] == 0.0f);
+      }
+      CHECK(worstXY <= stepXY * 0.51 + 1e-4);
+      CHECK(worstZ <= m.topM / 65535.0 * 0.51 + 1e-4);
+    }
+  }
+  CHECK(leafMeshes == imported->models.size());
+  CHECK(innerMeshes >= imported->models.size());  // the root and any inner tile on the way
+  removeTree(dir);
+}
+
+}  // namespace qv::prep::test
