@@ -15,7 +15,8 @@
 //   setCamera(c)  any subset of getCamera()'s fields; false when a value was invalid.
 //   setTime(s), time(), duration(), play(), pause(), playing()
 //   pick(x, y), building(id), select(id), selection()   picking and the selected building
-//   setFilters({minDamage, use, criticalOnly}), filters(), search(query), filteredList(limit),
+//   setFilters({minDamage, use, criticalOnly}), filters(), setLodVisibility({lod1, lod2}),
+//   lodVisibility(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
 //              render, total}, drawCalls, triangles}, each but seconds/frames as {median, p95};
@@ -141,6 +142,18 @@
     },
     filters() {
       const text = callString('qv_filters_json');
+      return text ? JSON.parse(text) : null;
+    },
+    // LOD1 (extruded footprints) and LOD2 (detailed models) shown or hidden; either key may be left out.
+    setLodVisibility(v) {
+      if (!engine || !v || typeof v !== 'object') return false;
+      const now = api.lodVisibility() || { lod1: true, lod2: true };
+      const lod1 = typeof v.lod1 === 'boolean' ? v.lod1 : now.lod1;
+      const lod2 = typeof v.lod2 === 'boolean' ? v.lod2 : now.lod2;
+      return engine._qv_set_lod_visibility(lod1 ? 1 : 0, lod2 ? 1 : 0) === 1;
+    },
+    lodVisibility() {
+      const text = callString('qv_lod_visibility_json');
       return text ? JSON.parse(text) : null;
     },
     search(query, limit = 20) {

@@ -104,6 +104,11 @@ TEST_CASE("lod2: Models replace buildings by id or by overlap; the rest are new"
 
   CHECK(models[2].id == "w3");
   CHECK(models[2].replacesExisting);
+  // What is drawn, picked and flown to is the model: its footprint's centre and area, not the
+  // replaced building's (w3 stood at x = 200; its model stands at x = 1000).
+  CHECK(models[2].attributes.centroidX == Approx(1005.0));
+  CHECK(models[2].attributes.centroidY == Approx(5.0));
+  CHECK(models[2].attributes.footprintAreaM2 == Approx(100.0f));
 
   CHECK(models[3].id == "cj:d");
   CHECK_FALSE(models[3].replacesExisting);

@@ -115,6 +115,22 @@ EMSCRIPTEN_KEEPALIVE int qv_fly_to_selection() {
   return gApp != nullptr && gApp->viewer().flyToSelection() ? 1 : 0;
 }
 
+/// LOD1 and LOD2 buildings shown (1) or hidden (0), as the General panel's switches. Returns 0
+/// when there is no city.
+EMSCRIPTEN_KEEPALIVE int qv_set_lod_visibility(int lod1, int lod2) {
+  if (gApp == nullptr || gApp->viewer().city() == nullptr) return 0;
+  gApp->viewer().city()->setLodVisibility(lod1 != 0, lod2 != 0);
+  return 1;
+}
+
+EMSCRIPTEN_KEEPALIVE const char* qv_lod_visibility_json() {
+  if (gApp == nullptr || gApp->viewer().city() == nullptr) return hand("null");
+  qv::JsonWriter w;
+  w.beginObject().field("lod1", gApp->viewer().city()->showLod1()).field("lod2", gApp->viewer().city()->showLod2());
+  w.endObject();
+  return hand(w.take());
+}
+
 /// Filters: minDamage -1..4, use ("" any), critical 0/1. Returns 0 when there is no city.
 EMSCRIPTEN_KEEPALIVE int qv_set_filters(int minDamage, const char* use, int critical) {
   if (gApp == nullptr || gApp->viewer().city() == nullptr || use == nullptr) return 0;

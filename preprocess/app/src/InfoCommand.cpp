@@ -37,11 +37,14 @@ std::string bucketName(std::size_t i) {
   return std::to_string(lo) + "-" + std::to_string(hi);
 }
 
+constexpr std::uint64_t kMaxLod2Ids = 1000;
+
 struct CitySummary {
   std::uint64_t buildings = 0;
   std::array<std::uint64_t, kStoreyBuckets.size()> storeys{};
   std::uint64_t heightTagged = 0, heightInferred = 0, storeysTagged = 0, storeysInferred = 0;
   std::uint64_t critical = 0, lod2 = 0;
+  std::vector<std::string> lod2Ids;  // the first kMaxLod2Ids, in tile order
   double totalStoreys = 0;
   std::map<std::string, std::uint64_t> types, eras, uses;
 };
@@ -263,7 +266,7 @@ int runInfo(const CommandArgs& argv) {
       (a.heightSource == ValueSource::Tagged ? s.heightTagged : s.heightInferred)++;
       (a.storeysSource == ValueSource::Tagged ? s.storeysTagged : s.storeysInferred)++;
       if (a.importance == Importance::Critical) ++s.critical;
-      if (a.lod == 2) ++s.lod2;
+      if (a.lod == 2 && ++s.lod2 <= kMaxLod2Ids) s.lod2Ids.push_back(a.id);
       ++s.types[std::string(structuralTypeCode(a.structuralType))];
       ++s.eras[std::string(codeEraName(a.codeEra))];
       ++s.uses[a.use.empty() ? "unknown" : a.use];
@@ -310,6 +313,9 @@ int runInfo(const CommandArgs& argv) {
     for (const auto& [k, v] : s.uses) w.field(k, v);
     w.endObject();
     w.field("critical", s.critical).field("lod2", s.lod2);
+    w.key("lod2_ids").beginArray();  // which buildings have a detailed model (the first 1000)
+    for (const std::string& id : s.lod2Ids) w.value(id);
+    w.endArray();
     w.field("buildings_revision", t.buildingsRevision);
     w.key("sources").beginArray();
     for (const std::string& src : t.sources) w.value(src);

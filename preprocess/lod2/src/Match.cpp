@@ -152,7 +152,8 @@ Result<MatchResult> matchModels(std::vector<Lod2Model>& models, const std::vecto
         ((model.attributes.importanceReasons | target.attributes.importanceReasons) & kReasonComplex) != 0;
     model.id = target.id;
     model.replacesExisting = true;
-    model.attributes = replacementAttributes(target.attributes, heightRange(model.skinned.mesh).maxZ, hasParts);
+    model.attributes =
+        replacementAttributes(target.attributes, heightRange(model.skinned.mesh).maxZ, hasParts, model.footprint);
     if (finished && !sameFloors(before, floorLevels(model.attributes))) {
       if (Status s = finishModel(model, options.finish); !s) return Error{s.error()};
     }

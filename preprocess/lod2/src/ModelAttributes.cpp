@@ -51,9 +51,17 @@ BuildingAttributes newModelAttributes(const NewModelFacts& facts, const Lod2Mesh
   return a;
 }
 
-BuildingAttributes replacementAttributes(const BuildingAttributes& existing, double modelHeightM, bool hasParts) {
+BuildingAttributes replacementAttributes(const BuildingAttributes& existing, double modelHeightM, bool hasParts,
+                                         const std::vector<glm::dvec2>& footprint) {
   BuildingAttributes a = existing;
   a.lod = 2;
+  if (footprint.size() >= 3) {
+    const std::vector<std::uint32_t> ringEnds{static_cast<std::uint32_t>(footprint.size())};
+    a.footprintAreaM2 = static_cast<float>(polygonArea(footprint, ringEnds));
+    const glm::dvec2 centroid = polygonCentroid(footprint, ringEnds);
+    a.centroidX = centroid.x;
+    a.centroidY = centroid.y;
+  }
   if (modelHeightM > static_cast<double>(existing.heightM) + 0.01) {
     a.heightM = static_cast<float>(modelHeightM);
     a.heightSource = ValueSource::Tagged;

@@ -36,7 +36,9 @@ BuildingAttributes newModelAttributes(const NewModelFacts& facts, const Lod2Mesh
 /// Makes `attributes` those of the existing building with lod 2. When the model's top
 /// (`modelHeightM`) is higher than the existing height by more than 1 cm, heightM becomes the
 /// model's top, storeys are re-inferred unless they were tagged, and the seismic attributes are
-/// inferred again.
-BuildingAttributes replacementAttributes(const BuildingAttributes& existing, double modelHeightM, bool hasParts);
+/// inferred again. The footprint area and centroid become the model's (`footprint`, when it has
+/// three points or more): what is drawn, picked and flown to is the model.
+BuildingAttributes replacementAttributes(const BuildingAttributes& existing, double modelHeightM, bool hasParts,
+                                         const std::vector<glm::dvec2>& footprint = {});
 
 }  // namespace qv::prep
