@@ -18,6 +18,16 @@ bool isWordValue(const std::string& text) {
   });
 }
 
+/// The footprint's area and centroid (when it has three points or more).
+void setFootprint(BuildingAttributes& a, const std::vector<glm::dvec2>& footprint) {
+  if (footprint.size() < 3) return;
+  const std::vector<std::uint32_t> ringEnds{static_cast<std::uint32_t>(footprint.size())};
+  a.footprintAreaM2 = static_cast<float>(polygonArea(footprint, ringEnds));
+  const glm::dvec2 centroid = polygonCentroid(footprint, ringEnds);
+  a.centroidX = centroid.x;
+  a.centroidY = centroid.y;
+}
+
 }  // namespace
 
 BuildingAttributes newModelAttributes(const NewModelFacts& facts, const Lod2Mesh& mesh,
@@ -40,13 +50,7 @@ BuildingAttributes newModelAttributes(const NewModelFacts& facts, const Lod2Mesh
   a.storeysSource = heights.storeysSource;
   a.startYear = static_cast<std::int16_t>(facts.startYear);
   a.lod = 2;
-  if (footprint.size() >= 3) {
-    const std::vector<std::uint32_t> ringEnds{static_cast<std::uint32_t>(footprint.size())};
-    a.footprintAreaM2 = static_cast<float>(polygonArea(footprint, ringEnds));
-    const glm::dvec2 centroid = polygonCentroid(footprint, ringEnds);
-    a.centroidX = centroid.x;
-    a.centroidY = centroid.y;
-  }
+  setFootprint(a, footprint);
   inferSeismicAttributes(a, facts.parts > 1);
   return a;
 }
@@ -55,13 +59,7 @@ BuildingAttributes replacementAttributes(const BuildingAttributes& existing, dou
                                          const std::vector<glm::dvec2>& footprint) {
   BuildingAttributes a = existing;
   a.lod = 2;
-  if (footprint.size() >= 3) {
-    const std::vector<std::uint32_t> ringEnds{static_cast<std::uint32_t>(footprint.size())};
-    a.footprintAreaM2 = static_cast<float>(polygonArea(footprint, ringEnds));
-    const glm::dvec2 centroid = polygonCentroid(footprint, ringEnds);
-    a.centroidX = centroid.x;
-    a.centroidY = centroid.y;
-  }
+  setFootprint(a, footprint);
   if (modelHeightM > static_cast<double>(existing.heightM) + 0.01) {
     a.heightM = static_cast<float>(modelHeightM);
     a.heightSource = ValueSource::Tagged;
