@@ -1,5 +1,8 @@
 #include "qv/geometry/Frustum.h"
 
+#include <cstddef>
+#include <cstring>
+
 #include <glm/geometric.hpp>
 
 namespace qv {
@@ -16,6 +19,18 @@ Frustum::Frustum(const glm::mat4& m) {
     const float length = glm::length(glm::vec3(p));
     if (length > 0.0f) p /= length;
   }
+  for (std::size_t i = 0; i < 6; ++i) {
+    const glm::vec4& p = planes_[i];
+    const unsigned char far[3] = {static_cast<unsigned char>(p.x >= 0.0f ? 3 : 0),
+                                  static_cast<unsigned char>(p.y >= 0.0f ? 4 : 1),
+                                  static_cast<unsigned char>(p.z >= 0.0f ? 5 : 2)};
+    corners_[i] = {far[0],
+                   far[1],
+                   far[2],
+                   static_cast<unsigned char>(3 - far[0]),
+                   static_cast<unsigned char>(5 - far[1]),
+                   static_cast<unsigned char>(7 - far[2])};
+  }
 }
 
 Containment Frustum::classify(const Box& box) const {
@@ -24,18 +39,16 @@ Containment Frustum::classify(const Box& box) const {
 }
 
 Containment Frustum::classify(const Box& box, unsigned& mask) const {
+  static_assert(sizeof(Box) == 6 * sizeof(float));
+  float b[6];  // minX minY minZ maxX maxY maxZ
+  std::memcpy(b, &box, sizeof b);
   for (unsigned i = 0; i < 6; ++i) {
     const unsigned bit = 1u << i;
     if ((mask & bit) == 0) continue;
     const glm::vec4& p = planes_[i];
-    const float px = p.x >= 0.0f ? box.maxX : box.minX;
-    const float py = p.y >= 0.0f ? box.maxY : box.minY;
-    const float pz = p.z >= 0.0f ? box.maxZ : box.minZ;
-    if (p.x * px + p.y * py + p.z * pz + p.w < 0.0f) return Containment::Outside;
-    const float nx = p.x >= 0.0f ? box.minX : box.maxX;
-    const float ny = p.y >= 0.0f ? box.minY : box.maxY;
-    const float nz = p.z >= 0.0f ? box.minZ : box.maxZ;
-    if (p.x * nx + p.y * ny + p.z * nz + p.w >= 0.0f) mask &= ~bit;
+    const auto& k = corners_[i];
+    if (p.x * b[k[0]] + p.y * b[k[1]] + p.z * b[k[2]] + p.w < 0.0f) return Containment::Outside;
+    if (p.x * b[k[3]] + p.y * b[k[4]] + p.z * b[k[5]] + p.w >= 0.0f) mask &= ~bit;
   }
   return mask == 0 ? Containment::Inside : Containment::Intersects;
 }

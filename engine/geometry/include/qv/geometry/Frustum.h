@@ -30,6 +30,14 @@ class Frustum {
 
  private:
   std::array<glm::vec4, 6> planes_{};
+  // Per plane, the box coordinates (indices into minX..maxZ) of its farthest corner along the
+  // normal, x y z, then of its nearest: chosen once here instead of for every box.
+  std::array<std::array<unsigned char, 6>, 6> corners_{{{3, 4, 5, 0, 1, 2},
+                                                        {3, 4, 5, 0, 1, 2},
+                                                        {3, 4, 5, 0, 1, 2},
+                                                        {3, 4, 5, 0, 1, 2},
+                                                        {3, 4, 5, 0, 1, 2},
+                                                        {3, 4, 5, 0, 1, 2}}};
 };
 
 }  // namespace qv
