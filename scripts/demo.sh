@@ -28,7 +28,7 @@ if [ -n "${QUAKEVIEW_DATA:-}" ]; then
 else
   # The default scenario, prepared once (the stamp records the parameters it was made with).
   data="$root/build/demo-data/default"
-  city_recipe="synth-city --buildings 100000 --seed 1"
+  city_recipe="synth-city --buildings 100000 --seed 1 --detailed-towers 300"
   quake_recipe="response --synthetic 1 --epicentre -74.02,40.69,10 --magnitude 6.8"
   recipe="$city_recipe; $quake_recipe"
   if [ "$(cat "$data/.recipe" 2>/dev/null)" != "$recipe" ]; then

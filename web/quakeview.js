@@ -16,7 +16,8 @@
 //   setTime(s), time(), duration(), play(), pause(), playing()
 //   pick(x, y), building(id), select(id), selection()   picking and the selected building
 //   setFilters({minDamage, use, criticalOnly}), filters(), setLodVisibility({lod1, lod2}),
-//   lodVisibility(), search(query), filteredList(limit),
+//   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
+//   'neutral'), colorMode(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
 //              render, total}, drawCalls, triangles}, each but seconds/frames as {median, p95};
@@ -38,6 +39,7 @@
   ready.catch(() => {});
 
   let engine = null;
+  const COLOR_MODES = ['drift', 'peak', 'damage', 'neutral'];  // qv::ColorMode 0 … 3
   const shellErrors = [];
 
   function setProgress(fraction, label) {
@@ -144,6 +146,17 @@
       const text = callString('qv_filters_json');
       return text ? JSON.parse(text) : null;
     },
+    // Amplitude exaggeration of the displayed motion (1 … 200, as the panel's slider).
+    setAmplitude(x) {
+      return !!engine && typeof x === 'number' && engine._qv_set_amplitude(x) === 1;
+    },
+    amplitude() { return engine ? engine._qv_amplitude() : null; },
+    // Colour mode: 'drift' (current inter-storey drift), 'peak' (peak drift), 'damage', 'neutral'.
+    setColorMode(name) {
+      const mode = COLOR_MODES.indexOf(name);
+      return !!engine && mode >= 0 && engine._qv_set_color_mode(mode) === 1;
+    },
+    colorMode() { return engine ? COLOR_MODES[engine._qv_color_mode()] || null : null; },
     // LOD1 (extruded footprints) and LOD2 (detailed models) shown or hidden; either key may be left out.
     setLodVisibility(v) {
       if (!engine || !v || typeof v !== 'object') return false;

@@ -1,7 +1,7 @@
 // LOD2 in the browser: a synthetic city into which `quakeview-prep lod2` placed the Den Haag
 // CityJSON models (scripts/test.sh prepares it). The models stream in their tiles' MESH sections,
 // are drawn instead of the extruded footprints, are picked on their own triangles, and the
-// inspection window says what they are; the LOD2 switch hides them.
+// inspection window says what they are; with the LOD2 switch off their extrusions come back.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -32,7 +32,7 @@ async function calm(page, timeout = 60000) {
   }, null, { timeout, polling: 250 });
 }
 
-test('LOD2 models are drawn from their meshes, picked on them, described in the inspection window and hidden by the LOD2 switch', async () => {
+test('LOD2 models are drawn from their meshes, picked on them, described in the inspection window and replaced by their LOD1 extrusions when the LOD2 switch is off', async () => {
   const info = JSON.parse(fs.readFileSync(INFO, 'utf8'));
   assert.equal(info.lod2, 4, 'the four Den Haag models replaced four buildings');
   const { context, close } = await launchBrowser();
@@ -64,14 +64,67 @@ test('LOD2 models are drawn from their meshes, picked on them, described in the 
     assert.match(text, /Results from: MDOF shear-building model/);
     const shown = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-model.png') }));
 
-    // Hidden with the General panel's switch (the API's equivalent): no longer picked or drawn.
+    // LOD2 off with the General panel's switch (the API's equivalent): the building is its LOD1
+    // extrusion again (a flat-roofed box over the model's footprint), still drawn and picked.
     await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: true, lod2: false }));
     await page.waitForTimeout(500);
+    assert.deepEqual(await page.evaluate(() => window.quakeview.lodVisibility()), { lod1: true, lod2: false });
+    const extruded = await page.evaluate(() => window.quakeview.pick(640, 360));
+    assert.ok(extruded && extruded.id === id, `the LOD1 extrusion is picked: ${JSON.stringify(extruded)}`);
+    const boxed = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-as-lod1.png') }));
+    const roof = { x: 560, y: 280, width: 160, height: 160 };  // the model's roofs, seen from above
+    assert.ok(changedFraction(shown, boxed, 24, roof) > 0.05, 'the model gives way to its extrusion');
+
+    // LOD1 off too: nothing of it is drawn or picked.
+    await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: false, lod2: false }));
+    await page.waitForTimeout(500);
     const again = await page.evaluate(() => window.quakeview.pick(640, 360));
-    assert.ok(!again || again.id !== id, 'a hidden model is not picked');
+    assert.ok(!again || again.id !== id, 'a hidden building is not picked');
     const hidden = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-hidden.png') }));
     const centre = { x: 630, y: 350, width: 20, height: 20 };  // within the model's roof, seen from above
-    assert.ok(changedFraction(shown, hidden, 24, centre) > 0.5, 'hiding LOD2 uncovers the ground at the centre');
+    assert.ok(changedFraction(boxed, hidden, 24, centre) > 0.5, 'hiding every building uncovers the ground at the centre');
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+test('A LOD2 model deforms storey by storey: its silhouette moves between two times', async () => {
+  const info = JSON.parse(fs.readFileSync(INFO, 'utf8'));
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/lod2/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    const id = info.lod2_ids.find((i) => i.startsWith('s'));
+    const b = await page.evaluate((i) => window.quakeview.building(i), id);
+    assert.ok(b && b.lod === 2, `${id} is a LOD2 building`);
+    // Only the models, in one plain colour (so only motion can change pixels), motion exaggerated.
+    assert.ok(await page.evaluate(() => window.quakeview.setColorMode('neutral')));
+    assert.equal(await page.evaluate(() => window.quakeview.colorMode()), 'neutral');
+    assert.ok(await page.evaluate(() => window.quakeview.setAmplitude(200)));
+    assert.equal(await page.evaluate(() => window.quakeview.setAmplitude(1e9)), false, 'out of range is refused');
+    assert.equal(await page.evaluate(() => window.quakeview.amplitude()), 200);
+    await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: false, lod2: true }));
+    await page.evaluate((c) => { window.quakeview.pause(); window.quakeview.setTime(0); window.quakeview.setCamera(c); },
+      { x: b.x, y: b.y, distance: 160, headingDeg: 20, pitchDeg: 12 });
+    await calm(page);
+    assert.ok((await page.evaluate(() => window.quakeview.stats())).buildings.animated > 0, 'the models are animated');
+    await page.waitForTimeout(300);
+    const rest = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-rest.png') }));
+    const duration = await page.evaluate(() => window.quakeview.duration());
+    let most = 0;
+    let when = 0;
+    for (const f of [0.15, 0.2, 0.25, 0.3, 0.4]) {
+      await page.evaluate((t) => window.quakeview.setTime(t), f * duration);
+      await page.waitForTimeout(300);
+      const moved = decodePng(await page.screenshot());
+      const changed = changedFraction(rest, moved, 24);
+      if (changed > most) { most = changed; when = f * duration; }
+    }
+    await page.evaluate((t) => window.quakeview.setTime(t), when);
+    await page.waitForTimeout(300);
+    await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-deformed.png') });
+    assert.ok(most > 0.002, `the models' silhouettes move (${(most * 100).toFixed(2)} % of pixels changed at ${when.toFixed(1)} s)`);
     assert.deepEqual(problems, []);
   } finally {
     await close();

@@ -201,3 +201,70 @@ TEST_CASE("lod2 usage and data errors leave the city unchanged", "[lod2][cli]") 
   CHECK(run("info '" + dir + "' --verify").exitCode == 0);
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("city makes OSM buildings with building:parts LOD2 models (the Empire State Building)",
+          "[lod2][cli][osm][data]") {
+  const std::string dir = "/tmp/qv-lod2-osm-" + std::to_string(getpid());
+  const std::string fixture = std::string(QUAKEVIEW_SHARED_DATA_DIR) + "/osm/fixture-midtown-empire-state.osm";
+  const Run city = run("city --input '" + fixture + "' --out '" + dir + "'");
+  INFO(city.output);
+  REQUIRE(city.exitCode == 0);
+  CHECK(city.output.find("\nlod2        41 of 41 buildings with building:parts are LOD2 models (3758 vertices") !=
+        std::string::npos);
+  REQUIRE(run("response --city '" + dir + "' --synthetic 1").exitCode == 0);
+  {
+    Json j;
+    parse(j, run("info '" + dir + "' --building w34633854 --json").output);
+    CHECK(j.doc["lod"].get_uint64().value() == 2);
+    CHECK(std::string_view(j.doc["name"].get_string().value()) == "Empire State Building");
+    CHECK(j.doc["height_m"].get_double().value() == Approx(443.2).margin(0.05));
+    CHECK(j.doc["storeys"].get_uint64().value() == 102);
+    CHECK(std::string_view(j.doc["lod2"]["source"].get_string().value()) == "osm-parts");
+    CHECK(j.doc["lod2"]["vertices_before"].get_uint64().value() == 354);
+    // Cut at every one of its 103 floor levels: far more vertices than the parts' corners.
+    CHECK(j.doc["lod2"]["vertices"].get_uint64().value() > 10 * 354);
+    // The MDOF model computed its response like any other building's.
+    CHECK(j.doc["peak_drift_ratio"].get_array().size() == 102);
+  }
+  {
+    Json j;
+    parse(j, run("info '" + dir + "' --json").output);
+    CHECK(j.doc["lod2"].get_uint64().value() == 41);
+  }
+
+  // --no-lod2 keeps them LOD1 prisms.
+  REQUIRE(run("city --no-lod2 --input '" + fixture + "' --out '" + dir + "'").exitCode == 0);
+  {
+    Json j;
+    parse(j, run("info '" + dir + "' --building w34633854 --json").output);
+    CHECK(j.doc["lod"].get_uint64().value() == 1);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("synth-city --detailed-towers makes LOD2 towers; bad values are usage errors", "[lod2][cli][synth]") {
+  const std::string dir = "/tmp/qv-lod2-towers-" + std::to_string(getpid());
+  const Run made = run("synth-city --buildings 400 --seed 9 --detailed-towers 6 --max-leaf-kib 64 --out '" + dir + "'");
+  INFO(made.output);
+  REQUIRE(made.exitCode == 0);
+  CHECK(made.output.find("\nlod2        6 detailed towers are LOD2 models") != std::string::npos);
+  Json j;
+  parse(j, run("info '" + dir + "' --json").output);
+  CHECK(j.doc["buildings"].get_uint64().value() == 400);
+  CHECK(j.doc["lod2"].get_uint64().value() == 6);
+  const auto ids = j.doc["lod2_ids"].get_array();
+  REQUIRE(ids.size() == 6);
+  const std::string first(std::string_view(ids.at(0).get_string().value()));
+  Json b;
+  parse(b, run("info '" + dir + "' --building " + first + " --json").output);
+  CHECK(b.doc["lod"].get_uint64().value() == 2);
+  CHECK(std::string_view(b.doc["lod2"]["source"].get_string().value()) == "synthetic");
+  CHECK(b.doc["lod2"]["vertices"].get_uint64().value() > b.doc["lod2"]["vertices_before"].get_uint64().value());
+
+  CHECK(run("synth-city --buildings 10 --seed 1 --detailed-towers -1 --out '" + dir + "'").exitCode == 2);
+  CHECK(run("synth-city --buildings 10 --seed 1 --max-leaf-kib 4 --out '" + dir + "'").exitCode == 2);
+  const Run bad = run("synth-city --buildings 10 --seed 1 --max-leaf-kib x --out '" + dir + "'", true);
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.output.find("--max-leaf-kib must be from 16 to 16384") != std::string::npos);
+  std::filesystem::remove_all(dir);
+}

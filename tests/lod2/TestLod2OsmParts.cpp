@@ -9,6 +9,7 @@
 #include "qv/prep/Ingest.h"
 #include "qv/prep/Lod2Finish.h"
 #include "qv/prep/Lod2OsmParts.h"
+#include "qv/prep/SynthCity.h"
 
 namespace qv::prep::test {
 namespace {
@@ -115,6 +116,83 @@ TEST_CASE("lod2: A part standing on another gets a bottom face; a building witho
   const Result<Lod2Model> none = modelFromOsmParts(empty);
   REQUIRE_FALSE(none.ok());
   CHECK(none.error() == "w2: no building:part with a polygon and a height above its base");
+}
+
+TEST_CASE("lod2: synth-city's detailed towers: setbacks on floor levels, assembled like OSM parts", "[lod2][synth]") {
+  SynthCityOptions options;
+  options.buildings = 600;
+  options.seed = 4;
+  options.detailedTowers = 25;
+  CityModel city = generateSynthCity(options);
+  REQUIRE(city.buildings.size() == 600);
+  // Exactly the 25 tallest eligible buildings (rectangles and L-shapes of 3 storeys or more).
+  std::vector<float> towerHeights, otherHeights;
+  for (const Building& b : city.buildings) {
+    if (!hasOsmParts(b)) {
+      const bool eligible = b.attributes.storeys >= kMinTowerStoreys && b.parts.size() == 1 &&
+                            b.parts[0].ringEnds.size() == 1 &&
+                            (b.parts[0].points.size() == 4 || b.parts[0].points.size() == 6);
+      if (eligible) otherHeights.push_back(b.attributes.heightM);
+      continue;
+    }
+    towerHeights.push_back(b.attributes.heightM);
+    const BuildingAttributes& a = b.attributes;
+    INFO(a.id);
+    REQUIRE(b.parts.size() == 3);
+    CHECK(b.parts[0].sourceId == a.id + "/podium");
+    CHECK(b.parts[2].sourceId == a.id + "/crown");
+    CHECK(b.parts[0].minHeightM == 0.0f);
+    CHECK(b.parts[2].heightM == a.heightM);
+    const double storeyM = static_cast<double>(a.heightM) / a.storeys;
+    for (std::size_t i = 0; i < 3; ++i) {
+      const BuildingPart& part = b.parts[i];
+      CHECK(part.heightM > part.minHeightM);
+      const double level = part.minHeightM / storeyM;  // each part starts on a floor level
+      CHECK(level == Approx(std::round(level)).margin(1e-3));
+      if (i > 0) {
+        CHECK(part.minHeightM == b.parts[i - 1].heightM);  // stacked without a gap
+        // Set back: strictly inside the part below.
+        const double below = std::abs(signedRingArea(b.parts[i - 1].points.data(), 4));
+        CHECK(std::abs(signedRingArea(part.points.data(), 4)) < below);
+      }
+    }
+  }
+  REQUIRE(towerHeights.size() == 25);
+  CHECK(*std::min_element(towerHeights.begin(), towerHeights.end()) >=
+        *std::max_element(otherHeights.begin(), otherHeights.end()));
+
+  // Made models as the city step makes them from OSM parts, the same with one thread or two.
+  CityModel again = city;
+  FinishOptions finish;
+  finish.remesh.maxEdgeM = kPartModelMaxEdgeM;
+  const OsmPartsReport one = assembleOsmPartModels(city, finish, 1, "synthetic");
+  const OsmPartsReport two = assembleOsmPartModels(again, finish, 2, "synthetic");
+  CHECK(one.candidates == 25);
+  CHECK(one.assembled == 25);
+  CHECK(one.warnings.empty());
+  CHECK(one.verticesAfter > one.verticesBefore);
+  CHECK(two.verticesAfter == one.verticesAfter);
+  std::size_t models = 0;
+  for (std::size_t i = 0; i < city.buildings.size(); ++i) {
+    const Building& b = city.buildings[i];
+    if (!b.mesh) continue;
+    ++models;
+    INFO(b.attributes.id);
+    CHECK(b.attributes.lod == 2);
+    CHECK(b.mesh->source == MeshSource::Synthetic);
+    CHECK(b.parts.size() == 3);  // the LOD1 fallback keeps the setbacks
+    CHECK(again.buildings[i].mesh->positions == b.mesh->positions);
+    // The setbacks show in the mesh: the cross-section shrinks from podium to crown.
+    Lod2Mesh mesh;
+    mesh.positions = b.mesh->positions;
+    mesh.triangles = b.mesh->triangles;
+    mesh.kinds.assign(mesh.triangles.size() / 3, SurfaceKind::Wall);
+    const double low = crossSectionAreaM2(mesh, b.parts[0].heightM * 0.5);
+    const double high = crossSectionAreaM2(mesh, (b.parts[2].minHeightM + b.parts[2].heightM) * 0.5);
+    CHECK(low > high);
+    CHECK(high > 0.0);
+  }
+  CHECK(models == 25);
 }
 
 }  // namespace qv::prep::test

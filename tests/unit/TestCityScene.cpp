@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <map>
 #include <set>
@@ -20,22 +21,29 @@ class RecordingDevice final : public RenderDevice {
   std::map<std::uint32_t, BuildingGpuRecord> buildings;  // slot -> row
   std::vector<FloorGpuRecord> floors;
   std::map<std::uint32_t, std::map<std::uint32_t, glm::vec2>> slotCentres;  // mesh -> slot -> local centre
-  std::map<std::uint32_t, std::map<std::uint32_t, int>> slotVertices;       // mesh -> slot -> vertex count
+  // mesh -> slot -> vertex counts: plain, LOD2 model, LOD1 fallback of a model
+  std::map<std::uint32_t, std::map<std::uint32_t, std::array<int, 3>>> slotVertices;
+  bool showModels = true;  // the last frame's FrameUniforms::showModels
   std::vector<DrawItem> lastItems;
   NullRenderDevice counter;
 
   MeshHandle createMesh(const MeshData& mesh) override {
     const MeshHandle h = counter.createMesh(mesh);
+    // Per slot: the centre of what is drawn with LOD2 models shown, and the vertex counts of its
+    // plain, model (kKindModel) and fallback (kKindFallback) geometry, which the shader chooses between.
     std::map<std::uint32_t, std::pair<glm::vec2, int>> acc;
     for (const BuildingVertex& v : mesh.vertices) {
+      auto& counts = slotVertices[h.id][v.slot];
+      if ((v.kind & kKindFallback) != 0) {
+        ++counts[2];
+        continue;
+      }
+      ++counts[(v.kind & kKindModel) != 0 ? 1 : 0];
       auto& a = acc[v.slot];
       a.first += glm::vec2(v.x, v.y);
       a.second += 1;
     }
-    for (const auto& [slot, a] : acc) {
-      slotCentres[h.id][slot] = a.first / static_cast<float>(a.second);
-      slotVertices[h.id][slot] = a.second;
-    }
+    for (const auto& [slot, a] : acc) slotCentres[h.id][slot] = a.first / static_cast<float>(a.second);
     return h;
   }
   void destroyMesh(MeshHandle m) override {
@@ -55,6 +63,7 @@ class RecordingDevice final : public RenderDevice {
   void render(const FrameUniforms& u, std::span<const DrawItem> items) override {
     counter.render(u, items);
     lastItems.assign(items.begin(), items.end());
+    showModels = u.showModels;
   }
   DeviceFrameStats lastFrameStats() const override { return counter.lastFrameStats(); }
   std::size_t gpuBytes() const override { return counter.gpuBytes(); }
@@ -66,7 +75,10 @@ class RecordingDevice final : public RenderDevice {
       if (it == slotCentres.end()) continue;
       for (const auto& [slot, c] : it->second) {
         const glm::vec2 d = c + glm::vec2(item.origin.x, item.origin.y) - world;
-        if (d.x * d.x + d.y * d.y < 0.25f) return slotVertices.at(item.mesh.id).at(slot);
+        if (d.x * d.x + d.y * d.y < 0.25f) {
+          const auto& counts = slotVertices.at(item.mesh.id).at(slot);
+          return counts[0] + (showModels ? counts[1] : counts[2]);
+        }
       }
     }
     return 0;
@@ -382,11 +394,28 @@ TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with th
   // Its neighbour, a LOD1 building, is an extruded prism with a ring per floor.
   CHECK(device.verticesAt(glm::vec2(MiniCity::centreX(1), y)) > 18);
 
-  // LOD2 hidden: not pickable any more (the LOD1 buildings still are).
+  // LOD2 switched off: the building is its LOD1 extrusion again (a prism with a ring per floor,
+  // drawn and picked), so the spire is gone but the walls are still there.
   viewer.city()->setLodVisibility(true, false);
   runFrames(viewer, 2);
-  const auto hidden = viewer.pick(spire->x, spire->y);
-  CHECK((!hidden.has_value() || hidden->attributes.id != MiniCity::kLod2Id));
+  const auto noSpire = viewer.pick(spire->x, spire->y);
+  CHECK((!noSpire.has_value() || noSpire->attributes.id != MiniCity::kLod2Id));
+  const auto prismWall = viewer.pick(wall->x, wall->y);
+  REQUIRE(prismWall.has_value());
+  CHECK(prismWall->attributes.id == MiniCity::kLod2Id);
+  CHECK(device.verticesAt(glm::vec2(x, y)) > 18);
+  // LOD1 off as well: now it is hidden like every other building.
+  viewer.city()->setLodVisibility(false, false);
+  runFrames(viewer, 2);
+  const auto none = viewer.pick(wall->x, wall->y);
+  CHECK((!none.has_value() || none->attributes.id != MiniCity::kLod2Id));
+  // LOD1 off, LOD2 on: only the model is drawn and picked.
+  viewer.city()->setLodVisibility(false, true);
+  runFrames(viewer, 2);
+  const auto onlyModel = viewer.pick(spire->x, spire->y);
+  REQUIRE(onlyModel.has_value());
+  CHECK(onlyModel->attributes.id == MiniCity::kLod2Id);
+  CHECK(device.verticesAt(glm::vec2(x, y)) == 18);
 }
 
 TEST_CASE("Hostile city addresses are refused before any request, with a message", "[scene][city][errors]") {

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include <algorithm>
+#include <cmath>
 
 #include "App.h"
 #include "qv/core/JsonWriter.h"
@@ -113,6 +114,30 @@ EMSCRIPTEN_KEEPALIVE const char* qv_selection() {
 
 EMSCRIPTEN_KEEPALIVE int qv_fly_to_selection() {
   return gApp != nullptr && gApp->viewer().flyToSelection() ? 1 : 0;
+}
+
+/// Amplitude exaggeration of displayed displacements, 1 … 200 as the panel's slider; 0 when out of
+/// range (nothing changes).
+EMSCRIPTEN_KEEPALIVE int qv_set_amplitude(double amplitude) {
+  if (gApp == nullptr || !std::isfinite(amplitude) || amplitude < 1.0 || amplitude > 200.0) return 0;
+  gApp->viewer().setAmplitude(static_cast<float>(amplitude));
+  return 1;
+}
+
+EMSCRIPTEN_KEEPALIVE double qv_amplitude() {
+  return gApp != nullptr ? static_cast<double>(gApp->viewer().amplitude()) : 0.0;
+}
+
+/// Colour mode: 0 current drift, 1 peak drift, 2 damage state, 3 neutral (qv::ColorMode); 0 when
+/// out of range.
+EMSCRIPTEN_KEEPALIVE int qv_set_color_mode(int mode) {
+  if (gApp == nullptr || mode < 0 || mode > 3) return 0;
+  gApp->viewer().setColorMode(static_cast<qv::ColorMode>(mode));
+  return 1;
+}
+
+EMSCRIPTEN_KEEPALIVE int qv_color_mode() {
+  return gApp != nullptr ? static_cast<int>(gApp->viewer().colorMode()) : -1;
 }
 
 /// LOD1 and LOD2 buildings shown (1) or hidden (0), as the General panel's switches. Returns 0

@@ -173,8 +173,8 @@ Status decodeMeshes(std::span<const std::uint8_t> data, std::size_t sectionOffse
     rec.farTriangles = r.u32("far triangle count");
     m.verticesBefore = r.u32("vertices before re-meshing");
     m.topM = r.f32("mesh top");
-    m.source =
-        source <= static_cast<std::uint8_t>(MeshSource::OsmParts) ? static_cast<MeshSource>(source) : MeshSource::Other;
+    m.source = source <= static_cast<std::uint8_t>(MeshSource::Synthetic) ? static_cast<MeshSource>(source)
+                                                                          : MeshSource::Other;
     if (m.building >= tile.buildings.size()) {
       return error(rec.offset, "model " + std::to_string(k) + " names building " + std::to_string(m.building) + " of " +
                                    std::to_string(tile.buildings.size()));
@@ -278,6 +278,8 @@ std::string_view meshSourceName(MeshSource source) {
       return "obj";
     case MeshSource::OsmParts:
       return "osm-parts";
+    case MeshSource::Synthetic:
+      return "synthetic";
     case MeshSource::Other:
       break;
   }

@@ -111,6 +111,7 @@ GlRenderDevice::GlRenderDevice() {
   u_.sunDirection = glGetUniformLocation(p, "u_sunDirection");
   u_.eye = glGetUniformLocation(p, "u_eye");
   u_.anyDimmed = glGetUniformLocation(p, "u_anyDimmed");
+  u_.showModels = glGetUniformLocation(p, "u_showModels");
   g_.viewProjection = glGetUniformLocation(groundProgram_, "u_viewProjection");
   g_.rect = glGetUniformLocation(groundProgram_, "u_rect");
   g_.eye = glGetUniformLocation(groundProgram_, "u_eye");
@@ -181,6 +182,8 @@ MeshHandle GlRenderDevice::createMesh(const MeshData& data) {
     return {};
   }
   mesh.indexCount = static_cast<int>(data.indices.size());
+  mesh.modelTriangles = data.modelTriangles;
+  mesh.fallbackTriangles = data.fallbackTriangles;
   mesh.bytes = static_cast<std::size_t>(vertexBytes + indexBytes);
   meshBytes_ += mesh.bytes;
   pendingUpload_ += mesh.bytes;
@@ -286,6 +289,7 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
     glUniform3f(u_.sunDirection, f.sunDirection.x, f.sunDirection.y, f.sunDirection.z);
     glUniform3f(u_.eye, f.eye.x, f.eye.y, f.eye.z);
     glUniform1i(u_.anyDimmed, f.anyDimmed ? 1 : 0);
+    glUniform1i(u_.showModels, f.showModels ? 1 : 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, buildings_.texture);
     glUniform1i(u_.buildings, 0);
@@ -305,7 +309,8 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
       glBindVertexArray(it->second.vao);
       glDrawElements(GL_TRIANGLES, it->second.indexCount, GL_UNSIGNED_INT, nullptr);
       stats.drawCalls += 1;
-      stats.triangles += static_cast<std::uint64_t>(it->second.indexCount / 3);
+      stats.triangles += static_cast<std::uint64_t>(it->second.indexCount / 3) -
+                         (f.showModels ? it->second.fallbackTriangles : it->second.modelTriangles);
     }
     glActiveTexture(GL_TEXTURE0);
   }

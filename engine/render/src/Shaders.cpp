@@ -23,6 +23,7 @@ uniform int u_colorMode;
 uniform float u_driftFullScale;
 uniform float u_amplitude;
 uniform bool u_anyDimmed;
+uniform bool u_showModels;  // LOD2 models (kind bit 0x20) or, instead, their extrusions (0x40)
 
 out vec3 v_normal;
 out vec3 v_world;
@@ -78,7 +79,9 @@ void main() {
   float noResult = (u_colorMode != 3 && damage < -0.5 && !pending) ? 1.0 : 0.0;
   if (noResult > 0.5) color = kNoResult;
 
-  if (a_normalKind.w == 1) color *= 1.08;  // roofs a touch lighter than walls
+  int kind = a_normalKind.w & 0x1f;
+  bool otherLod = (a_normalKind.w & (u_showModels ? 0x40 : 0x20)) != 0;
+  if (kind == 1) color *= 1.08;  // roofs a touch lighter than walls
   float alpha = 1.0;
   if ((flags & 2u) != 0u) { color = mix(color, kDimmed, 0.85); noResult = 0.0; alpha = 0.0; }
   if ((flags & 1u) != 0u) { color = mix(color, kSelected, 0.65); alpha = 2.0; }
@@ -88,7 +91,7 @@ void main() {
   vec3 world = position + u_origin;
   v_world = world;
   v_normal = vec3(a_normalKind.xyz) / 127.0;
-  gl_Position = (flags & 4u) != 0u ? vec4(2.0, 2.0, 2.0, 1.0) : u_viewProjection * vec4(world, 1.0);
+  gl_Position = (flags & 4u) != 0u || otherLod ? vec4(2.0, 2.0, 2.0, 1.0) : u_viewProjection * vec4(world, 1.0);
 }
 )";
 

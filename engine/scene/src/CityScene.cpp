@@ -335,10 +335,15 @@ void CityScene::finishTile(std::uint32_t node) {
     row.baseZ = a.minHeightM;
     // Results on their way: plain (not hatched as "no result") until the summary arrives.
     if (tileset_->nodes[node].response) row.damageState = kDamagePending;
-    if (const TileMesh* m = meshOf(order[p])) {
+    const TileMesh* model = meshOf(order[p]);
+    if (model != nullptr) {
       // The LOD2 model. Its vertices lie on the floor planes it was re-meshed at (one bone per
       // floor level): the vertex shader blends the displacements of the floors below and above
-      // each vertex by height, which are the bone weights the model stores.
+      // each vertex by height, which are the bone weights the model stores. Its LOD1 extrusion
+      // follows (below), marked as the fallback the shader draws instead when LOD2 is switched off.
+      const TileMesh* m = model;
+      const std::size_t first = mesh.vertices.size();
+      const std::size_t firstTriangle = mesh.triangleCount();
       TriangleMeshInput in;
       in.offset = glm::vec3(0.0f, 0.0f, a.minHeightM);
       in.slot = tile->slotBase + p;
@@ -357,8 +362,11 @@ void CityScene::finishTile(std::uint32_t node) {
         in.kinds = meshKinds;
         appendTriangleMesh(mesh, in);
       }
-      continue;
+      for (std::size_t v = first; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindModel;
+      mesh.modelTriangles += mesh.triangleCount() - firstTriangle;
     }
+    const std::size_t firstExtruded = mesh.vertices.size();
+    const std::size_t firstExtrudedTriangle = mesh.triangleCount();
     for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
       const TilePart& part = d.parts[pi];
       levels.clear();
@@ -385,6 +393,10 @@ void CityScene::finishTile(std::uint32_t node) {
       in.levels = levels;
       in.slot = tile->slotBase + p;
       appendExtrusion(mesh, in);
+    }
+    if (model != nullptr) {
+      for (std::size_t v = firstExtruded; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindFallback;
+      mesh.fallbackTriangles += mesh.triangleCount() - firstExtrudedTriangle;
     }
   }
   tile->mesh = device_.createMesh(mesh);
@@ -895,6 +907,7 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     }
   }
   counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
+  counts.modelsAnimated += modelsAnimated_;
 }
 
 void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles) {
@@ -979,7 +992,9 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
   samplers_.resize(animated_.size());
   windows_.resize(animated_.size());
   samplerArena_.clear();
+  modelsAnimated_ = 0;
   for (std::size_t j = 0; j < animated_.size(); ++j) {
+    if (tiles_[animated_[j]->ref.node]->loaded->meshOf(animated_[j]->ref.index) != nullptr) ++modelsAnimated_;
     const BuildingHistory& h = tiles_[animated_[j]->ref.node]->history->buildings[animated_[j]->ref.index];
     AnimatedSampler& sampler = samplers_[j];
     sampler.x = h.x.coordinates.data();
@@ -1033,7 +1048,7 @@ void CityScene::applyFlags(std::uint32_t node) {
     const BuildingResponse* r = t.summary && b < t.summary->buildings.size() ? &t.summary->buildings[b] : nullptr;
     setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
     setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r));
-    setFlag(row, kFlagHidden, a.lod == 2 ? !showLod2_ : !showLod1_);
+    setFlag(row, kFlagHidden, hiddenByLod(a.lod));
   }
   writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
 }
@@ -1042,6 +1057,11 @@ void CityScene::applyFlagsEverywhere() {
   for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
     if (tiles_[i]->loaded) applyFlags(i);
   }
+}
+
+bool CityScene::hiddenByLod(std::uint8_t lod) const {
+  // A LOD2 building with models switched off is drawn as its LOD1 extrusion, like the LOD1 ones.
+  return lod == 2 && showLod2_ ? false : !showLod1_;
 }
 
 void CityScene::setLodVisibility(bool lod1, bool lod2) {
@@ -1087,10 +1107,26 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
     info.modelSource = meshSourceName(m->source);
     info.modelTriangles = static_cast<std::uint32_t>((d.coarse ? m->farTriangles.size() : m->triangles.size()) / 3);
   }
-  if (t.summary && ref.index < t.summary->buildings.size()) {
+  // Its results: from this tile's summary, or, while that is on its way (a leaf just loaded for
+  // the selection), from another loaded copy's (the coarse tiles above carry the same results).
+  const TileRuntime* source = &t;
+  std::uint32_t index = ref.index;
+  if (!t.summary && tileset_->nodes[ref.node].response) {
+    const std::string& id = d.buildings[ref.index].attributes.id;
+    for (const auto& other : tiles_) {
+      if (!other->loaded || !other->summary) continue;
+      const auto it = other->loaded->idIndex.find(id);
+      if (it == other->loaded->idIndex.end()) continue;
+      source = other.get();
+      index = it->second;
+      break;
+    }
+  }
+  if (source->summary && index < source->summary->buildings.size()) {
     info.hasResponse = true;
-    info.response = t.summary->buildings[ref.index];
-    const auto first = t.summary->storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(info.response.firstStorey);
+    info.response = source->summary->buildings[index];
+    const auto first =
+        source->summary->storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(info.response.firstStorey);
     info.storeyPeakDrift.assign(first, first + static_cast<std::ptrdiff_t>(info.response.storeys));
   }
   return info;
@@ -1165,8 +1201,8 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
       if (entry > best) break;  // boxes come nearest first: nothing further can be nearer
       const std::uint32_t b = tile.tree.order()[position];
       const TileBuilding& tb = tile.data.buildings[b];
-      if (tb.attributes.lod == 2 ? !showLod2_ : !showLod1_) continue;  // hidden: not pickable
-      if (const TileMesh* m = tile.meshOf(b)) {
+      if (hiddenByLod(tb.attributes.lod)) continue;  // hidden: not pickable
+      if (const TileMesh* m = showLod2_ ? tile.meshOf(b) : nullptr) {
         // A LOD2 model is picked on its own triangles (the far mesh in coarse tiles).
         const glm::vec3 offset(tile.origin.x, tile.origin.y, tb.attributes.minHeightM);
         const auto tHit = tile.data.coarse

@@ -8,7 +8,7 @@ MeshHandle NullRenderDevice::createMesh(const MeshData& mesh) {
   if (mesh.indices.empty()) return {};
   const std::size_t bytes = mesh.vertices.size() * sizeof(BuildingVertex) + mesh.indices.size() * sizeof(std::uint32_t);
   const std::uint32_t id = nextId_++;
-  meshes_[id] = Mesh{mesh.triangleCount(), bytes};
+  meshes_[id] = Mesh{mesh.triangleCount(), mesh.modelTriangles, mesh.fallbackTriangles, bytes};
   pendingUpload_ += bytes;
   return MeshHandle{id};
 }
@@ -44,7 +44,8 @@ void NullRenderDevice::render(const FrameUniforms& uniforms, std::span<const Dra
     const auto it = meshes_.find(item.mesh.id);
     if (it == meshes_.end()) continue;
     stats.drawCalls += 1;
-    stats.triangles += it->second.triangles;
+    stats.triangles +=
+        it->second.triangles - (uniforms.showModels ? it->second.fallbackTriangles : it->second.modelTriangles);
   }
   last_ = stats;
 }

@@ -179,6 +179,7 @@ void Viewer::frame(double dtSeconds) {
   }
   if (city_) {
     city_->update(view, time_, times, counts, items);
+    uniforms.showModels = city_->showLod2();
     if (const Tileset* t = city_->tileset()) {
       // Ground under the whole city with a margin.
       const float margin = std::max(t->bounds.width(), t->bounds.height()) * 0.5f + 2000.0f;
@@ -245,7 +246,11 @@ std::optional<BuildingInfo> Viewer::pick(double cssX, double cssY) const {
   view.ray(cssX * widthPixels_ / widthCss_, cssY * heightPixels_ / heightCss_, origin, direction);
   const auto ref = city_->pick(origin, direction);
   if (!ref) return std::nullopt;
-  return city_->info(*ref);
+  // The building hit, described from its most detailed loaded copy (as building(id) does): a far
+  // view picks on a coarse tile's simplified copy, which lacks names and addresses.
+  const auto picked = city_->info(*ref);
+  if (!picked) return std::nullopt;
+  return building(picked->attributes.id);
 }
 
 std::optional<BuildingInfo> Viewer::building(const std::string& id) const {

@@ -388,6 +388,7 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
       const std::string_view source = info->modelSource == "cityjson"    ? "CityJSON"
                                       : info->modelSource == "obj"       ? "OBJ"
                                       : info->modelSource == "osm-parts" ? "OpenStreetMap building parts"
+                                      : info->modelSource == "synthetic" ? "the synthetic city's tower generator"
                                                                          : "other source";
       w.field("Model", ui::format("LOD2 detailed model from %s, %u triangles%s", std::string(source).c_str(),
                                   info->modelTriangles, info->detailed ? "" : " (simplified at this distance)"));

@@ -7,25 +7,30 @@
 #include "qv/prep/Cli.h"
 #include "qv/prep/Files.h"
 #include "qv/prep/Ingest.h"
+#include "qv/prep/Lod2OsmParts.h"
 #include "qv/prep/Tiler.h"
 
 namespace qv::prep {
 namespace {
 
-const char* const kUsage =
-    "usage: quakeview-prep city --input FILE... --out DIR [options]\n"
-    "  Reads building footprints (OpenStreetMap .osm, .osm.bz2, .osm.pbf; GeoJSON FeatureCollections\n"
-    "  .geojson/.json), cleans and projects them, infers storeys and seismic attributes, and writes\n"
-    "  the city's tiles to DIR (replacing a previous city there only when everything succeeded).\n"
-    "  --origin LON,LAT            projection centre in degrees (default: the centre of the data)\n"
-    "  --max-leaf-buildings N      buildings per leaf tile at most (default 1000)\n"
-    "  GeoJSON properties (defaults are OSM's keys, as written by `osmium export`):\n"
-    "  --id-property NAME          (id)           --name-property NAME     (name)\n"
-    "  --height-property NAME      (height)       --height-unit m|ft       (m)\n"
-    "  --levels-property NAME      (building:levels)\n"
-    "  --min-height-property NAME  (min_height)   --year-property NAME     (start_date)\n"
-    "  --use-property NAME         (building)\n"
-    "  NYC building footprints: --height-property heightroof --height-unit ft --year-property cnstrct_yr\n";
+const std::string kUsage =
+    std::string(
+        "usage: quakeview-prep city --input FILE... --out DIR [options]\n"
+        "  Reads building footprints (OpenStreetMap .osm, .osm.bz2, .osm.pbf; GeoJSON FeatureCollections\n"
+        "  .geojson/.json), cleans and projects them, infers storeys and seismic attributes, and writes\n"
+        "  the city's tiles to DIR (replacing a previous city there only when everything succeeded).\n"
+        "  --origin LON,LAT            projection centre in degrees (default: the centre of the data)\n") +
+    kLeafOptionsUsage +
+    std::string(
+        "  --no-lod2                   keep OSM buildings with building:part members as LOD1 prisms (by\n"
+        "                              default each becomes one LOD2 model, re-meshed and skinned per floor)\n"
+        "  GeoJSON properties (defaults are OSM's keys, as written by `osmium export`):\n"
+        "  --id-property NAME          (id)           --name-property NAME     (name)\n"
+        "  --height-property NAME      (height)       --height-unit m|ft       (m)\n"
+        "  --levels-property NAME      (building:levels)\n"
+        "  --min-height-property NAME  (min_height)   --year-property NAME     (start_date)\n"
+        "  --use-property NAME         (building)\n"
+        "  NYC building footprints: --height-property heightroof --height-unit ft --year-property cnstrct_yr\n");
 
 }  // namespace
 
@@ -36,6 +41,7 @@ int runCity(const CommandArgs& argv) {
                                  {"out"},
                                  {"origin"},
                                  {"max-leaf-buildings"},
+                                 {"max-leaf-kib"},
                                  {"id-property"},
                                  {"name-property"},
                                  {"height-property"},
@@ -44,15 +50,16 @@ int runCity(const CommandArgs& argv) {
                                  {"min-height-property"},
                                  {"year-property"},
                                  {"use-property"},
+                                 {"no-lod2", false},
                                  {"help", false}},
                                 error);
   if (!args || args->has("help")) {
     if (!args) std::fprintf(stderr, "city: %s\n", error.c_str());
-    std::fputs(kUsage, args ? stdout : stderr);
+    std::fputs(kUsage.c_str(), args ? stdout : stderr);
     return args ? kExitOk : kExitUsage;
   }
   auto usage = [](const std::string& message) {
-    std::fprintf(stderr, "city: %s\n%s", message.c_str(), kUsage);
+    std::fprintf(stderr, "city: %s\n%s", message.c_str(), kUsage.c_str());
     return kExitUsage;
   };
   if (!args->positional().empty()) return usage("unexpected argument '" + args->positional()[0] + "'");
@@ -84,11 +91,7 @@ int runCity(const CommandArgs& argv) {
   }
   TilerOptions tiler;
   tiler.generator = "quakeview-prep city";
-  if (const auto leaf = args->value("max-leaf-buildings")) {
-    const auto v = parseInteger(*leaf);
-    if (!v || *v < 1 || *v > 100000) return usage("--max-leaf-buildings must be from 1 to 100000");
-    tiler.maxBuildingsPerLeaf = static_cast<std::uint32_t>(*v);
-  }
+  if (std::string leafError; !readLeafOptions(*args, tiler, leafError)) return usage(leafError);
 
   installInterruptHandler();
   const auto start = std::chrono::steady_clock::now();
@@ -101,6 +104,16 @@ int runCity(const CommandArgs& argv) {
   if (interrupted()) {
     std::fprintf(stderr, "city: interrupted; nothing was written\n");
     return kExitDataError;
+  }
+  OsmPartsReport lod2;
+  if (!args->has("no-lod2")) {
+    FinishOptions finish;
+    finish.remesh.maxEdgeM = kPartModelMaxEdgeM;
+    lod2 = assembleOsmPartModels(*model, finish);
+    if (interrupted()) {
+      std::fprintf(stderr, "city: interrupted; nothing was written\n");
+      return kExitDataError;
+    }
   }
   const auto tilingStart = std::chrono::steady_clock::now();
   const auto report = writeCityTiles(*model, *out, tiler);
@@ -117,8 +130,17 @@ int runCity(const CommandArgs& argv) {
       static_cast<unsigned long long>(stats.partsAttached), static_cast<unsigned long long>(stats.partsStandalone),
       static_cast<unsigned long long>(stats.geojsonFeatures));
   printTilingSummary(stdout, *model, *report, seconds);
-  std::printf("            (reading %.2f s, cleaning and inference %.2f s, tiling and writing %.2f s)\n",
-              stats.readSeconds, stats.buildSeconds,
+  if (lod2.candidates > 0) {
+    std::printf(
+        "lod2        %llu of %llu buildings with building:parts are LOD2 models (%llu vertices before "
+        "re-meshing, %llu after; %.2f s)\n",
+        static_cast<unsigned long long>(lod2.assembled), static_cast<unsigned long long>(lod2.candidates),
+        static_cast<unsigned long long>(lod2.verticesBefore), static_cast<unsigned long long>(lod2.verticesAfter),
+        lod2.seconds);
+  }
+  for (const std::string& w : lod2.warnings) std::fprintf(stderr, "city: warning: %s\n", w.c_str());
+  std::printf("            (reading %.2f s, cleaning, inference and LOD2 %.2f s, tiling and writing %.2f s)\n",
+              stats.readSeconds, stats.buildSeconds + lod2.seconds,
               std::chrono::duration<double>(std::chrono::steady_clock::now() - tilingStart).count());
   return kExitOk;
 }

@@ -54,4 +54,24 @@ void printTilingSummary(std::FILE* out, const CityModel& model, const TilerRepor
   std::fprintf(out, "time        %.2f s\n", seconds);
 }
 
+bool readLeafOptions(const Args& args, TilerOptions& tiler, std::string& error) {
+  if (const auto leaf = args.value("max-leaf-buildings")) {
+    const auto v = parseInteger(*leaf);
+    if (!v || *v < 1 || *v > 100000) {
+      error = "--max-leaf-buildings must be from 1 to 100000";
+      return false;
+    }
+    tiler.maxBuildingsPerLeaf = static_cast<std::uint32_t>(*v);
+  }
+  if (const auto kib = args.value("max-leaf-kib")) {
+    const auto v = parseInteger(*kib);
+    if (!v || *v < 16 || *v > 16384) {
+      error = "--max-leaf-kib must be from 16 to 16384";
+      return false;
+    }
+    tiler.maxLeafBytes = static_cast<std::size_t>(*v) * 1024;
+  }
+  return true;
+}
+
 }  // namespace qv::prep

@@ -1,13 +1,25 @@
-// Printing helpers shared by the commands: the tiling summary and drop/warning counts.
+// Helpers shared by the commands that write a city: the tiling options they all take, the tiling
+// summary and drop/warning counts.
 #pragma once
 
 #include <cstdio>
 #include <string>
 
 #include "qv/prep/CityModel.h"
+#include "qv/prep/Cli.h"
 #include "qv/prep/Tiler.h"
 
 namespace qv::prep {
+
+/// The lines of a command's usage text for the leaf-size options (--max-leaf-buildings,
+/// --max-leaf-kib), which the commands that tile a city take.
+inline constexpr const char* kLeafOptionsUsage =
+    "  --max-leaf-buildings N      buildings per leaf tile at most (default 1000)\n"
+    "  --max-leaf-kib N            leaf tile size in KiB above which a leaf is split (default 150;\n"
+    "                              larger leaves hold more LOD2 models per draw call)\n";
+
+/// Reads the leaf-size options into `tiler`; false with `error` set for a bad value.
+bool readLeafOptions(const Args& args, TilerOptions& tiler, std::string& error);
 
 /// "1.2 MB", "350 KB", "12 B".
 std::string humanBytes(std::uint64_t bytes);

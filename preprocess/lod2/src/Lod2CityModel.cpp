@@ -12,6 +12,7 @@ MeshSource meshSourceOf(const Lod2Model& model) {
   if (source.rfind("cityjson", 0) == 0) return MeshSource::CityJson;
   if (source.rfind("obj", 0) == 0) return MeshSource::Obj;
   if (source.rfind("osm-parts", 0) == 0) return MeshSource::OsmParts;
+  if (source.rfind("synthetic", 0) == 0) return MeshSource::Synthetic;
   return MeshSource::Other;
 }
 

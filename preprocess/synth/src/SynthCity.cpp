@@ -80,6 +80,75 @@ void addRect(std::vector<glm::dvec2>& pts, double x0, double y0, double x1, doub
   pts.insert(pts.end(), {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}});
 }
 
+/// Gives the `count` tallest rectangular and L-shaped buildings setbacks: a podium over the whole
+/// footprint up to about a quarter of the height, then over the footprint's main rectangle (all of
+/// a rectangle; an L's wing without the notch) a shaft inset by 15 % of its shorter side up to
+/// about three quarters and a crown inset by 30 % to the roof. Part heights fall on floor levels.
+void makeDetailedTowers(CityModel& model, std::uint64_t count) {
+  if (count == 0) return;
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < model.buildings.size(); ++i) {
+    const Building& b = model.buildings[i];
+    if (b.attributes.storeys >= kMinTowerStoreys && b.parts.size() == 1 && b.parts[0].ringEnds.size() == 1 &&
+        (b.parts[0].points.size() == 4 || b.parts[0].points.size() == 6)) {
+      candidates.push_back(i);
+    }
+  }
+  const std::size_t n = std::min<std::size_t>(candidates.size(), count);
+  std::partial_sort(candidates.begin(), candidates.begin() + static_cast<std::ptrdiff_t>(n), candidates.end(),
+                    [&model](std::size_t a, std::size_t b) {
+                      const float ha = model.buildings[a].attributes.heightM;
+                      const float hb = model.buildings[b].attributes.heightM;
+                      return ha != hb ? ha > hb : a < b;
+                    });
+  for (std::size_t k = 0; k < n; ++k) {
+    Building& b = model.buildings[candidates[k]];
+    const BuildingAttributes& a = b.attributes;
+    const BuildingPart whole = b.parts[0];
+    double x0 = whole.points[0].x, y0 = whole.points[0].y, x1 = x0, y1 = y0;
+    for (const glm::dvec2& p : whole.points) {
+      x0 = std::min(x0, p.x);
+      y0 = std::min(y0, p.y);
+      x1 = std::max(x1, p.x);
+      y1 = std::max(y1, p.y);
+    }
+    if (whole.points.size() == 6) {
+      // An L (generateSynthCity's: the rectangle minus a corner notch; points[2]'s
+      // y is the notch's depth): the main rectangle is the full-width strip beside the notch.
+      const glm::dvec2 inner = whole.points[2];
+      if (inner.y > y0 + 1e-9 && inner.y < y1 - 1e-9) {
+        if (std::abs(whole.points[1].x - x1) < 1e-9) {
+          y1 = inner.y;  // notch at the back (high y): keep the front
+        } else {
+          y0 = inner.y;  // notch at the front (low y): keep the back
+        }
+      }
+    }
+    const double storeyM = static_cast<double>(a.heightM) / a.storeys;
+    const int podiumTop = std::max(1, static_cast<int>(std::lround(a.storeys * 0.25)));
+    const int shaftTop = std::max(podiumTop + 1, static_cast<int>(std::lround(a.storeys * 0.75)));
+    const double side = std::min(x1 - x0, y1 - y0);
+    b.parts.clear();
+    const struct {
+      const char* name;
+      double inset;
+      int bottom, top;
+    } pieces[3] = {
+        {"podium", 0.0, 0, podiumTop}, {"shaft", 0.15, podiumTop, shaftTop}, {"crown", 0.30, shaftTop, a.storeys}};
+    for (const auto& piece : pieces) {
+      if (piece.top <= piece.bottom) continue;
+      BuildingPart part;
+      const double m = side * piece.inset;
+      addRect(part.points, x0 + m, y0 + m, x1 - m, y1 - m);
+      part.ringEnds = {4};
+      part.minHeightM = static_cast<float>(storeyM * piece.bottom);
+      part.heightM = piece.top == a.storeys ? a.heightM : static_cast<float>(storeyM * piece.top);
+      part.sourceId = a.id + "/" + piece.name;
+      b.parts.push_back(std::move(part));
+    }
+  }
+}
+
 }  // namespace
 
 SynthRandom::SynthRandom(std::uint64_t seed) {
@@ -277,6 +346,7 @@ CityModel generateSynthCity(const SynthCityOptions& options) {
       ++made;
     }
   }
+  makeDetailedTowers(model, options.detailedTowers);
   return model;
 }
 

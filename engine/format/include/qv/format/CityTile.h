@@ -75,8 +75,9 @@ struct TileBuilding {
 };
 
 /// Where a LOD2 model came from. Stored as a number: only ever gains values.
-enum class MeshSource : std::uint8_t { CityJson = 0, Obj = 1, OsmParts = 2, Other = 255 };
-std::string_view meshSourceName(MeshSource source);  ///< "cityjson", "obj", "osm-parts", "other"
+enum class MeshSource : std::uint8_t { CityJson = 0, Obj = 1, OsmParts = 2, Synthetic = 3, Other = 255 };
+/// "cityjson", "obj", "osm-parts", "synthetic" (synth-city's towers), "other"
+std::string_view meshSourceName(MeshSource source);
 
 /// Surface kinds of LOD2 triangles, in the order their groups are stored.
 enum class MeshSurfaceKind : std::uint8_t { Wall = 0, Roof = 1, Ground = 2, Other = 3 };

@@ -28,17 +28,32 @@ struct BuildingVertex {
 static_assert(sizeof(BuildingVertex) == 20);
 
 enum VertexKind : std::uint8_t { kWall = 0, kRoof = 1, kGround = 2 };
+/// Bits OR-ed into BuildingVertex::kind for a LOD2 building's two representations, both in the
+/// batch: its model (drawn while LOD2 models are shown) and its LOD1 extrusion (drawn instead when
+/// they are not). The low bits stay the VertexKind. (The shader reads kind as a signed byte.)
+inline constexpr std::uint8_t kKindModel = 0x20;
+inline constexpr std::uint8_t kKindFallback = 0x40;
+inline constexpr std::uint8_t kKindMask = 0x1f;
 inline constexpr std::uint8_t kKindFromNormal = 255;  ///< TriangleMeshInput::kinds: decide by the normal
 
 struct MeshData {
   std::vector<BuildingVertex> vertices;
   std::vector<std::uint32_t> indices;  ///< triangles, counter-clockwise seen from outside
+  /// Of the triangles, those of LOD2 models (kKindModel) and of their LOD1 fallbacks
+  /// (kKindFallback): only one of the two sets is drawn (FrameUniforms::showModels).
+  std::size_t modelTriangles = 0;
+  std::size_t fallbackTriangles = 0;
 
   void clear() {
     vertices.clear();
     indices.clear();
+    modelTriangles = fallbackTriangles = 0;
   }
   [[nodiscard]] std::size_t triangleCount() const { return indices.size() / 3; }
+  /// The triangles drawn with LOD2 models shown or not.
+  [[nodiscard]] std::size_t drawnTriangles(bool showModels) const {
+    return triangleCount() - (showModels ? fallbackTriangles : modelTriangles);
+  }
 };
 
 /// One footprint (polygon with holes) extruded between two heights.

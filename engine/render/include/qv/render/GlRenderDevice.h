@@ -41,6 +41,7 @@ class GlRenderDevice final : public RenderDevice {
   struct Mesh {
     unsigned vao = 0, vertexBuffer = 0, indexBuffer = 0;
     int indexCount = 0;
+    std::size_t modelTriangles = 0, fallbackTriangles = 0;  // MeshData's
     std::size_t bytes = 0;
   };
   struct DataTexture {
@@ -65,7 +66,7 @@ class GlRenderDevice final : public RenderDevice {
 
   struct Uniforms {
     int viewProjection = -1, origin = -1, buildings = -1, floors = -1, colorMode = -1, driftFullScale = -1,
-        amplitude = -1, sunDirection = -1, eye = -1, anyDimmed = -1;
+        amplitude = -1, sunDirection = -1, eye = -1, anyDimmed = -1, showModels = -1;
   } u_;
   struct GroundUniforms {
     int viewProjection = -1, rect = -1, sunDirection = -1, eye = -1;

@@ -21,7 +21,7 @@ struct BuildingInfo {
   BuildingResponse response;           ///< damage, peaks (meaningful when hasResponse)
   std::vector<float> storeyPeakDrift;  ///< per storey, ground up (empty without a response)
   /// LOD2 buildings whose tile carries the model: where it came from ("cityjson", "obj",
-  /// "osm-parts") and the triangles drawn (empty and 0 otherwise).
+  /// "osm-parts", "synthetic") and the triangles drawn (empty and 0 otherwise).
   std::string modelSource;
   std::uint32_t modelTriangles = 0;
 };

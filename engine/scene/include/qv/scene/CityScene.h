@@ -137,6 +137,8 @@ class CityScene {
   void setFilters(const BuildingFilters& filters);
   [[nodiscard]] const BuildingFilters& filters() const { return filters_; }
   /// Which kinds of building are drawn (and pickable): LOD1 extrusions, LOD2 detailed models.
+  /// With LOD2 off, LOD2 buildings are drawn (and picked) as their LOD1 extrusions, shown or
+  /// hidden with the LOD1 buildings.
   void setLodVisibility(bool lod1, bool lod2);
   [[nodiscard]] bool showLod1() const { return showLod1_; }
   [[nodiscard]] bool showLod2() const { return showLod2_; }
@@ -229,6 +231,7 @@ class CityScene {
   std::vector<SampleWindow> windows_;      // of animated_, same order
   std::vector<AnimatedSampler> samplers_;  // of animated_, same order
   std::vector<float> samplerArena_;
+  std::uint32_t modelsAnimated_ = 0;           // of animated_, LOD2 models drawn skinned
   std::vector<float> modal_;                   // per animated building: 8 x then 8 y modal coordinates this frame
   std::vector<std::uint32_t> animationTiles_;  // this frame's tiles within the radius, histories loaded
   std::uint64_t animationSignature_ = 0;       // inputs of the last choice of animated buildings
@@ -240,6 +243,7 @@ class CityScene {
   BuildingFilters filters_;
   bool showLod1_ = true;
   bool showLod2_ = true;
+  [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
   TileState searchState_ = TileState::Unloaded;
   std::vector<SearchEntry> searchIndex_;
   std::array<std::uint64_t, 6> damageInView_{};

@@ -25,6 +25,7 @@ struct FrameCounts {
   std::uint32_t buildingsLoaded = 0;
   std::uint32_t buildingsVisible = 0;
   std::uint32_t buildingsAnimated = 0;
+  std::uint32_t modelsAnimated = 0;  ///< of them LOD2 models (skinned to their floor bones)
 };
 
 /// Medians (and 95th percentiles) over the last N frames.

@@ -25,6 +25,7 @@ class NullRenderDevice final : public RenderDevice {
  private:
   struct Mesh {
     std::size_t triangles = 0;
+    std::size_t modelTriangles = 0, fallbackTriangles = 0;  // MeshData's
     std::size_t bytes = 0;
   };
   std::unordered_map<std::uint32_t, Mesh> meshes_;

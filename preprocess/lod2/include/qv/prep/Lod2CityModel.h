@@ -8,7 +8,7 @@
 
 namespace qv::prep {
 
-/// "cityjson:…" → CityJson, "obj:…" → Obj, "osm-parts" → OsmParts, anything else → Other.
+/// "cityjson:…" → CityJson, "obj:…" → Obj, "osm-parts" → OsmParts, "synthetic" → Synthetic, anything else → Other.
 MeshSource meshSourceOf(const Lod2Model& model);
 
 /// The building a finished model (finishModel) becomes: its attributes (lod 2); one part, the

@@ -14,7 +14,14 @@ struct SynthCityOptions {
   std::uint64_t seed = 1;
   double originLon = -74.00;  ///< where the city's centre is placed (degrees)
   double originLat = 40.71;
+  /// The tallest this-many rectangular or L-shaped buildings (of at least kMinTowerStoreys) become
+  /// towers with setbacks: a podium over the footprint, a shaft and a crown over its main rectangle, each a part
+  /// (BuildingPart::sourceId "<id>/podium",
+  /// "<id>/shaft", "<id>/crown") on floor levels, for quakeview-prep to make LOD2 models of. 0: none.
+  std::uint64_t detailedTowers = 0;
 };
+
+inline constexpr std::uint16_t kMinTowerStoreys = 3;
 
 /// Generates the city: buildings s1..sN on a street grid around (0, 0), growing outwards block by
 /// block; the same options give the same city on every machine.
