@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <utility>
 
 #include "qv/core/JsonWriter.h"
 
@@ -30,16 +32,28 @@ BenchRun::BenchRun(double seconds, const Tileset* tileset, double fovDeg) : seco
   double denseX = 0.0, denseY = 0.0;
   if (tileset != nullptr && !tileset->nodes.empty()) {
     bounds = tileset->bounds;
-    // The densest leaf: most buildings per square metre of its bounds.
-    double best = -1.0;
+    // The densest area: the 500 m cell of a grid over the city holding the most buildings (leaves
+    // counted at their centres), entered at the building-weighted centre of its leaves. (Per-leaf
+    // density would pick a tiny leaf of two buildings at the city's edge.)
+    constexpr double kCellM = 500.0;
+    struct Cell {
+      double buildings = 0.0, x = 0.0, y = 0.0;
+    };
+    std::map<std::pair<long, long>, Cell> cells;
     for (const TileNode& n : tileset->nodes) {
-      if (!n.children.empty()) continue;
-      const double area = std::max(static_cast<double>(n.bounds.width()) * n.bounds.height(), 1.0);
-      const double density = static_cast<double>(n.buildings) / area;
-      if (density > best) {
-        best = density;
-        denseX = n.bounds.centerX();
-        denseY = n.bounds.centerY();
+      if (!n.children.empty() || n.buildings == 0) continue;
+      const double cx = n.bounds.centerX(), cy = n.bounds.centerY();
+      Cell& c = cells[{std::lround(std::floor(cx / kCellM)), std::lround(std::floor(cy / kCellM))}];
+      c.buildings += n.buildings;
+      c.x += cx * n.buildings;
+      c.y += cy * n.buildings;
+    }
+    double best = 0.0;
+    for (const auto& [key, c] : cells) {
+      if (c.buildings > best) {
+        best = c.buildings;
+        denseX = c.x / c.buildings;
+        denseY = c.y / c.buildings;
       }
     }
   }
