@@ -97,6 +97,9 @@ TEST_CASE("The draw budget caps refinement", "[lod]") {
   selectTiles(t, states, view, options, s);
   CHECK(s.draw == std::vector<std::uint32_t>{0});
   CHECK(s.budgetLimited);
+  // The children it could not draw are loaded: they stay in use (not evicted as least recently
+  // used), or a scene at the budget would fetch and drop them again every frame.
+  for (std::uint32_t c = 1; c <= 4; ++c) CHECK(contains(s.used, c));
 }
 
 TEST_CASE("Tiles within the detail radius of the eye refine even when their error is small", "[lod]") {

@@ -94,6 +94,9 @@ void selectTiles(const Tileset& t, std::span<const TileState> states, const Came
     if (cut.size() + queue.size() + children.size() > options.maxDrawTiles) {
       cut.push_back(i);
       out.budgetLimited = true;
+      // Its children stay resident: evicting them (they are ready, so nothing else keeps them) only
+      // to fetch them again once the budget allows would reload tiles every frame at the limit.
+      for (std::uint32_t c : children) out.used.push_back(c);
       continue;
     }
     for (std::uint32_t c : children) {
