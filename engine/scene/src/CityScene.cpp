@@ -9,6 +9,7 @@
 
 #include "qv/core/Crc32.h"
 #include "qv/core/RangeAllocator.h"
+#include "qv/scene/FloorDisplacements.h"
 #include "qv/spatial/BoxTree.h"
 
 namespace qv {
@@ -879,18 +880,13 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     if (sampler.sampleCount == 0 || floors == 0) {
       for (std::size_t k = 1; k < a.rows; ++k) rows[k].dxMeters = rows[k].dyMeters = 0.0f;
     } else {
-      const float* packed = samplerArena_.data() + sampler.arenaOffset;  // scales x, shapes x, scales y, shapes y
-      for (int direction = 0; direction < 2; ++direction) {
-        const std::size_t modes = direction == 0 ? sampler.modesX : sampler.modesY;
-        const float* coordinate = modal_.data() + j * 16 + (direction == 0 ? 0 : 8);
-        const float* shape = packed + modes;
-        for (std::size_t f = 0; f < floors; ++f, shape += modes) {
-          float v = 0.0f;
-          for (std::size_t k = 0; k < modes; ++k) v += shape[k] * coordinate[k];
-          (direction == 0 ? rows[f + 1].dxMeters : rows[f + 1].dyMeters) = v;
-        }
-        packed += modes + std::size_t{sampler.floors} * modes;
-      }
+      // The packed arena holds scales x, shapes x, scales y, shapes y.
+      const std::size_t mx = sampler.modesX, my = sampler.modesY;
+      const float* shapesX = samplerArena_.data() + sampler.arenaOffset + mx;
+      const float* shapesY = shapesX + std::size_t{sampler.floors} * mx + my;
+      const float* cx = modal_.data() + j * 16;
+      const float* cy = cx + 8;
+      floorDisplacements(shapesX, cx, mx, shapesY, cy, my, floors, rows + 1);
     }
     if (!a.peaksWritten) {
       // The peak drifts do not change with time: written once, when the summary is there.
