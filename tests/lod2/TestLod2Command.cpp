@@ -1,7 +1,6 @@
 // Runs the built quakeview-prep: `lod2` puts real CityJSON models (../shared/data/cityjson) into a
 // small synthetic city with --place, and `info` then shows them; usage and data errors leave the
 // city as it was (native only).
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <simdjson.h>
@@ -12,27 +11,17 @@
 #include <iterator>
 #include <string>
 
+#include "ToolRun.h"
+
 namespace {
 
 const std::string kTool = QUAKEVIEW_PREP_EXE;
 const std::string kCityJson = std::string(QUAKEVIEW_SHARED_DATA_DIR) + "/cityjson/";
 
-struct Run {
-  int exitCode = -1;
-  std::string output;
-};
+using Run = qv::test::ToolRun;
 
 Run run(const std::string& arguments, bool withStderr = false) {
-  const std::string command = "'" + kTool + "' " + arguments + (withStderr ? " 2>&1" : " 2>/dev/null");
-  Run r;
-  std::FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return qv::test::runTool(kTool, arguments, withStderr);
 }
 
 std::string readText(const std::string& path) {

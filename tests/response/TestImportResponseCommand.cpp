@@ -1,6 +1,5 @@
 // Runs the built quakeview-prep: import-response from JSON and CSV into a small synthetic city, what
 // `info` then shows, and the errors a user gets for bad files (native only).
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <simdjson.h>
@@ -10,26 +9,16 @@
 #include <fstream>
 #include <string>
 
+#include "ToolRun.h"
+
 namespace {
 
 const std::string kTool = QUAKEVIEW_PREP_EXE;
 
-struct Run {
-  int exitCode = -1;
-  std::string output;
-};
+using Run = qv::test::ToolRun;
 
 Run run(const std::string& arguments, bool withStderr = false) {
-  const std::string command = "'" + kTool + "' " + arguments + (withStderr ? " 2>&1" : " 2>/dev/null");
-  Run r;
-  std::FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return qv::test::runTool(kTool, arguments, withStderr);
 }
 
 void write(const std::string& path, const std::string& text) {

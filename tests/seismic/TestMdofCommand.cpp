@@ -1,11 +1,11 @@
 // Runs the built quakeview-prep mdof and checks its output (native only).
-#include <sys/wait.h>
-
 #include <simdjson.h>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdio>
 #include <string>
+
+#include "ToolRun.h"
 
 namespace {
 
@@ -13,23 +13,11 @@ const std::string kTool = QUAKEVIEW_PREP_EXE;
 const std::string kRecords = std::string(QUAKEVIEW_SHARED_DATA_DIR) + "/ground-motions/";
 const std::string kFixtures = std::string(QUAKEVIEW_SEISMIC_TEST_DATA) + "/";
 
-struct Run {
-  int exitCode = -1;
-  std::string output;
-};
+using Run = qv::test::ToolRun;
 
 // Runs the tool with `arguments`; stdout only, or stdout and stderr together.
 Run run(const std::string& arguments, bool withStderr = false) {
-  const std::string command = "'" + kTool + "' mdof " + arguments + (withStderr ? " 2>&1" : " 2>/dev/null");
-  Run r;
-  std::FILE* pipe = popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  char buffer[4096];
-  std::size_t n = 0;
-  while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) r.output.append(buffer, n);
-  const int status = pclose(pipe);
-  r.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return r;
+  return qv::test::runTool(kTool, "mdof " + arguments, withStderr);
 }
 
 double number(simdjson::dom::element doc, const char* key) {
