@@ -76,7 +76,7 @@ TEST_CASE("lod2: Malformed CityJSON gives file:line:column", "[lod2][errors]") {
         fixture("malformed.city.json") + ":6:5: malformed JSON: unexpected '\"' in an object, expected ',' or '}'");
   const Result<CityJsonFile> truncated = parseCityJson("{\"type\": \"CityJSON\",\n \"version\": \"2.0", "t.json");
   REQUIRE_FALSE(truncated.ok());
-  CHECK(truncated.error() == "t.json:2:17: malformed JSON: unexpected end of file in a string");
+  CHECK(truncated.error() == "t.json:2:17: malformed JSON: unexpected end of file in a string (missing closing quote)");
   const Result<CityJsonFile> empty = parseCityJson("", "e.json");
   REQUIRE_FALSE(empty.ok());
   CHECK(empty.error() == "e.json:1:1: malformed JSON: unexpected end of file, expected a value");

@@ -12,10 +12,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "JsonSyntax.h"
 #include "qv/prep/Attributes.h"
 #include "qv/prep/Cli.h"
 #include "qv/prep/Files.h"
+#include "qv/prep/JsonSyntax.h"
 #include "qv/prep/Lod2CityJson.h"
 #include "qv/prep/Lod2Geometry.h"
 #include "qv/prep/Lod2Georeference.h"
@@ -92,8 +92,8 @@ class CityJsonReader {
     const simdjson::padded_string padded(text_);
     dom::element root;
     if (const simdjson::error_code e = parser_.parse(padded).get(root); e != SUCCESS) {
-      if (const auto problem = detail::findJsonSyntaxProblem(text_)) {
-        return Error{name_ + ":" + detail::lineColumn(text_, problem->offset) + ": malformed JSON: " + problem->what};
+      if (const auto problem = findJsonSyntaxProblem(text_)) {
+        return Error{name_ + ":" + lineColumn(text_, problem->offset) + ": malformed JSON: " + problem->what};
       }
       return Error{name_ + ": cannot parse JSON: " + simdjson::error_message(e)};
     }
