@@ -21,6 +21,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "qv/prep/CdtDomains.h"
 #include "qv/prep/Cleaning.h"
 #include "qv/prep/Lod2Remesh.h"
 
@@ -30,8 +31,7 @@ namespace {
 // ---- Constrained Delaunay triangulation of one face, in its plane -------------------------------
 using Epick = CGAL::Exact_predicates_inexact_constructions_kernel;
 struct FaceInfo {
-  int nesting = -1;
-  [[nodiscard]] bool inside() const { return nesting % 2 == 1; }
+  int nesting = -1;  // markNesting's depth: odd inside
 };
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Epick>;
 using FaceBase0 = CGAL::Triangulation_face_base_with_info_2<FaceInfo, Epick>;
@@ -41,30 +41,6 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 // cross would need new points off the face's vertex list and throw: such faces are reported.
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Epick, Tds,
                                                        CGAL::No_constraint_intersection_requiring_constructions_tag>;
-
-// Nesting levels flood-filled from the infinite face across constrained edges (the CGAL manual's
-// "Triangulating a Polygonal Domain" example, 2D Triangulations §8.4): odd levels are inside.
-void markDomains(Cdt& cdt, Cdt::Face_handle start, int index, std::list<Cdt::Edge>& border) {
-  if (start->info().nesting != -1) return;
-  std::list<Cdt::Face_handle> queue;
-  queue.push_back(start);
-  while (!queue.empty()) {
-    Cdt::Face_handle fh = queue.front();
-    queue.pop_front();
-    if (fh->info().nesting != -1) continue;
-    fh->info().nesting = index;
-    for (int i = 0; i < 3; ++i) {
-      const Cdt::Edge e(fh, i);
-      Cdt::Face_handle n = fh->neighbor(i);
-      if (n->info().nesting == -1) {
-        if (cdt.is_constrained(e))
-          border.push_back(e);
-        else
-          queue.push_back(n);
-      }
-    }
-  }
-}
 
 // ---- Boolean operations on footprints (exact constructions: intersection points are new) --------
 using Epeck = CGAL::Exact_predicates_exact_constructions_kernel;
@@ -288,20 +264,9 @@ bool triangulateFace(std::span<const glm::dvec3> points, std::span<const std::ui
       }
       begin = end;
     }
-    for (Cdt::Face_handle f : cdt.all_face_handles()) f->info().nesting = -1;
-    std::list<Cdt::Edge> border;
-    markDomains(cdt, cdt.infinite_face(), 0, border);
-    while (!border.empty()) {
-      const Cdt::Edge e = border.front();
-      border.pop_front();
-      Cdt::Face_handle n = e.first->neighbor(e.second);
-      if (n->info().nesting == -1) markDomains(cdt, n, e.first->info().nesting + 1, border);
-    }
+    markNesting(cdt);
     std::vector<std::uint32_t> triangles;
-    for (Cdt::Face_handle f : cdt.finite_face_handles()) {
-      if (!f->info().inside()) continue;
-      triangles.insert(triangles.end(), {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
-    }
+    appendInsideTriangles(cdt, triangles);
     if (triangles.empty()) return false;
     out.insert(out.end(), triangles.begin(), triangles.end());
     return true;

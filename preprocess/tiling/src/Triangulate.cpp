@@ -8,13 +8,14 @@
 #include <utility>
 #include <vector>
 
+#include "qv/prep/CdtDomains.h"
+
 namespace qv::prep {
 namespace {
 
 using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
 struct FaceInfo {
-  int nesting = -1;
-  [[nodiscard]] bool inside() const { return nesting % 2 == 1; }
+  int nesting = -1;  // markNesting's depth: odd inside
 };
 using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<std::uint32_t, Kernel>;
 using FaceBase0 = CGAL::Triangulation_face_base_with_info_2<FaceInfo, Kernel>;
@@ -23,30 +24,6 @@ using Tds = CGAL::Triangulation_data_structure_2<VertexBase, FaceBase>;
 // Exact predicates without intersection support: crossing constraints throw, and such polygons
 // are reported as failures (cleaning drops self-intersecting rings before this point).
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<Kernel, Tds, CGAL::No_constraint_intersection_tag>;
-
-// Flood-fills nesting levels from the infinite face across constrained edges (the CGAL manual's
-// "Triangulating a Polygonal Domain" example, 2D Triangulations §8.4).
-void markDomains(Cdt& cdt, Cdt::Face_handle start, int index, std::vector<Cdt::Edge>& border) {
-  if (start->info().nesting != -1) return;
-  std::vector<Cdt::Face_handle> queue;  // order does not matter for a flood fill
-  queue.push_back(start);
-  while (!queue.empty()) {
-    Cdt::Face_handle fh = queue.back();
-    queue.pop_back();
-    if (fh->info().nesting != -1) continue;
-    fh->info().nesting = index;
-    for (int i = 0; i < 3; ++i) {
-      const Cdt::Edge e(fh, i);
-      Cdt::Face_handle n = fh->neighbor(i);
-      if (n->info().nesting == -1) {
-        if (cdt.is_constrained(e))
-          border.push_back(e);
-        else
-          queue.push_back(n);
-      }
-    }
-  }
-}
 
 // +1 or -1 when the ring is a strictly convex simple polygon wound counter-clockwise or clockwise,
 // 0 otherwise. Every turn has the same sign, and the edge directions go round once: x and y of the
@@ -120,20 +97,9 @@ bool triangulatePolygon(std::span<const glm::dvec2> points, std::span<const std:
       }
       begin = end;
     }
-    for (Cdt::Face_handle f : cdt.all_face_handles()) f->info().nesting = -1;
-    std::vector<Cdt::Edge> border;
-    markDomains(cdt, cdt.infinite_face(), 0, border);
-    // Breadth-first over the borders (first in, first out), so each domain gets its nesting level.
-    for (std::size_t next = 0; next < border.size(); ++next) {
-      const Cdt::Edge e = border[next];
-      Cdt::Face_handle n = e.first->neighbor(e.second);
-      if (n->info().nesting == -1) markDomains(cdt, n, e.first->info().nesting + 1, border);
-    }
+    markNesting(cdt);
     std::vector<std::uint32_t> triangles;
-    for (Cdt::Face_handle f : cdt.finite_face_handles()) {
-      if (!f->info().inside()) continue;
-      triangles.insert(triangles.end(), {f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
-    }
+    appendInsideTriangles(cdt, triangles);
     if (triangles.empty()) return false;
     out.insert(out.end(), triangles.begin(), triangles.end());
     return true;
