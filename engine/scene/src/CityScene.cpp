@@ -342,24 +342,23 @@ void CityScene::finishTile(std::uint32_t node) {
       // floor level): the vertex shader blends the displacements of the floors below and above
       // each vertex by height, which are the bone weights the model stores. Its LOD1 extrusion
       // follows (below), marked as the fallback the shader draws instead when LOD2 is switched off.
-      const TileMesh* m = model;
       const std::size_t first = mesh.vertices.size();
       const std::size_t firstTriangle = mesh.triangleCount();
       TriangleMeshInput in;
       in.offset = glm::vec3(0.0f, 0.0f, a.minHeightM);
       in.slot = tile->slotBase + p;
       if (d.coarse) {
-        meshIndices.assign(m->farTriangles.begin(), m->farTriangles.end());
-        in.positions = m->farPositions;
+        meshIndices.assign(model->farTriangles.begin(), model->farTriangles.end());
+        in.positions = model->farPositions;
         in.triangles = meshIndices;
         appendTriangleMesh(mesh, in);
       } else {
         meshKinds.clear();
         constexpr std::uint8_t kKinds[kMeshSurfaceKinds] = {kWall, kRoof, kGround, kKindFromNormal};
         for (std::size_t k = 0; k < kMeshSurfaceKinds; ++k)
-          meshKinds.insert(meshKinds.end(), m->trianglesPerKind[k], kKinds[k]);
-        in.positions = m->positions;
-        in.triangles = m->triangles;
+          meshKinds.insert(meshKinds.end(), model->trianglesPerKind[k], kKinds[k]);
+        in.positions = model->positions;
+        in.triangles = model->triangles;
         in.kinds = meshKinds;
         appendTriangleMesh(mesh, in);
       }

@@ -30,10 +30,9 @@ static_assert(sizeof(BuildingVertex) == 20);
 enum VertexKind : std::uint8_t { kWall = 0, kRoof = 1, kGround = 2 };
 /// Bits OR-ed into BuildingVertex::kind for a LOD2 building's two representations, both in the
 /// batch: its model (drawn while LOD2 models are shown) and its LOD1 extrusion (drawn instead when
-/// they are not). The low bits stay the VertexKind. (The shader reads kind as a signed byte.)
+/// they are not). The low five bits stay the VertexKind. (The shader reads kind as a signed byte.)
 inline constexpr std::uint8_t kKindModel = 0x20;
 inline constexpr std::uint8_t kKindFallback = 0x40;
-inline constexpr std::uint8_t kKindMask = 0x1f;
 inline constexpr std::uint8_t kKindFromNormal = 255;  ///< TriangleMeshInput::kinds: decide by the normal
 
 struct MeshData {
