@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,7 @@ class FakeFetcher final : public Fetcher {
  public:
   std::map<std::string, std::vector<std::uint8_t>> files;
   std::map<std::string, int> statusOverride;  ///< url -> HTTP status to answer instead
+  std::set<std::string> held;                 ///< urls not answered (yet): a slow server
   std::vector<std::string> requested;
 
   RequestId fetch(const std::string& url, Done done, std::uint32_t) override {
@@ -39,6 +41,10 @@ class FakeFetcher final : public Fetcher {
     now.swap(queue_);
     for (Queued& q : now) {
       if (!q.done) continue;
+      if (held.count(q.url) != 0) {
+        queue_.push_back(std::move(q));
+        continue;
+      }
       FetchResponse r;
       const auto s = statusOverride.find(q.url);
       const auto f = files.find(q.url);

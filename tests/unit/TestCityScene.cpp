@@ -348,6 +348,43 @@ TEST_CASE("Picking finds the building under the cursor; hidden kinds and filters
   CHECK(passing < 64 + 1);
 }
 
+TEST_CASE("A building's results show while its full-detail tile's results are still on their way",
+          "[scene][city][select]") {
+  MiniCity city;
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  // Far away: only the coarse root and its results.
+  viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 5);
+  REQUIRE(viewer.settled());
+  const auto coarse = viewer.building("s1");
+  REQUIRE(coarse.has_value());
+  REQUIRE_FALSE(coarse->detailed);
+  REQUIRE(coarse->hasResponse);
+
+  // Selecting it brings in its leaf; the leaf's results are held back by a slow server.
+  for (int q = 0; q < 4; ++q) {
+    fetcher.held.insert("city/response/1-" + std::to_string(q % 2) + "-" + std::to_string(q / 2) + ".qvs");
+  }
+  REQUIRE(viewer.select("s1"));
+  for (int i = 0; i < 50 && !viewer.building("s1")->detailed; ++i) runFrames(viewer, 1);
+  const auto detailed = viewer.building("s1");
+  REQUIRE(detailed->detailed);
+  // Described from the leaf (full detail), with the results the root already has: not "no result".
+  CHECK(detailed->hasResponse);
+  CHECK(detailed->response.damage == coarse->response.damage);
+  CHECK(detailed->storeyPeakDrift == coarse->storeyPeakDrift);
+  fetcher.held.clear();
+  runFrames(viewer, 5);
+  CHECK(viewer.building("s1")->hasResponse);
+}
+
 TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with the LOD2 switch", "[scene][city][lod2]") {
   MiniCity city(true, true);
   FakeFetcher fetcher;
