@@ -144,7 +144,7 @@ TEST_CASE("Inputs without buildings, or with absurd coordinates, are refused", "
   }
 }
 
-TEST_CASE("Several inputs merge; an object read twice is one building", "[ingest][merge]") {
+TEST_CASE("Several inputs merge, an object read twice is one building", "[ingest][merge]") {
   const Ingested both = ingest({fixture("small.osm"), sharedData("osm/fixture-midtown-empire-state.osm")});
   REQUIRE(both.model.ok());
   // small.osm's coordinates are in Midtown too: its outline-less part w130 falls inside a real

@@ -231,7 +231,7 @@ TEST_CASE("city makes OSM buildings with building:parts LOD2 models (the Empire 
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("synth-city --detailed-towers makes LOD2 towers; bad values are usage errors", "[lod2][cli][synth]") {
+TEST_CASE("synth-city --detailed-towers makes LOD2 towers, bad values are usage errors", "[lod2][cli][synth]") {
   const std::string dir = "/tmp/qv-lod2-towers-" + std::to_string(getpid());
   const Run made = run("synth-city --buildings 400 --seed 9 --detailed-towers 6 --max-leaf-kib 64 --out '" + dir + "'");
   INFO(made.output);

@@ -66,7 +66,7 @@ TEST_CASE("lod2: Footprint overlap: intersection over the smaller footprint", "[
   CHECK(footprintOverlap(square(0, 0, 10), clockwise) == Approx(0.25));
 }
 
-TEST_CASE("lod2: Models replace buildings by id or by overlap; the rest are new", "[lod2][match]") {
+TEST_CASE("lod2: Models replace buildings by id or by overlap, the rest are new", "[lod2][match]") {
   const std::vector<ExistingBuilding> city = {
       existing("w1", 0, 0, 20, 30.0f, 8, ValueSource::Tagged),      // matched by overlap, model shorter
       existing("w2", 100, 0, 20, 12.0f, 3, ValueSource::Inferred),  // matched by overlap, model taller
@@ -118,7 +118,7 @@ TEST_CASE("lod2: Models replace buildings by id or by overlap; the rest are new"
   CHECK(models[6].id == "cj:f");
 }
 
-TEST_CASE("lod2: A tagged storey count survives a taller model; finished models are re-skinned", "[lod2][match]") {
+TEST_CASE("lod2: A tagged storey count survives a taller model, finished models are re-skinned", "[lod2][match]") {
   const std::vector<ExistingBuilding> city = {existing("w7", 0, 0, 20, 20.0f, 5, ValueSource::Tagged)};
   std::vector<Lod2Model> models{boxModel("cj:t", 0, 0, 20, 24.0)};
   REQUIRE(finishModel(models[0]).ok());

@@ -83,7 +83,7 @@ TEST_CASE("lod2: The Empire State Building from its OSM parts: setbacks, 443.2 m
   CHECK(model->farMesh.triangleCount() < model->skinned.mesh.triangleCount() / 100);
 }
 
-TEST_CASE("lod2: A part standing on another gets a bottom face; a building without parts fails", "[lod2][osm]") {
+TEST_CASE("lod2: A part standing on another gets a bottom face, a building without parts fails", "[lod2][osm]") {
   Building building;
   building.attributes.id = "w1";
   building.attributes.heightM = 20.0f;

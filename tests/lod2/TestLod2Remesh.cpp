@@ -82,7 +82,7 @@ TEST_CASE("lod2: boneWeightAt: linear between floors, exact at floors, clamped a
   CHECK(boneWeightAt(5.0, floors).weight == 0.0f);  // exactly, not nearly
 }
 
-TEST_CASE("lod2: A synthetic tower: cut at every floor, split, skinned; area and volume kept", "[lod2][remesh]") {
+TEST_CASE("lod2: A synthetic tower: cut at every floor, split, skinned, area and volume kept", "[lod2][remesh]") {
   const Lod2Mesh tower = syntheticTower();
   const double area = surfaceAreaM2(tower);
   const double volume = enclosedVolumeM3(tower);

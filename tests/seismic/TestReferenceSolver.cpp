@@ -182,7 +182,7 @@ TEST_CASE("Delay and scale shift and scale the linear response", "[seismic][refe
   CHECK(shifted->peakRoofDisplacementM == Approx(2.0 * base->peakRoofDisplacementM));
 }
 
-TEST_CASE("Automatic sub-steps follow the periods; the oracle is not sub-stepped", "[seismic][reference]") {
+TEST_CASE("Automatic sub-steps follow the periods, the oracle is not sub-stepped", "[seismic][reference]") {
   CHECK(automaticSubsteps(0.02, 2.0, 0.6852) == 1);
   CHECK(automaticSubsteps(0.01, 0.111, 0.0) == 2);  // one storey, T = 0.111 s: h <= 5.6 ms
   CHECK(automaticSubsteps(0.02, 0.3, 0.1) == 2);    // h <= min(15 ms, 10 ms)
@@ -195,7 +195,7 @@ TEST_CASE("Automatic sub-steps follow the periods; the oracle is not sub-stepped
   CHECK(fine->peakRoofDisplacementM == Approx(0.17395).epsilon(0.003));  // exact: 17.395 cm
 }
 
-TEST_CASE("Free vibration after the record decays; residual drift after yielding", "[seismic][reference]") {
+TEST_CASE("Free vibration after the record decays, residual drift after yielding", "[seismic][reference]") {
   ReferenceOptions o;
   o.freeVibrationSeconds = 30.0;
   const auto linear = solveReference(chopraFrame(), elCentro(), o);

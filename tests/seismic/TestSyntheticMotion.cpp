@@ -26,7 +26,7 @@ std::uint64_t fingerprint(const GroundMotion& m) {
 
 }  // namespace
 
-TEST_CASE("Synthetic motion is deterministic: same seed, same samples; other seed, other samples",
+TEST_CASE("Synthetic motion is deterministic: same seed, same samples, other seed, other samples",
           "[seismic][synthetic]") {
   SyntheticMotionParameters p;
   p.seed = 42;
@@ -66,7 +66,7 @@ TEST_CASE("Synthetic motion hits the target PGA, starts at rest and ends with ze
   CHECK(std::fabs(velocity) < 1e-9);
 }
 
-TEST_CASE("Synthetic pairs use different streams; parameters are validated", "[seismic][synthetic]") {
+TEST_CASE("Synthetic pairs use different streams, parameters are validated", "[seismic][synthetic]") {
   SyntheticMotionParameters p;
   p.seed = 9;
   const auto pair = generateSyntheticPair(p);

@@ -291,7 +291,7 @@ TEST_CASE("A manifest that cannot be loaded is an error, not a hang", "[scene][c
   CHECK(other.errors()[0].find("not valid JSON") != std::string::npos);
 }
 
-TEST_CASE("Picking finds the building under the cursor; hidden kinds and filters show in the GPU flags",
+TEST_CASE("Picking finds the building under the cursor, hidden kinds and filters show in the GPU flags",
           "[scene][city][pick]") {
   MiniCity city;
   FakeFetcher fetcher;

@@ -21,7 +21,7 @@ TEST_CASE("The looked-at point projects to the viewport centre", "[geometry][cam
   CHECK(glm::length(view.eye() - glm::vec3(120.0f, -40.0f, 0.0f)) == Approx(800.0f).epsilon(1e-4));
 }
 
-TEST_CASE("Heading 0 looks north, 90 looks east; pitch 90 looks straight down", "[geometry][camera]") {
+TEST_CASE("Heading 0 looks north, 90 looks east, pitch 90 looks straight down", "[geometry][camera]") {
   CameraState s{0.0, 0.0, 100.0, 0.0, 0.0, 45.0};
   CHECK(CameraView(s, 100, 100).forward().y == Approx(1.0f));
   s.headingDeg = 90.0;
