@@ -69,7 +69,8 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
    ! "$prep" city --input ../shared/data/osm/fixture-midtown-empire-state.osm --out "$e2e_data/midtown" >/dev/null ||
    ! "$prep" response --city "$e2e_data/midtown" --synthetic 7 --epicentre -73.99,40.74,8 --magnitude 6.6 >/dev/null ||
    ! "$prep" info "$e2e_data/midtown" --building w34633854 --json >"$e2e_data/midtown-esb.json" ||
-   ! "$prep" synth-city --buildings 50000 --seed 5 --max-leaf-buildings 500 --out "$e2e_data/large" >/dev/null ||
+   ! "$prep" synth-city --buildings 50000 --seed 5 --max-leaf-buildings 500 --max-coarse-buildings 5000 \
+       --out "$e2e_data/large" >/dev/null ||
    ! "$prep" synth-city --buildings 1500 --seed 11 --out "$e2e_data/lod2" >/dev/null ||
    ! "$prep" lod2 --city "$e2e_data/lod2" --input ../shared/data/cityjson/DH_01_subs.city.json \
        --place -74.0,40.71 >/dev/null ||

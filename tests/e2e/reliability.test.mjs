@@ -125,6 +125,19 @@ test('a small memory budget: flying over a city several times larger keeps the h
     const engineBaselineMb = 16;
     assert.ok(Math.max(...mb) < budgetMb + engineBaselineMb, `heap peaked at ${Math.max(...mb).toFixed(1)} MB`);
     assert.equal(visibleOk, heap.length, 'every stop of the flight shows buildings');
+    // The coarse tiles hold only the city's largest buildings (--max-coarse-buildings); the search
+    // index still lists every one, and selecting one from far away brings in its leaf.
+    assert.ok(manifest.root.buildings < manifest.buildings, `a bounded root: ${manifest.root.buildings}`);
+    await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 60000, polling: 250 });
+    const all = await page.evaluate(() => window.quakeview.filteredList(0));
+    assert.equal(all.total, manifest.buildings);
+    assert.ok(await page.evaluate(() => window.quakeview.setCamera({ distance: 20000, pitchDeg: 60 })));
+    const far = await page.evaluate(() => window.quakeview.search('s49999', 1));
+    assert.equal(far.length, 1);
+    assert.ok(await page.evaluate(() => window.quakeview.select('s49999')));
+    await page.waitForFunction(() => window.quakeview.building('s49999') !== null, null, { timeout: 60000, polling: 250 });
+    const b = await page.evaluate(() => window.quakeview.building('s49999'));
+    assert.ok(Math.hypot(b.x - far[0].x, b.y - far[0].y) < 1, 'the index places it where its tile does');
     const errors = await page.evaluate(() => window.quakeview.errors());
     assert.deepEqual(errors, []);
     assert.deepEqual(problems, []);

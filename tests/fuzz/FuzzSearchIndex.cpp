@@ -1,5 +1,6 @@
 // fuzz_search_index: arbitrary bytes into decodeSearchIndex, as fetched and with the size and
 // checksum fields made right. An index that decodes must encode back to the same bytes.
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -20,6 +21,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const SearchEntry& e : *entries) {
     (void)matchesQuery(e.name, e.address);
     (void)matchesQuery(e.address, e.id);
+    fuzz::check(std::isfinite(e.x) && std::isfinite(e.y) && e.heightM >= 0.0f && (e.lod == 1 || e.lod == 2),
+                "a decoded entry has a value outside the documented ranges");
   }
   // LEB128 lengths have more than one spelling, so only the re-encoded bytes are canonical.
   const std::vector<std::uint8_t> encoded = encodeSearchIndex(*entries);

@@ -1,6 +1,6 @@
 // A small city built in memory with the real codecs (a coarse root over four leaves, with
-// response summaries and histories), served by a fake fetcher: scene tests run natively and in
-// WASM without files or a server.
+// response summaries and histories, the search index and the response summary in its order),
+// served by a fake fetcher: scene tests run natively and in WASM without files or a server.
 #pragma once
 
 #include <cmath>
@@ -12,6 +12,7 @@
 #include "qv/core/Crc32.h"
 #include "qv/format/CityTile.h"
 #include "qv/format/ResponseTile.h"
+#include "qv/format/SearchIndex.h"
 #include "qv/format/Tileset.h"
 #include "qv/scene/Fetcher.h"
 
@@ -94,7 +95,10 @@ struct MiniCity {
   static constexpr float kSpireTopM = 40.0f;
   static constexpr const char* kLod2Id = "s1";
 
-  explicit MiniCity(bool withResponse = true, bool withLod2 = false) : withLod2_(withLod2) {
+  /// `rootLimit`: how many buildings the coarse root draws (the first ones of the first leaves), as
+  /// a large city's coarse tiles hold only some of theirs.
+  explicit MiniCity(bool withResponse = true, bool withLod2 = false, std::size_t rootLimit = kSide * kSide)
+      : withLod2_(withLod2) {
     const std::string prefix = "city/";
     tileset.generator = "test";
     tileset.originLon = -74.0;
@@ -118,13 +122,47 @@ struct MiniCity {
     }
     std::vector<std::pair<int, int>> all;
     for (const auto& q : quadrants) all.insert(all.end(), q.begin(), q.end());
-    tileset.nodes.push_back(makeNode(0, 0, 0, all, true, withResponse, prefix));
+    const std::vector<std::pair<int, int>> inRoot(
+        all.begin(), all.begin() + static_cast<std::ptrdiff_t>(std::min(rootLimit, all.size())));
+    tileset.nodes.push_back(makeNode(0, 0, 0, inRoot, true, withResponse, prefix));
     for (int q = 0; q < 4; ++q) {
       tileset.nodes.push_back(makeNode(1, static_cast<std::uint32_t>(q % 2), static_cast<std::uint32_t>(q / 2),
                                        quadrants[static_cast<std::size_t>(q)], false, withResponse, prefix));
       tileset.nodes[0].children.push_back(static_cast<std::uint32_t>(q + 1));
     }
+    tileset.nodes[0].subtreeBuildings = all.size();
+    for (std::size_t q = 1; q < 5; ++q) tileset.nodes[0].bounds.expand(tileset.nodes[q].bounds);
     tileset.bounds = tileset.nodes[0].bounds;
+    // The city-wide index, leaf by leaf, and the response summary in its order.
+    std::vector<SearchEntry> index;
+    ResponseSummaryTile summary;
+    for (std::uint32_t q = 0; q < 4; ++q) {
+      for (const auto& [i, j] : quadrants[q]) {
+        SearchEntry e;
+        e.id = idOf(i, j);
+        e.name = "Building " + std::to_string(i) + "-" + std::to_string(j);
+        e.use = "office";
+        e.x = static_cast<float>(centreX(i));
+        e.y = static_cast<float>(centreY(j));
+        e.heightM = kStoreys * kStoreyHeight;
+        e.storeys = kStoreys;
+        e.lod = withLod2_ && i == 0 && j == 0 ? 2 : 1;
+        e.leaf = q + 1;
+        index.push_back(e);
+        BuildingResponse r = responseOf(i, j);
+        r.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
+        for (int k = 0; k < kStoreys; ++k) summary.storeyPeakDrift.push_back(storeyDrift(r, k));
+        summary.buildings.push_back(r);
+      }
+    }
+    const auto indexBytes = encodeSearchIndex(index);
+    tileset.search = CityFile{"search.qvi", indexBytes.size(), crc32(indexBytes)};
+    files[prefix + "search.qvi"] = indexBytes;
+    if (withResponse) {
+      const auto summaryBytes = encodeResponseSummary(summary);
+      tileset.response->summaryIndex = CityFile{"response/index.qvs", summaryBytes.size(), crc32(summaryBytes)};
+      files[prefix + "response/index.qvs"] = summaryBytes;
+    }
     const std::string json = tilesetToJson(tileset);
     files[prefix + "tileset.json"] = std::vector<std::uint8_t>(json.begin(), json.end());
   }
@@ -134,6 +172,19 @@ struct MiniCity {
   }
 
   static double centreX(int i) { return (i - kSide / 2 + 0.5) * 40.0; }
+  static std::string idOf(int i, int j) { return "s" + std::to_string(i * kSide + j + 1); }
+  static BuildingResponse responseOf(int i, int j) {
+    BuildingResponse r;
+    r.source = ResponseSource::Model;
+    r.storeys = kStoreys;
+    r.damage = static_cast<DamageState>((i + j) % 5);
+    r.peakRoofDisplacementM = static_cast<float>(amplitude(i, j));
+    r.peakDriftRatio = static_cast<float>(amplitude(i, j) / (kStoreys * kStoreyHeight));
+    return r;
+  }
+  static float storeyDrift(const BuildingResponse& r, int storey) {
+    return r.peakDriftRatio * (1.0f + 0.1f * static_cast<float>(storey));
+  }
   static double centreY(int j) { return (j - kSide / 2 + 0.5) * 40.0; }
 
  private:
@@ -167,7 +218,7 @@ struct MiniCity {
       tile.parts.push_back(part);
       TileBuilding b;
       b.partCount = 1;
-      b.attributes.id = "s" + std::to_string(i * kSide + j + 1);
+      b.attributes.id = idOf(i, j);
       b.attributes.use = "office";
       b.attributes.heightM = part.heightM;
       b.attributes.storeys = kStoreys;
@@ -202,15 +253,9 @@ struct MiniCity {
       }
       tile.buildings.push_back(b);
 
-      BuildingResponse r;
-      r.source = ResponseSource::Model;
-      r.storeys = kStoreys;
-      r.damage = static_cast<DamageState>((i + j) % 5);
-      r.peakRoofDisplacementM = static_cast<float>(amplitude(i, j));
-      r.peakDriftRatio = static_cast<float>(amplitude(i, j) / (kStoreys * kStoreyHeight));
+      BuildingResponse r = responseOf(i, j);
       r.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
-      for (int s = 0; s < kStoreys; ++s)
-        summary.storeyPeakDrift.push_back(r.peakDriftRatio * (1.0f + 0.1f * static_cast<float>(s)));
+      for (int s = 0; s < kStoreys; ++s) summary.storeyPeakDrift.push_back(storeyDrift(r, s));
       summary.buildings.push_back(r);
 
       BuildingHistory h;

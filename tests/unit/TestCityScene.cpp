@@ -482,3 +482,66 @@ TEST_CASE("Hostile city addresses are refused before any request, with a message
   CHECK(viewer.errors()[0].find("only http:// and https://") != std::string::npos);
   CHECK(viewer.errors()[0].find("javascript:") != std::string::npos);
 }
+
+TEST_CASE("A root that holds only some buildings: lists, search and selection come from the city index",
+          "[scene][city][index]") {
+  MiniCity city(true, false, 16);  // the root draws 16 of the 64 buildings
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  // Far away: only the root is drawn.
+  viewer.setCamera(CameraState{0.0, 0.0, 200000.0, 0.0, 70.0, 45.0});
+  std::size_t total = 0;
+  CHECK(viewer.city()->filteredList(1000, &total).empty());  // the index is not there yet
+  for (int i = 0; i < 40 && !viewer.city()->searchIndexSettled(); ++i) runFrames(viewer, 1);
+  REQUIRE(viewer.city()->searchIndexLoaded());
+  REQUIRE(viewer.city()->tileCounts().loaded == 1);
+  CHECK(viewer.city()->tileCounts().pending == 0);
+
+  // The whole city is listed, with the response's damage, worst first.
+  const auto list = viewer.city()->filteredList(1000, &total);
+  CHECK(total == 64);
+  REQUIRE(list.size() == 64);
+  CHECK(list.front().damage == DamageState::Complete);
+  const std::string farId = MiniCity::idOf(7, 7);  // in the last leaf, not in the root
+  const auto it = std::find_if(list.begin(), list.end(), [&](const BuildingListEntry& e) { return e.id == farId; });
+  REQUIRE(it != list.end());
+  CHECK(it->damage == MiniCity::responseOf(7, 7).damage);
+  CHECK(it->x == Approx(MiniCity::centreX(7)));
+  CHECK(it->y == Approx(MiniCity::centreY(7)));
+  CHECK_FALSE(viewer.building(farId).has_value());  // no loaded tile holds it
+
+  // Filters apply to every building, not only those drawn.
+  BuildingFilters filters;
+  filters.minDamage = static_cast<int>(DamageState::Extensive);
+  viewer.city()->setFilters(filters);
+  (void)viewer.city()->filteredList(1000, &total);
+  std::size_t expected = 0;
+  for (int i = 0; i < MiniCity::kSide; ++i) {
+    for (int j = 0; j < MiniCity::kSide; ++j) expected += (i + j) % 5 >= 3 ? 1u : 0u;
+  }
+  CHECK(total == expected);
+  viewer.city()->setFilters(BuildingFilters{});
+
+  // Search by name finds it; selecting it loads its leaf, wherever the camera is.
+  const auto hits = viewer.city()->search("Building 7-7", 10);
+  REQUIRE(hits.size() == 1);
+  CHECK(hits[0].id == farId);
+  REQUIRE(viewer.select(farId));
+  CHECK(viewer.selection() == farId);
+  CHECK(viewer.flyToSelection());
+  for (int i = 0; i < 40 && !viewer.building(farId); ++i) runFrames(viewer, 1);
+  const auto info = viewer.building(farId);
+  REQUIRE(info.has_value());
+  CHECK(info->detailed);
+  CHECK(info->hasResponse);
+  CHECK(info->attributes.centroidX == Approx(MiniCity::centreX(7)));
+  // An id the city does not have is refused and changes nothing.
+  CHECK_FALSE(viewer.select("s999"));
+  CHECK(viewer.selection() == farId);
+}

@@ -349,12 +349,16 @@ void App::frame() {
       viewer_->setTime(*pendingTime_);
       pendingTime_.reset();
     }
+    // A building in no loaded tile is found through the search index, which the scene requests
+    // once the view has settled: an unknown id is reported only when the index is there (or failed).
     if (!pendingSelect_.empty()) {
-      if (!viewer_->select(pendingSelect_)) {
+      if (viewer_->select(pendingSelect_)) {
+        pendingSelect_.clear();
+      } else if (viewer_->city() == nullptr || viewer_->city()->searchIndexSettled()) {
         viewer_->reportError("The building '" + pendingSelect_ +
                              "' in the link is not in this city; nothing is selected.");
+        pendingSelect_.clear();
       }
-      pendingSelect_.clear();
     }
   }
 

@@ -220,7 +220,8 @@ EMSCRIPTEN_KEEPALIVE const char* qv_export(const char* format) {
 }
 
 EMSCRIPTEN_KEEPALIVE int qv_search_ready() {
-  return gApp != nullptr && gApp->viewer().city() != nullptr && gApp->viewer().city()->searchIndexLoaded() ? 1 : 0;
+  qv::CityScene* city = gApp != nullptr ? gApp->viewer().city() : nullptr;
+  return city != nullptr && city->searchIndexLoaded() && city->searchIndexSettled() ? 1 : 0;
 }
 
 }  // extern "C"

@@ -1,6 +1,7 @@
 #include "qv/format/SearchIndex.h"
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 
@@ -11,10 +12,12 @@ namespace qv {
 namespace {
 constexpr std::size_t kHeaderSize = 20;
 constexpr std::uint32_t kMaxEntries = 10u << 20;
+constexpr std::size_t kMinEntryBytes = 4 + 20;  // four empty strings and the fixed fields
 }  // namespace
 
 // Layout: "QVSI", version u16, flags u16, file size u32, CRC-32 of [16, end) u32, entry count
-// u32; then per entry three LEB128-length UTF-8 strings (id, name, address).
+// u32; then per entry four LEB128-length UTF-8 strings (id, name, address, use) and x, y,
+// height (f32), storeys (u16), importance (u8), lod (u8), leaf (u32).
 std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries) {
   ByteWriter w;
   w.fourcc("QVSI");
@@ -27,6 +30,14 @@ std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries
     w.string(e.id);
     w.string(e.name);
     w.string(e.address);
+    w.string(e.use);
+    w.f32(e.x);
+    w.f32(e.y);
+    w.f32(e.heightM);
+    w.u16(e.storeys);
+    w.u8(static_cast<std::uint8_t>(e.importance));
+    w.u8(e.lod);
+    w.u32(e.leaf);
   }
   w.patchU32(8, static_cast<std::uint32_t>(w.size()));
   w.patchU32(12, crc32(std::span(w.data()).subspan(16)));
@@ -57,17 +68,40 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
     std::snprintf(buffer, sizeof buffer, "checksum mismatch: stored %08x, computed %08x (corrupt file)", stored, crc);
     return Error{prefix + buffer};
   }
-  // Each entry needs at least three bytes (three empty strings).
-  if (count > kMaxEntries || count > (bytes.size() - kHeaderSize) / 3) {
+  if (count > kMaxEntries || count > (bytes.size() - kHeaderSize) / kMinEntryBytes) {
     return Error{prefix + "header at byte 16: " + std::to_string(count) + " entries cannot fit in " +
                  std::to_string(bytes.size()) + " bytes"};
   }
   std::vector<SearchEntry> entries(count);
   ByteReader r(bytes.subspan(kHeaderSize), kHeaderSize);
-  for (SearchEntry& e : entries) {
+  for (std::uint32_t i = 0; i < count && r.ok(); ++i) {
+    SearchEntry& e = entries[i];
+    const std::size_t at = r.offset();
     e.id = r.string("id", 256);
     e.name = r.string("name", 1024);
     e.address = r.string("address", 1024);
+    e.use = r.string("use", 64);
+    e.x = r.f32("x");
+    e.y = r.f32("y");
+    e.heightM = r.f32("height");
+    e.storeys = r.u16("storeys");
+    const std::uint8_t importance = r.u8("importance");
+    e.lod = r.u8("lod");
+    e.leaf = r.u32("leaf");
+    if (!r.ok()) break;
+    const char* bad = nullptr;
+    if (!std::isfinite(e.x) || !std::isfinite(e.y) || std::abs(e.x) > 1e7f || std::abs(e.y) > 1e7f)
+      bad = "position is not finite or beyond 1e7 m";
+    else if (!(e.heightM >= 0.0f && e.heightM <= 1e4f))
+      bad = "height is not in [0, 10000] m";
+    else if (importance > static_cast<std::uint8_t>(Importance::Critical))
+      bad = "unknown importance";
+    else if (e.lod != 1 && e.lod != 2)
+      bad = "lod is neither 1 nor 2";
+    if (bad != nullptr) {
+      return Error{prefix + "entry " + std::to_string(i) + " at byte " + std::to_string(at) + ": " + bad};
+    }
+    e.importance = static_cast<Importance>(importance);
   }
   if (!r.ok()) return Error{prefix + "entries: " + r.error()};
   return entries;

@@ -25,6 +25,12 @@ void writeRect(JsonWriter& w, const Rect& r) {
   w.beginArray().value(r.minX).value(r.minY).value(r.maxX).value(r.maxY).endArray();
 }
 
+void writeCityFile(JsonWriter& w, const char* key, const CityFile& f) {
+  w.key(key).beginObject();
+  w.field("file", f.file).field("bytes", f.bytes).field("crc32", hex32(f.crc32));
+  w.endObject();
+}
+
 void writeNode(JsonWriter& w, const Tileset& t, std::uint32_t index, int depth) {
   const TileNode& n = t.nodes[index];
   w.beginObject();
@@ -135,6 +141,11 @@ struct Parser {
     return true;
   }
 
+  bool cityFile(const object& o, CityFile& f, const std::string& where) {
+    return text(o, "file", f.file, where) && fileSize(o, "bytes", f.bytes, where) && hex(o, "crc32", f.crc32, where) &&
+           relativePath(f.file, where);
+  }
+
   bool node(const element& e, Tileset& t, int depth, const std::string& where) {
     if (depth > 40) return fail(where + ": tile tree deeper than 40 levels");
     if (t.nodes.size() >= 1000000) return fail("more than a million tiles");
@@ -242,13 +253,10 @@ std::string tilesetToJson(const Tileset& t) {
       for (float v : r.motionPreviewG) w.value(v);
       w.endArray();
     }
+    if (r.summaryIndex) writeCityFile(w, "summaryIndex", *r.summaryIndex);
     w.endObject();
   }
-  if (t.search) {
-    w.key("search").beginObject();
-    w.field("file", t.search->file).field("bytes", t.search->bytes).field("crc32", hex32(t.search->crc32));
-    w.endObject();
-  }
+  if (t.search) writeCityFile(w, "search", *t.search);
   if (!t.nodes.empty()) {
     w.key("root");
     writeNode(w, t, 0, 0);
@@ -351,15 +359,18 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
         r.motionPreviewG.push_back(static_cast<float>(v));
       }
     }
+    object summaryIndex;
+    if (response["summaryIndex"].get(summaryIndex) == simdjson::SUCCESS) {
+      CityFile f;
+      if (!p.cityFile(summaryIndex, f, "response summaryIndex")) return Error{p.error};
+      r.summaryIndex = f;
+    }
     t.response = r;
   }
   object search;
   if (root["search"].get(search) == simdjson::SUCCESS) {
     CityFile f;
-    if (!p.text(search, "file", f.file, "search") || !p.fileSize(search, "bytes", f.bytes, "search") ||
-        !p.hex(search, "crc32", f.crc32, "search") || !p.relativePath(f.file, "search")) {
-      return Error{p.error};
-    }
+    if (!p.cityFile(search, f, "search")) return Error{p.error};
     t.search = f;
   }
   element rootTile;

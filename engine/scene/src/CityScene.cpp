@@ -191,6 +191,8 @@ TileCounts CityScene::tileCounts() const {
     if (tiles_[i]->summaryState == TileState::Loading) ++c.pending;
     if (tiles_[i]->historyState == TileState::Loading) ++c.pending;
   }
+  if (searchState_ == TileState::Loading) ++c.pending;
+  if (citySummaryState_ == TileState::Loading) ++c.pending;
   // Tiles the view wants but has not requested yet (the request limit) are pending as well.
   for (std::uint32_t i : selection_.wanted) {
     if (states_[i] == TileState::Unloaded) ++c.pending;
@@ -199,7 +201,7 @@ TileCounts CityScene::tileCounts() const {
 }
 
 std::uint64_t CityScene::memoryBytes() const {
-  std::uint64_t total = 0;
+  std::uint64_t total = searchBytes_;
   for (const auto& t : tiles_) {
     if (t->loaded) total += t->loaded->cpuBytes + t->loaded->gpuBytes;
     total += t->bytes.size() + t->historyBytes;
@@ -1022,9 +1024,9 @@ void setFlag(BuildingGpuRecord& row, unsigned bit, bool on) {
 
 }  // namespace
 
-bool BuildingFilters::passes(const BuildingAttributes& a, const BuildingResponse* r) const {
-  if (criticalOnly && a.importance != Importance::Critical) return false;
-  if (!use.empty() && a.use != use) return false;
+bool BuildingFilters::passes(Importance importance, std::string_view buildingUse, const BuildingResponse* r) const {
+  if (criticalOnly && importance != Importance::Critical) return false;
+  if (!use.empty() && buildingUse != use) return false;
   if (minDamage >= 0) {
     if (r == nullptr || r->damage == DamageState::NoResult) return false;
     if (static_cast<int>(r->damage) < minDamage) return false;
@@ -1127,16 +1129,31 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
   return info;
 }
 
-void CityScene::select(const std::string& id) {
-  if (id == selected_) return;
+const SearchEntry* CityScene::indexEntry(std::string_view id) const {
+  if (searchState_ != TileState::Loaded) return nullptr;
+  for (const SearchEntry& e : searchIndex_) {
+    if (e.id == id) return &e;
+  }
+  return nullptr;
+}
+
+bool CityScene::select(const std::string& id) {
+  if (id == selected_) return true;
+  const auto ref = id.empty() || !tileset_ ? std::nullopt : find(id);
+  const SearchEntry* entry = id.empty() || ref ? nullptr : indexEntry(id);
+  if (!id.empty() && !ref && entry == nullptr) return false;
   selected_ = id;
   series_.reset();
   seriesFor_.clear();
   detailWanted_.clear();
   applyFlagsEverywhere();
-  if (id.empty() || !tileset_) return;
-  // Its leaf (full attributes and history): the leaves whose bounds hold its centroid.
-  if (const auto ref = find(id); ref && tiles_[ref->node]->loaded->data.coarse) {
+  if (id.empty() || !tileset_) return true;
+  if (entry != nullptr) {
+    // In no loaded tile (a large city's coarse tiles hold only its largest buildings): its leaf,
+    // from the index.
+    detailWanted_.push_back(entry->leaf);
+  } else if (tiles_[ref->node]->loaded->data.coarse) {
+    // Its leaf (full attributes and history): the leaves whose bounds hold its centroid.
     const auto info = this->info(*ref);
     for (std::uint32_t i = 0; i < tileset_->nodes.size(); ++i) {
       const TileNode& n = tileset_->nodes[i];
@@ -1146,6 +1163,7 @@ void CityScene::select(const std::string& id) {
       }
     }
   }
+  return true;
 }
 
 std::optional<BuildingSeries> CityScene::selectionSeries(std::size_t samples) {
@@ -1238,62 +1256,118 @@ void CityScene::requestSearchIndex() {
       url,
       [this, url](FetchResponse r) {
         --inFlight_;
-        if (!r.ok() || r.bytes.size() != tileset_->search->bytes || crc32(r.bytes) != tileset_->search->crc32) {
+        auto fail = [&](const std::string& message) {
           searchState_ = TileState::Failed;
-          onError_("Search index " + url + " failed: " +
-                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                            : std::string("size or checksum differs from the manifest")));
-          return;
+          onError_(message);
+        };
+        if (!r.ok() || r.bytes.size() != tileset_->search->bytes || crc32(r.bytes) != tileset_->search->crc32) {
+          return fail("Search index " + url + " failed: " +
+                      (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
+                               : std::string("size or checksum differs from the manifest")));
         }
         auto decoded = decodeSearchIndex(r.bytes, url);
-        if (!decoded.ok()) {
-          searchState_ = TileState::Failed;
-          onError_(decoded.error());
-          return;
+        if (!decoded.ok()) return fail(decoded.error());
+        if (decoded->size() != tileset_->buildings) {
+          return fail(url + ": " + std::to_string(decoded->size()) + " entries, but the manifest says the city has " +
+                      std::to_string(tileset_->buildings) + " buildings");
+        }
+        for (std::size_t i = 0; i < decoded->size(); ++i) {
+          const std::uint32_t leaf = (*decoded)[i].leaf;
+          if (leaf >= tileset_->nodes.size() || !tileset_->nodes[leaf].children.empty()) {
+            return fail(url + ": entry " + std::to_string(i) + " names tile " + std::to_string(leaf) +
+                        ", which is not a leaf of this city");
+          }
         }
         searchIndex_ = std::move(decoded).value();
+        searchBytes_ = searchIndex_.size() * sizeof(SearchEntry);
+        for (const SearchEntry& e : searchIndex_) {
+          for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
+            if (text->size() >= sizeof(std::string)) searchBytes_ += text->size() + 1;
+          }
+        }
         searchState_ = TileState::Loaded;
+        requestCitySummary();
       },
       options_.requestTimeoutMs);
 }
 
-BuildingListEntry CityScene::listEntry(std::uint32_t index) const {
-  const TileRuntime& root = *tiles_[0];
-  const CityTile& d = root.loaded->data;
-  const BuildingAttributes& a = d.buildings[index].attributes;
-  BuildingListEntry e;
-  e.id = a.id;
-  e.use = a.use;
-  e.importance = a.importance;
-  e.heightM = a.heightM;
-  e.storeys = a.storeys;
-  e.x = a.centroidX + d.originX;
-  e.y = a.centroidY + d.originY;
-  if (searchState_ == TileState::Loaded && index < searchIndex_.size() && searchIndex_[index].id == a.id) {
-    e.name = searchIndex_[index].name;
-    e.address = searchIndex_[index].address;
+void CityScene::requestCitySummary() {
+  if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
+      citySummaryState_ != TileState::Unloaded) {
+    return;
   }
-  if (root.summary && index < root.summary->buildings.size()) {
-    const BuildingResponse& r = root.summary->buildings[index];
-    e.damage = r.damage;
-    e.peakDriftRatio = r.peakDriftRatio;
-    e.peakRoofDisplacementM = r.peakRoofDisplacementM;
-    e.pgaG = r.pgaG;
+  const CityFile file = *tileset_->response->summaryIndex;
+  citySummaryState_ = TileState::Loading;
+  ++inFlight_;
+  const std::string url = resolveUrl(manifestUrl_, file.file);
+  fetcher_.fetch(
+      url,
+      [this, url, file](FetchResponse r) {
+        --inFlight_;
+        auto fail = [&](const std::string& message) {
+          citySummaryState_ = TileState::Failed;
+          onError_(message);
+        };
+        if (!r.ok() || r.bytes.size() != file.bytes || crc32(r.bytes) != file.crc32) {
+          return fail("Response summary " + url + " failed: " +
+                      (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
+                               : std::string("size or checksum differs from the manifest")));
+        }
+        auto decoded = decodeResponseSummary(r.bytes, url);
+        if (!decoded.ok()) return fail(decoded.error());
+        if (decoded->buildings.size() != searchIndex_.size()) {
+          return fail(url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the search index has " +
+                      std::to_string(searchIndex_.size()));
+        }
+        citySummary_ = std::move(decoded).value();
+        searchBytes_ += citySummary_->buildings.size() * sizeof(BuildingResponse) +
+                        citySummary_->storeyPeakDrift.size() * sizeof(float);
+        citySummaryState_ = TileState::Loaded;
+      },
+      options_.requestTimeoutMs);
+}
+
+bool CityScene::searchIndexSettled() const {
+  if (!tileset_) return manifestFailed_;
+  if (!tileset_->search || searchState_ == TileState::Failed) return true;
+  if (searchState_ != TileState::Loaded) return false;
+  return citySummaryState_ != TileState::Loading;
+}
+
+const BuildingResponse* CityScene::cityResponse(std::uint32_t index) const {
+  return citySummary_ && index < citySummary_->buildings.size() ? &citySummary_->buildings[index] : nullptr;
+}
+
+BuildingListEntry CityScene::listEntry(std::uint32_t index) const {
+  const SearchEntry& s = searchIndex_[index];
+  BuildingListEntry e;
+  e.id = s.id;
+  e.name = s.name;
+  e.address = s.address;
+  e.use = s.use;
+  e.importance = s.importance;
+  e.heightM = s.heightM;
+  e.storeys = s.storeys;
+  e.x = s.x;
+  e.y = s.y;
+  if (const BuildingResponse* r = cityResponse(index)) {
+    e.damage = r->damage;
+    e.peakDriftRatio = r->peakDriftRatio;
+    e.peakRoofDisplacementM = r->peakRoofDisplacementM;
+    e.pgaG = r->pgaG;
   }
   return e;
 }
 
 std::vector<BuildingListEntry> CityScene::search(std::string_view query, std::size_t limit) {
   std::vector<BuildingListEntry> out;
-  if (tiles_.empty() || !tiles_[0]->loaded) return out;
   requestSearchIndex();
-  const CityTile& d = tiles_[0]->loaded->data;
-  for (std::uint32_t i = 0; i < d.buildings.size() && out.size() < limit; ++i) {
-    bool match = matchesQuery(d.buildings[i].attributes.id, query);
-    if (!match && searchState_ == TileState::Loaded && i < searchIndex_.size()) {
-      match = matchesQuery(searchIndex_[i].name, query) || matchesQuery(searchIndex_[i].address, query);
+  if (searchState_ != TileState::Loaded) return out;
+  for (std::uint32_t i = 0; i < searchIndex_.size() && out.size() < limit; ++i) {
+    const SearchEntry& e = searchIndex_[i];
+    if (matchesQuery(e.id, query) || matchesQuery(e.name, query) || matchesQuery(e.address, query)) {
+      out.push_back(listEntry(i));
     }
-    if (match) out.push_back(listEntry(i));
   }
   return out;
 }
@@ -1301,20 +1375,17 @@ std::vector<BuildingListEntry> CityScene::search(std::string_view query, std::si
 std::vector<BuildingListEntry> CityScene::filteredList(std::size_t limit, std::size_t* total) {
   std::vector<BuildingListEntry> out;
   if (total != nullptr) *total = 0;
-  if (tiles_.empty() || !tiles_[0]->loaded) return out;
   requestSearchIndex();
-  const TileRuntime& root = *tiles_[0];
-  const CityTile& d = root.loaded->data;
+  if (searchState_ != TileState::Loaded) return out;
   struct Key {
     int damage;
     float drift;
     std::uint32_t index;
   };
   std::vector<Key> keys;
-  for (std::uint32_t i = 0; i < d.buildings.size(); ++i) {
-    const BuildingResponse* r =
-        root.summary && i < root.summary->buildings.size() ? &root.summary->buildings[i] : nullptr;
-    if (!filters_.passes(d.buildings[i].attributes, r)) continue;
+  for (std::uint32_t i = 0; i < searchIndex_.size(); ++i) {
+    const BuildingResponse* r = cityResponse(i);
+    if (!filters_.passes(searchIndex_[i].importance, searchIndex_[i].use, r)) continue;
     const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
     keys.push_back({damage, r != nullptr ? r->peakDriftRatio : 0.0f, i});
   }

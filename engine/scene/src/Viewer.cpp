@@ -261,10 +261,7 @@ std::optional<BuildingInfo> Viewer::building(const std::string& id) const {
 }
 
 bool Viewer::select(const std::string& id) {
-  if (!city_) return false;
-  if (!id.empty() && !city_->find(id)) return false;
-  city_->select(id);
-  return true;
+  return city_ && city_->select(id);
 }
 
 const std::string& Viewer::selection() const {
@@ -284,7 +281,13 @@ void Viewer::flyTo(double x, double y, double distance) {
 
 bool Viewer::flyToSelection() {
   const auto info = building(selection());
-  if (!info) return false;
+  if (!info) {
+    // Not loaded yet (a large city's far view holds only its largest buildings): the index knows where.
+    const SearchEntry* e = city_ ? city_->indexEntry(selection()) : nullptr;
+    if (e == nullptr) return false;
+    flyTo(e->x, e->y, std::max(static_cast<double>(e->heightM) * 2.5, 150.0));
+    return true;
+  }
   const double size = std::max({static_cast<double>(info->attributes.heightM) * 2.5,
                                 std::sqrt(std::max(0.0f, info->attributes.footprintAreaM2)) * 6.0, 150.0});
   flyTo(info->attributes.centroidX, info->attributes.centroidY, size);

@@ -241,8 +241,10 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     w.inputText("Search (/)", search_, focus);
     if (!search_.empty()) {
       const auto hits = city->search(search_, 8);
-      if (!city->searchIndexLoaded()) w.text("(searching ids; names and addresses are loading)");
-      if (hits.empty()) w.text("No building matches.");
+      if (!city->searchIndexLoaded())
+        w.text(city->searchIndexSettled() ? "The search index could not be loaded." : "Loading the search index...");
+      else if (hits.empty())
+        w.text("No building matches.");
       for (const BuildingListEntry& hit : hits) {
         const std::string label = (hit.name.empty() ? hit.id : hit.name + " (" + hit.id + ")") +
                                   (hit.address.empty() ? "" : ", " + hit.address) + "##search" + hit.id;
@@ -267,6 +269,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     city->setFilters(f);
     std::size_t total = 0;
     const auto list = city->filteredList(12, &total);
+    if (!city->searchIndexLoaded() && !city->searchIndexSettled()) w.text("Loading the city's building list...");
     w.text(ui::format("Filtered: %zu of %llu buildings%s", total,
                       static_cast<unsigned long long>(tileset != nullptr ? tileset->buildings : 0),
                       f.active() ? " (the rest is dimmed)" : ""));

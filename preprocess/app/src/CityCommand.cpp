@@ -42,6 +42,7 @@ int runCity(const CommandArgs& argv) {
                                  {"origin"},
                                  {"max-leaf-buildings"},
                                  {"max-leaf-kib"},
+                                 {"max-coarse-buildings"},
                                  {"id-property"},
                                  {"name-property"},
                                  {"height-property"},

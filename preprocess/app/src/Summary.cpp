@@ -71,6 +71,14 @@ bool readLeafOptions(const Args& args, TilerOptions& tiler, std::string& error) 
     }
     tiler.maxLeafBytes = static_cast<std::size_t>(*v) * 1024;
   }
+  if (const auto coarse = args.value("max-coarse-buildings")) {
+    const auto v = parseInteger(*coarse);
+    if (!v || *v < 100 || *v > 10000000) {
+      error = "--max-coarse-buildings must be from 100 to 10000000";
+      return false;
+    }
+    tiler.maxCoarseBuildings = static_cast<std::size_t>(*v);
+  }
   return true;
 }
 

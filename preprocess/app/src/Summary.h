@@ -11,14 +11,16 @@
 
 namespace qv::prep {
 
-/// The lines of a command's usage text for the leaf-size options (--max-leaf-buildings,
-/// --max-leaf-kib), which the commands that tile a city take.
+/// The lines of a command's usage text for the tile-size options (--max-leaf-buildings,
+/// --max-leaf-kib, --max-coarse-buildings), which the commands that tile a city take.
 inline constexpr const char* kLeafOptionsUsage =
     "  --max-leaf-buildings N      buildings per leaf tile at most (default 1000)\n"
     "  --max-leaf-kib N            leaf tile size in KiB above which a leaf is split (default 150;\n"
-    "                              larger leaves hold more LOD2 models per draw call)\n";
+    "                              larger leaves hold more LOD2 models per draw call)\n"
+    "  --max-coarse-buildings N    buildings an inner (far-view) tile draws at most: the largest of\n"
+    "                              its subtree (default 100000)\n";
 
-/// Reads the leaf-size options into `tiler`; false with `error` set for a bad value.
+/// Reads the tile-size options into `tiler`; false with `error` set for a bad value.
 bool readLeafOptions(const Args& args, TilerOptions& tiler, std::string& error);
 
 /// "1.2 MB", "350 KB", "12 B".

@@ -35,6 +35,7 @@ int runSynthCity(const CommandArgs& argv) {
                                  {"out"},
                                  {"max-leaf-buildings"},
                                  {"max-leaf-kib"},
+                                 {"max-coarse-buildings"},
                                  {"detailed-towers"},
                                  {"help", false}},
                                 error);

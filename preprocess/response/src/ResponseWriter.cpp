@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "qv/core/Crc32.h"
+#include "qv/format/SearchIndex.h"
 #include "qv/prep/Files.h"
 
 namespace qv::prep {
@@ -141,6 +142,31 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
     files.summaryCrc32 = crc32(encoded);
     if (Status s = writeFileAtomic(cityDir_ + "/" + files.summaryFile, encoded); !s.ok()) return Error{s.error()};
     n.response = files;
+    report_.summaryBytes += encoded.size();
+  }
+  // The city-wide summary, in the search index's order (the viewer's list, filters and exports).
+  if (tileset_.search) {
+    const std::string path = cityDir_ + "/" + tileset_.search->file;
+    auto bytes = readFile(path);
+    if (!bytes.ok()) return Error{bytes.error()};
+    auto index = decodeSearchIndex(*bytes, path);
+    if (!index.ok()) return Error{index.error()};
+    ResponseSummaryTile summary;
+    summary.buildings.reserve(index->size());
+    for (const SearchEntry& e : *index) {
+      BuildingResponse s;
+      if (const auto it = byId_.find(e.id); it != byId_.end()) {
+        s = it->second.first;
+        s.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
+        summary.storeyPeakDrift.insert(summary.storeyPeakDrift.end(), it->second.second.begin(),
+                                       it->second.second.end());
+      }
+      summary.buildings.push_back(s);
+    }
+    const auto encoded = encodeResponseSummary(summary);
+    CityFile f{folder_ + "/index.qvs", encoded.size(), crc32(encoded)};
+    if (Status s = writeFileAtomic(cityDir_ + "/" + f.file, encoded); !s.ok()) return Error{s.error()};
+    info.summaryIndex = f;
     report_.summaryBytes += encoded.size();
   }
   info.buildingsRevision = tileset_.buildingsRevision;

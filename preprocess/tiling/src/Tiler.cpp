@@ -35,12 +35,15 @@ struct Node {
   std::uint32_t x = 0, y = 0;
   double cellMinX = 0, cellMinY = 0, cellSize = 0;
   std::vector<std::uint32_t> buildings;  // subtree members
+  std::vector<std::uint32_t> coarse;     // inner nodes: the members drawn in the coarse tile
+  double omittedErrorM = 0.0;            // inner nodes: the largest member left out of the coarse tile
   std::vector<std::size_t> children;     // indices into the node list
   bool leaf() const { return children.empty(); }
   // Results.
   std::string file;
   std::uint64_t bytes = 0;
   std::uint32_t crc = 0;
+  std::uint32_t tileBuildings = 0;  // buildings in the tile file
   float geometricError = 0.0f;
   Rect bounds;
   float maxHeight = 0.0f;
@@ -65,20 +68,59 @@ void parallelFor(std::size_t count, unsigned threads, const std::function<void(s
   for (std::thread& t : pool) t.join();
 }
 
-// Tile origin and quantization extent covering a set of buildings.
-void frame(const std::vector<BuildingInfo>& info, const std::vector<std::uint32_t>& members, CityTile& tile,
-           Rect& bounds) {
+// The footprints' bounds of a set of buildings (metres, city frame).
+struct Extent {
   double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;
+};
+Extent extentOf(const std::vector<BuildingInfo>& info, const std::vector<std::uint32_t>& members) {
+  Extent e;
   for (std::uint32_t b : members) {
-    minX = std::min(minX, info[b].minX);
-    minY = std::min(minY, info[b].minY);
-    maxX = std::max(maxX, info[b].maxX);
-    maxY = std::max(maxY, info[b].maxY);
+    e.minX = std::min(e.minX, info[b].minX);
+    e.minY = std::min(e.minY, info[b].minY);
+    e.maxX = std::max(e.maxX, info[b].maxX);
+    e.maxY = std::max(e.maxY, info[b].maxY);
   }
-  tile.originX = std::floor(minX);
-  tile.originY = std::floor(minY);
-  tile.extent = static_cast<float>(std::max(maxX - tile.originX, maxY - tile.originY) + 0.01);
-  bounds = Rect{static_cast<float>(minX), static_cast<float>(minY), static_cast<float>(maxX), static_cast<float>(maxY)};
+  return e;
+}
+
+Rect toRect(const Extent& e) {
+  return Rect{static_cast<float>(e.minX), static_cast<float>(e.minY), static_cast<float>(e.maxX),
+              static_cast<float>(e.maxY)};
+}
+
+// Tile origin and quantization extent covering a set of buildings.
+void frame(const Extent& e, CityTile& tile) {
+  tile.originX = std::floor(e.minX);
+  tile.originY = std::floor(e.minY);
+  tile.extent = static_cast<float>(std::max(e.maxX - tile.originX, e.maxY - tile.originY) + 0.01);
+}
+
+// An inner node's coarse tile holds at most `limit` buildings of its subtree: the largest (footprint
+// area times height; ties by index), in subtree order. The largest of those left out (its height
+// or footprint size, whichever is more) becomes part of the tile's geometric error, so the viewer
+// refines to the children before the gap would show.
+void chooseCoarse(const CityModel& model, const std::vector<float>& size, Node& node, std::size_t limit) {
+  node.omittedErrorM = 0.0;
+  if (node.buildings.size() <= limit) {
+    node.coarse = node.buildings;
+    return;
+  }
+  std::vector<std::uint32_t> order = node.buildings;
+  const auto larger = [&](std::uint32_t a, std::uint32_t b) { return size[a] != size[b] ? size[a] > size[b] : a < b; };
+  std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(limit), order.end(), larger);
+  for (auto it = order.begin() + static_cast<std::ptrdiff_t>(limit); it != order.end(); ++it) {
+    const BuildingAttributes& a = model.buildings[*it].attributes;
+    node.omittedErrorM = std::max({node.omittedErrorM, static_cast<double>(a.heightM),
+                                   std::sqrt(std::max(0.0, static_cast<double>(a.footprintAreaM2)))});
+  }
+  order.resize(limit);
+  std::sort(order.begin(), order.end());
+  node.coarse.clear();
+  node.coarse.reserve(limit);
+  // Subtree order (the quadrant order the split gave), kept for the tile's locality.
+  for (std::uint32_t b : node.buildings) {
+    if (std::binary_search(order.begin(), order.end(), b)) node.coarse.push_back(b);
+  }
 }
 
 void addAttributes(CityTile& tile, const Building& b, std::uint16_t partCount, bool coarse) {
@@ -139,7 +181,9 @@ void addMesh(CityTile& tile, const Building& b, bool coarse) {
 
 CityTile leafTile(const CityModel& model, const std::vector<BuildingInfo>& info, const Node& node, Rect& bounds) {
   CityTile tile;
-  frame(info, node.buildings, tile, bounds);
+  const Extent e = extentOf(info, node.buildings);
+  frame(e, tile);
+  bounds = toRect(e);
   for (std::uint32_t bi : node.buildings) {
     const Building& b = model.buildings[bi];
     std::uint16_t parts = 0;
@@ -176,13 +220,13 @@ CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& inf
                     float& geometricError) {
   CityTile tile;
   tile.coarse = true;
-  frame(info, node.buildings, tile, bounds);
+  bounds = toRect(extentOf(info, node.buildings));  // the subtree's, for the viewer's culling
+  frame(extentOf(info, node.coarse), tile);
   // Simplify to about 1/400 of the cell: at the distance where the tile is drawn, that is well
   // under a pixel of the screen-space error budget.
   const double tolerance = node.cellSize / 400.0;
   double worst = 0.0;
-  std::vector<std::uint32_t> fan;
-  for (std::uint32_t bi : node.buildings) {
+  for (std::uint32_t bi : node.coarse) {
     const Building& b = model.buildings[bi];
     // The largest part's outer ring stands for the building; the prism spans all parts' heights.
     std::size_t largest = 0;
@@ -223,7 +267,7 @@ CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& inf
     addAttributes(tile, b, 1, true);
     addMesh(tile, b, true);
   }
-  geometricError = static_cast<float>(std::min(worst, node.cellSize / 8.0));
+  geometricError = static_cast<float>(std::max(std::min(worst, node.cellSize / 8.0), node.omittedErrorM));
   return tile;
 }
 
@@ -347,10 +391,52 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
     }
   }
 
-  // 3. Build, encode and write every tile (in parallel).
+  // 3. What each inner node's coarse tile draws; the city-wide index, leaf by leaf.
+  {
+    std::vector<float> size(n, 0.0f);
+    for (std::uint32_t b : kept) {
+      const BuildingAttributes& a = model.buildings[b].attributes;
+      size[b] = std::max(a.footprintAreaM2, 1.0f) * std::max(a.heightM, 1.0f);
+    }
+    for (Node& node : nodes) {
+      if (!node.leaf()) chooseCoarse(model, size, node, std::max<std::size_t>(options.maxCoarseBuildings, 1));
+    }
+  }
+  // Leaves are numbered as readers of the manifest number tiles: depth first, children in order.
+  std::vector<std::size_t> preorder;
+  preorder.reserve(nodes.size());
+  for (std::vector<std::size_t> stack{0}; !stack.empty();) {
+    const std::size_t i = stack.back();
+    stack.pop_back();
+    preorder.push_back(i);
+    for (auto c = nodes[i].children.rbegin(); c != nodes[i].children.rend(); ++c) stack.push_back(*c);
+  }
+  std::vector<SearchEntry> search;
+  search.reserve(kept.size());
+  for (std::size_t k = 0; k < preorder.size(); ++k) {
+    const std::size_t i = preorder[k];
+    if (!nodes[i].leaf()) continue;
+    for (std::uint32_t b : nodes[i].buildings) {
+      const BuildingAttributes& a = model.buildings[b].attributes;
+      SearchEntry e;
+      e.id = a.id;
+      e.name = a.name;
+      e.address = a.address;
+      e.use = a.use;
+      e.x = static_cast<float>(info[b].cx);
+      e.y = static_cast<float>(info[b].cy);
+      e.heightM = a.heightM;
+      e.storeys = a.storeys;
+      e.importance = a.importance;
+      e.lod = a.lod;
+      e.leaf = static_cast<std::uint32_t>(k);
+      search.push_back(std::move(e));
+    }
+  }
+
+  // 4. Build, encode and write every tile (in parallel).
   std::mutex errorMutex;
   std::string firstError;
-  std::vector<SearchEntry> search;  // in the root tile's building order
   {
     Progress progress("writing tiles", nodes.size());
     std::atomic<std::size_t> done{0};
@@ -358,20 +444,11 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       Node& node = nodes[i];
       CityTile tile = node.leaf() ? leafTile(model, info, node, node.bounds)
                                   : coarseTile(model, info, node, node.bounds, node.geometricError);
-      if (i == 0) {
-        // The search index follows the root tile's order (the root holds every building).
-        std::unordered_map<std::string_view, std::uint32_t> byId;
-        for (std::uint32_t b : node.buildings) byId.emplace(model.buildings[b].attributes.id, b);
-        search.reserve(tile.buildings.size());
-        for (const TileBuilding& tb : tile.buildings) {
-          const BuildingAttributes& a = model.buildings[byId.at(tb.attributes.id)].attributes;
-          search.push_back(SearchEntry{a.id, a.name, a.address});
-        }
-      }
       const std::vector<std::uint8_t> bytes = encodeCityTile(tile);
       node.file = tileFileName(node.level, node.x, node.y);
       node.bytes = bytes.size();
       node.crc = crc32(bytes);
+      node.tileBuildings = static_cast<std::uint32_t>(tile.buildings.size());
       for (std::uint32_t b : node.buildings)
         node.maxHeight = std::max(node.maxHeight, model.buildings[b].attributes.heightM);
       if (const Status s = writeStagedFile(staging->path() + "/" + node.file, bytes); !s.ok()) {
@@ -384,7 +461,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   if (interrupted()) return Error{"interrupted; the previous output (if any) is unchanged"};
   if (!firstError.empty()) return Error{firstError};
 
-  // 4. The search index, then the manifest, last.
+  // 5. The search index, then the manifest, last.
   Tileset& t = report.tileset;
   {
     const std::vector<std::uint8_t> bytes = encodeSearchIndex(search);
@@ -398,6 +475,8 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   t.buildings = kept.size();
   t.buildingsRevision = options.buildingsRevision;
   t.response = options.response;
+  // An older response's city-wide summary follows the old index's order: not this one's.
+  if (t.response) t.response->summaryIndex.reset();
   t.sources = model.sources;
   t.bounds = nodes[0].bounds;
   t.maxHeightM = nodes[0].maxHeight;
@@ -412,7 +491,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
     tn.maxHeightM = node.maxHeight;
     tn.coarse = !node.leaf();
     tn.geometricErrorM = node.geometricError;
-    tn.buildings = static_cast<std::uint32_t>(node.buildings.size());
+    tn.buildings = node.tileBuildings;
     tn.subtreeBuildings = node.buildings.size();
     tn.file = node.file;
     tn.bytes = node.bytes;

@@ -1,6 +1,9 @@
-// The search index (search.qvi): every building's id, name and address, in the order of the root
-// tile's buildings (so the root tile gives positions and the root's response summary damage).
-// Lets the viewer find any building of the city by name, address or id without loading its leaf.
+// The search index (search.qvi): the city-wide building table. Every building of the city (the
+// coarse tiles hold only the most significant ones of large cities) with its id, name, address,
+// use, importance, position, height and storeys and the leaf tile that holds it, in "index
+// order" (leaf by leaf in manifest order, each leaf's buildings in its tile's order). Lets the
+// viewer search, list, filter and locate any building without loading its leaf; the response
+// step writes a summary in the same order (docs/formats.md "Response tiles").
 // Specification: docs/formats.md ("Search index").
 #pragma once
 
@@ -11,18 +14,31 @@
 #include <vector>
 
 #include "qv/core/Result.h"
+#include "qv/format/BuildingAttributes.h"
 
 namespace qv {
 
-inline constexpr std::uint16_t kSearchIndexVersion = 1;
+inline constexpr std::uint16_t kSearchIndexVersion = 2;
 
 struct SearchEntry {
   std::string id;
   std::string name;
   std::string address;
+  std::string use;                              ///< normalized use (BuildingAttributes::use)
+  float x = 0.0f, y = 0.0f;                     ///< centroid, metres in the city frame
+  float heightM = 0.0f;                         ///< top above ground
+  std::uint16_t storeys = 1;                    ///< BuildingAttributes::storeys
+  Importance importance = Importance::General;  ///< for the "critical only" filter
+  std::uint8_t lod = 1;                         ///< 1 extruded footprint, 2 detailed model
+  std::uint32_t leaf = 0;                       ///< index into Tileset::nodes of its leaf tile
+
+  bool operator==(const SearchEntry&) const = default;
 };
 
 std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries);
+/// Checks magic, version, size, CRC, counts and every value (finite positions within 1e7 m,
+/// heights within [0, 1e4] m, importance and lod known); errors name `name` and the byte offset.
+/// Leaf indices are checked against the manifest by the reader that has it.
 Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t> bytes, std::string_view name);
 
 /// Case-insensitive (ASCII) containment of every word of `query` in `text`.

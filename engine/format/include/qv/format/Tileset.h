@@ -45,6 +45,13 @@ struct TileNode {
   [[nodiscard]] std::string key() const;  ///< "level/x/y"
 };
 
+/// A file of the city other than tiles, with its size and checksum.
+struct CityFile {
+  std::string file;  ///< relative to the manifest
+  std::uint64_t bytes = 0;
+  std::uint32_t crc32 = 0;
+};
+
 struct ResponseInfo {
   std::string motion;    ///< e.g. "synthetic Kanai-Tajimi seed 7, PGA 0.35 g" or a file name
   std::string scenario;  ///< e.g. "M6.8 at -74.02,40.68, depth 10 km" or "" (one record for all)
@@ -58,13 +65,9 @@ struct ResponseInfo {
   /// 1 / motionPreviewRateHz seconds, in g (empty when unknown).
   std::vector<float> motionPreviewG;
   double motionPreviewRateHz = 0.0;
-};
-
-/// A file of the city other than tiles, with its size and checksum.
-struct CityFile {
-  std::string file;  ///< relative to the manifest
-  std::uint64_t bytes = 0;
-  std::uint32_t crc32 = 0;
+  /// Every building's summary in the search index's order (the city-wide list, filters and
+  /// exports); absent in cities without a search index.
+  std::optional<CityFile> summaryIndex;
 };
 
 struct Tileset {
@@ -77,7 +80,7 @@ struct Tileset {
   std::uint64_t buildings = 0;
   std::uint64_t buildingsRevision = 1;  ///< bumped by every tool that adds or changes buildings
   std::vector<std::string> sources;     ///< input files the city came from
-  std::optional<CityFile> search;       ///< the search index (search.qvi), root-tile order
+  std::optional<CityFile> search;       ///< the search index (search.qvi): the city-wide building table
   std::vector<TileNode> nodes;          ///< nodes[0] is the root
   std::optional<ResponseInfo> response;
 

@@ -55,7 +55,10 @@ struct BuildingFilters {
   std::string use;            ///< empty: any; else the normalized use ("hospital", "school", ...)
   bool criticalOnly = false;  ///< only critical facilities
   [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly; }
-  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const;
+  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const {
+    return passes(a.importance, a.use, r);
+  }
+  [[nodiscard]] bool passes(Importance importance, std::string_view use, const BuildingResponse* r) const;
   friend bool operator==(const BuildingFilters&, const BuildingFilters&) = default;
 };
 
@@ -127,13 +130,17 @@ class CityScene {
   [[nodiscard]] std::optional<BuildingRef> find(std::string_view id) const;
   [[nodiscard]] std::optional<BuildingInfo> info(BuildingRef ref) const;
   /// Highlights the building with this id wherever it is loaded ("" clears) and loads its leaf
-  /// (full attributes, history) if needed.
-  void select(const std::string& id);
+  /// (full attributes, history) if needed, found through the search index when no loaded tile
+  /// holds it. False (nothing changes) for an id neither a loaded tile nor the index knows.
+  bool select(const std::string& id);
+  /// The building's entry in the search index (nullptr while the index is not loaded or without it).
+  [[nodiscard]] const SearchEntry* indexEntry(std::string_view id) const;
   [[nodiscard]] const std::string& selected() const { return selected_; }
   /// The selected building's motion over the whole record, once its history is loaded.
   [[nodiscard]] std::optional<BuildingSeries> selectionSeries(std::size_t samples);
 
-  // Filters, search and lists (city-wide: the root tile holds every building).
+  // Filters, search and lists: city-wide, from the search index (and the response's summary in
+  // its order), which loads once the first view has; until then they are empty.
   void setFilters(const BuildingFilters& filters);
   [[nodiscard]] const BuildingFilters& filters() const { return filters_; }
   /// Which kinds of building are drawn (and pickable): LOD1 extrusions, LOD2 detailed models.
@@ -142,13 +149,15 @@ class CityScene {
   void setLodVisibility(bool lod1, bool lod2);
   [[nodiscard]] bool showLod1() const { return showLod1_; }
   [[nodiscard]] bool showLod2() const { return showLod2_; }
-  /// Buildings whose id, name or address contain every word of `query` (search index loaded on
-  /// first use: until it arrives only ids match). At most `limit` results, root-tile order.
+  /// Buildings whose id, name or address contain every word of `query` (the search index is
+  /// requested on first use; until it arrives nothing matches). At most `limit`, index order.
   [[nodiscard]] std::vector<BuildingListEntry> search(std::string_view query, std::size_t limit);
   /// Buildings passing the filters, most damaged first (then by peak drift), at most `limit`;
   /// `total` receives how many pass in all.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(std::size_t limit, std::size_t* total = nullptr);
   [[nodiscard]] bool searchIndexLoaded() const { return searchState_ == TileState::Loaded; }
+  /// The search index (and the response summary in its order) has loaded or failed, or the city has none.
+  [[nodiscard]] bool searchIndexSettled() const;
   /// Damage states (none .. complete, no result) of the buildings in view, from the last frame.
   [[nodiscard]] const std::array<std::uint64_t, 6>& damageInView() const { return damageInView_; }
 
@@ -246,6 +255,11 @@ class CityScene {
   [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
   TileState searchState_ = TileState::Unloaded;
   std::vector<SearchEntry> searchIndex_;
+  std::uint64_t searchBytes_ = 0;  // heap held by the index and its summary (estimate)
+  TileState citySummaryState_ = TileState::Unloaded;
+  std::optional<ResponseSummaryTile> citySummary_;  // the response, in the index's order
+  void requestCitySummary();
+  [[nodiscard]] const BuildingResponse* cityResponse(std::uint32_t index) const;
   std::array<std::uint64_t, 6> damageInView_{};
   std::uint64_t viewSignature_ = 0;  // visible sets and summaries behind damageInView_
   std::string seriesFor_;

@@ -1,8 +1,9 @@
 // Cuts a CityModel into the quadtree of binary city tiles the viewer streams, and writes the
 // city directory: tiles/<level>-<x>-<y>.qvt and tileset.json (written last: the manifest is the
-// commit point). Leaves hold a bounded number of buildings at full detail; every inner tile holds
-// a coarse prism of every building below it, so the far city draws from a few inner tiles
-// (hierarchical LOD, as in 3D Tiles' REPLACE refinement).
+// commit point), and search.qvi (the city-wide building table, docs/formats.md). Leaves hold a
+// bounded number of buildings at full detail; every inner tile holds a coarse prism of the largest
+// buildings below it (all of them up to maxCoarseBuildings), so the far city draws from a few inner
+// tiles (hierarchical LOD, as in 3D Tiles' REPLACE refinement) and no tile grows with the city.
 #pragma once
 
 #include <cstdint>
@@ -19,7 +20,10 @@ namespace qv::prep {
 struct TilerOptions {
   std::uint32_t maxBuildingsPerLeaf = 1000;  ///< split a node holding more
   std::size_t maxLeafBytes = 150 * 1024;     ///< split a node whose leaf tile would be larger
-  unsigned threads = 0;                      ///< 0: all cores
+  /// An inner tile draws at most this many buildings of its subtree (the largest by footprint area
+  /// times height); its geometric error covers the largest one left out.
+  std::size_t maxCoarseBuildings = 100000;
+  unsigned threads = 0;  ///< 0: all cores
   std::string generator = "quakeview-prep";
   std::uint64_t buildingsRevision = 1;
   bool showProgress = true;

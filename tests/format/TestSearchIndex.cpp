@@ -1,0 +1,119 @@
+// The search index codec (search.qvi, docs/formats.md): golden bytes pin version 2, entries
+// round-trip, and corrupt, truncated, old-version and out-of-range files are refused by name.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "../fuzz/FuzzInputs.h"
+#include "qv/format/SearchIndex.h"
+
+using namespace qv;
+
+namespace {
+
+SearchEntry tinyEntry() {
+  SearchEntry e;
+  e.id = "w1";
+  e.name = "A";
+  e.use = "office";
+  e.x = 1.5f;
+  e.y = -2.0f;
+  e.heightM = 10.0f;
+  e.storeys = 3;
+  e.importance = Importance::Critical;
+  e.lod = 1;
+  e.leaf = 4;
+  return e;
+}
+
+void requireError(const std::vector<std::uint8_t>& bytes, const std::string& fragment) {
+  const auto r = decodeSearchIndex(bytes, "city/search.qvi");
+  REQUIRE_FALSE(r.ok());
+  INFO(r.error());
+  CHECK(r.error().rfind("city/search.qvi: ", 0) == 0);
+  CHECK(r.error().find(fragment) != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("Search index version 2 is pinned by golden bytes", "[format][search]") {
+  const std::vector<std::uint8_t> golden = {
+      0x51, 0x56, 0x53, 0x49, 0x02, 0x00, 0x00, 0x00, 0x35, 0x00, 0x00, 0x00, 0x37, 0x96, 0x1d, 0x11, 0x01, 0x00,
+      0x00, 0x00, 0x02, 0x77, 0x31, 0x01, 0x41, 0x00, 0x06, 0x6f, 0x66, 0x66, 0x69, 0x63, 0x65, 0x00, 0x00, 0xc0,
+      0x3f, 0x00, 0x00, 0x00, 0xc0, 0x00, 0x00, 0x20, 0x41, 0x03, 0x00, 0x01, 0x01, 0x04, 0x00, 0x00, 0x00};
+  const std::vector<SearchEntry> entries = {tinyEntry()};
+  CHECK(encodeSearchIndex(entries) == golden);
+  const auto decoded = decodeSearchIndex(golden, "golden.qvi");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->size() == 1);
+  CHECK((*decoded)[0] == tinyEntry());
+}
+
+TEST_CASE("Search entries round-trip, long strings and many entries included", "[format][search]") {
+  std::vector<SearchEntry> entries;
+  for (std::uint32_t i = 0; i < 2000; ++i) {
+    SearchEntry e = tinyEntry();
+    e.id = "s" + std::to_string(i + 1);
+    e.name = i % 3 == 0 ? std::string(300, static_cast<char>('a' + i % 26)) : "";
+    e.address = i % 5 == 0 ? std::to_string(i) + " Broadway, New York" : "";
+    e.x = static_cast<float>(i) * 3.25f - 5000.0f;
+    e.y = -static_cast<float>(i) * 1.5f;
+    e.heightM = static_cast<float>(i % 400);
+    e.storeys = static_cast<std::uint16_t>(1 + i % 120);
+    e.importance = i % 7 == 0 ? Importance::Critical : Importance::General;
+    e.lod = i % 11 == 0 ? 2 : 1;
+    e.leaf = i / 100;
+    entries.push_back(e);
+  }
+  const auto decoded = decodeSearchIndex(encodeSearchIndex(entries), "many.qvi");
+  REQUIRE(decoded.ok());
+  CHECK(*decoded == entries);
+}
+
+TEST_CASE("Corrupt, truncated, old and out-of-range search indexes are refused with the reason", "[format][search]") {
+  const std::vector<SearchEntry> entries = {tinyEntry(), tinyEntry()};
+  const std::vector<std::uint8_t> good = encodeSearchIndex(entries);
+  REQUIRE(decodeSearchIndex(good, "x").ok());
+
+  SECTION("not an index") {
+    requireError({'Q', 'V', 'T', '1'}, "not a search index");
+  }
+  SECTION("version 1 (written before the index held positions)") {
+    auto b = good;
+    b[4] = 1;
+    requireError(b, "unsupported search index version 1");
+  }
+  SECTION("truncated") {
+    auto b = good;
+    b.resize(b.size() - 3);
+    requireError(b, "truncated");
+  }
+  SECTION("a flipped byte") {
+    auto b = good;
+    b[30] ^= 0x40;
+    requireError(b, "checksum mismatch");
+  }
+  SECTION("more entries than the bytes can hold") {
+    auto b = good;
+    b[16] = 0xff;
+    b[17] = 0xff;
+    requireError(fuzz::withValidSizeAndCrc(b), "entries cannot fit");
+  }
+  SECTION("a position that is not a number") {
+    SearchEntry e = tinyEntry();
+    e.x = NAN;
+    requireError(encodeSearchIndex(std::vector<SearchEntry>{e}), "entry 0 at byte 20: position");
+  }
+  SECTION("a negative height") {
+    SearchEntry e = tinyEntry();
+    e.heightM = -1.0f;
+    requireError(encodeSearchIndex(std::vector<SearchEntry>{tinyEntry(), e}), "entry 1 at byte");
+  }
+  SECTION("an unknown level of detail") {
+    SearchEntry e = tinyEntry();
+    e.lod = 3;
+    requireError(encodeSearchIndex(std::vector<SearchEntry>{e}), "lod is neither 1 nor 2");
+  }
+}
