@@ -96,7 +96,7 @@ test('a small memory budget: flying over a city several times larger keeps the h
   const manifest = JSON.parse(fs.readFileSync(path.join(LARGE, 'tileset.json'), 'utf8'));
   const server = await serveSite({ '/large': LARGE });
   const { context, close } = await launchBrowser();
-  const budgetMb = 48;
+  const budgetMb = 24;
   try {
     const { page, problems } = await openPage(context, `${server.url}/?data=/large/tileset.json&memory=${budgetMb}`);
     assert.deepEqual(await waitReady(page, 120000), { ok: true });

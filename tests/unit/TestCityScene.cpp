@@ -1,9 +1,11 @@
 #include <catch2/catch.hpp>
 
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <set>
+#include <thread>
 
 #include "MiniCity.h"
 #include "qv/scene/NullRenderDevice.h"
@@ -98,6 +100,16 @@ class RecordingDevice final : public RenderDevice {
 
 void runFrames(Viewer& viewer, int frames, double dt = 1.0 / 60.0) {
   for (int i = 0; i < frames; ++i) viewer.frame(dt);
+}
+
+// Runs frames in real time (retries wait on the wall clock) until `done` or `limitSeconds` pass.
+template <typename Done>
+void runFramesUntil(Viewer& viewer, double limitSeconds, Done done) {
+  const auto start = std::chrono::steady_clock::now();
+  while (!done() && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < limitSeconds) {
+    viewer.frame(1.0 / 60.0);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
 }
 
 // The grid cell (i, j) whose building has its centre at `world`.
@@ -544,4 +556,55 @@ TEST_CASE("A root that holds only some buildings: lists, search and selection co
   // An id the city does not have is refused and changes nothing.
   CHECK_FALSE(viewer.select("s999"));
   CHECK(viewer.selection() == farId);
+}
+
+TEST_CASE("A search index and city-wide response that fail are retried with backoff and recover",
+          "[scene][city][index][errors]") {
+  MiniCity city(true, false, 16);
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  fetcher.statusOverride["city/search.qvi"] = 503;
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.setCamera(CameraState{0.0, 0.0, 200000.0, 0.0, 70.0, 45.0});
+  for (int i = 0; i < 40 && !viewer.city()->searchIndexSettled(); ++i) runFrames(viewer, 1);
+  // The failure is shown and the city-wide list is empty, but the view keeps working.
+  REQUIRE(viewer.city()->searchIndexSettled());
+  CHECK_FALSE(viewer.city()->searchIndexLoaded());
+  REQUIRE(viewer.errors().size() == 1);
+  CHECK(viewer.errors()[0].find("Search index city/search.qvi failed: HTTP 503") != std::string::npos);
+  const std::size_t firstTries = fetcher.count("city/search.qvi");
+  CHECK(firstTries == 1);
+
+  // The server still fails: retried after a backoff (one second of real time after the first
+  // failure), reported once.
+  runFramesUntil(viewer, 5.0, [&] { return fetcher.count("city/search.qvi") > firstTries; });
+  CHECK(fetcher.count("city/search.qvi") > firstTries);
+  CHECK(viewer.errors().size() == 1);
+
+  // The server recovers but the response summary in the index's order fails now.
+  fetcher.statusOverride.erase("city/search.qvi");
+  fetcher.statusOverride["city/response/index.qvs"] = 500;
+  runFramesUntil(viewer, 10.0, [&] { return viewer.city()->searchIndexLoaded(); });
+  REQUIRE(viewer.city()->searchIndexLoaded());
+  runFramesUntil(viewer, 10.0, [&] {
+    return viewer.errors().size() == 1 && viewer.errors()[0].find("index.qvs") != std::string::npos;
+  });
+  std::size_t total = 0;
+  auto list = viewer.city()->filteredList(1000, &total);
+  CHECK(total == 64);
+  REQUIRE(viewer.errors().size() == 1);  // the index's error is withdrawn, the summary's is shown
+  CHECK(viewer.errors()[0].find("Response summary city/response/index.qvs failed: HTTP 500") != std::string::npos);
+
+  // Once the summary comes back too, the list carries the damage and no error remains.
+  fetcher.statusOverride.clear();
+  runFramesUntil(viewer, 10.0, [&] { return viewer.errors().empty(); });
+  CHECK(viewer.errors().empty());
+  list = viewer.city()->filteredList(1000, &total);
+  REQUIRE(list.size() == 64);
+  CHECK(list.front().damage == DamageState::Complete);
 }

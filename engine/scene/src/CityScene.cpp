@@ -191,8 +191,8 @@ TileCounts CityScene::tileCounts() const {
     if (tiles_[i]->summaryState == TileState::Loading) ++c.pending;
     if (tiles_[i]->historyState == TileState::Loading) ++c.pending;
   }
-  if (searchState_ == TileState::Loading) ++c.pending;
-  if (citySummaryState_ == TileState::Loading) ++c.pending;
+  if (search_.state == TileState::Loading) ++c.pending;
+  if (citySummaryLoad_.state == TileState::Loading) ++c.pending;
   // Tiles the view wants but has not requested yet (the request limit) are pending as well.
   for (std::uint32_t i : selection_.wanted) {
     if (states_[i] == TileState::Unloaded) ++c.pending;
@@ -672,6 +672,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   // Once the view has everything it asked for, the search index comes in the background (names
   // and addresses for search, the inspection window and exports).
   if (inFlight_ == 0 && decodeQueue_.empty()) requestSearchIndex();
+  retryCityFiles();
   // Failed tiles (and their response summaries) the view still uses are retried with backoff
   // (the server may recover).
   for (std::uint32_t i : selection_.used) {
@@ -1130,7 +1131,7 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
 }
 
 const SearchEntry* CityScene::indexEntry(std::string_view id) const {
-  if (searchState_ != TileState::Loaded) return nullptr;
+  if (search_.state != TileState::Loaded) return nullptr;
   for (const SearchEntry& e : searchIndex_) {
     if (e.id == id) return &e;
   }
@@ -1247,91 +1248,108 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
   return hit;
 }
 
-void CityScene::requestSearchIndex() {
-  if (!tileset_ || !tileset_->search || searchState_ != TileState::Unloaded) return;
-  searchState_ = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, tileset_->search->file);
-  fetcher_.fetch(
-      url,
-      [this, url](FetchResponse r) {
-        --inFlight_;
-        auto fail = [&](const std::string& message) {
-          searchState_ = TileState::Failed;
-          onError_(message);
-        };
-        if (!r.ok() || r.bytes.size() != tileset_->search->bytes || crc32(r.bytes) != tileset_->search->crc32) {
-          return fail("Search index " + url + " failed: " +
-                      (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                               : std::string("size or checksum differs from the manifest")));
-        }
-        auto decoded = decodeSearchIndex(r.bytes, url);
-        if (!decoded.ok()) return fail(decoded.error());
-        if (decoded->size() != tileset_->buildings) {
-          return fail(url + ": " + std::to_string(decoded->size()) + " entries, but the manifest says the city has " +
-                      std::to_string(tileset_->buildings) + " buildings");
-        }
-        for (std::size_t i = 0; i < decoded->size(); ++i) {
-          const std::uint32_t leaf = (*decoded)[i].leaf;
-          if (leaf >= tileset_->nodes.size() || !tileset_->nodes[leaf].children.empty()) {
-            return fail(url + ": entry " + std::to_string(i) + " names tile " + std::to_string(leaf) +
-                        ", which is not a leaf of this city");
-          }
-        }
-        searchIndex_ = std::move(decoded).value();
-        searchBytes_ = searchIndex_.size() * sizeof(SearchEntry);
-        for (const SearchEntry& e : searchIndex_) {
-          for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
-            if (text->size() >= sizeof(std::string)) searchBytes_ += text->size() + 1;
-          }
-        }
-        searchState_ = TileState::Loaded;
-        requestCitySummary();
-      },
-      options_.requestTimeoutMs);
-}
-
-void CityScene::requestCitySummary() {
-  if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
-      citySummaryState_ != TileState::Unloaded) {
-    return;
-  }
-  const CityFile file = *tileset_->response->summaryIndex;
-  citySummaryState_ = TileState::Loading;
+void CityScene::fetchCityFile(CityFileLoad& load, const CityFile& file, const std::string& label,
+                              std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept) {
+  if (load.state != TileState::Unloaded) return;
+  load.state = TileState::Loading;
   ++inFlight_;
   const std::string url = resolveUrl(manifestUrl_, file.file);
   fetcher_.fetch(
       url,
-      [this, url, file](FetchResponse r) {
+      [this, &load, file, label, url, accept = std::move(accept)](FetchResponse r) {
         --inFlight_;
-        auto fail = [&](const std::string& message) {
-          citySummaryState_ = TileState::Failed;
-          onError_(message);
-        };
+        std::string problem;
+        bool transient = true;
         if (!r.ok() || r.bytes.size() != file.bytes || crc32(r.bytes) != file.crc32) {
-          return fail("Response summary " + url + " failed: " +
-                      (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                               : std::string("size or checksum differs from the manifest")));
+          problem = label + " " + url + " failed: " +
+                    (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
+                             : std::string("size or checksum differs from the manifest"));
+          transient = !r.ok() ? transientStatus(r.status) : true;
+        } else {
+          problem = accept(r.bytes, url);
+          transient = false;
         }
-        auto decoded = decodeResponseSummary(r.bytes, url);
-        if (!decoded.ok()) return fail(decoded.error());
-        if (decoded->buildings.size() != searchIndex_.size()) {
-          return fail(url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the search index has " +
-                      std::to_string(searchIndex_.size()));
+        if (!problem.empty()) {
+          // Retried with backoff, as tiles are (the server may recover); reported once.
+          load.state = TileState::Failed;
+          load.retryAt = clock_ + backoffSeconds(++load.attempts, transient);
+          if (load.attempts == 1) onError_(problem);
+          return;
         }
-        citySummary_ = std::move(decoded).value();
-        searchBytes_ += citySummary_->buildings.size() * sizeof(BuildingResponse) +
-                        citySummary_->storeyPeakDrift.size() * sizeof(float);
-        citySummaryState_ = TileState::Loaded;
+        load.state = TileState::Loaded;
+        if (load.attempts > 0 && onResolved_) {
+          onResolved_(label + " " + url + " failed");
+          onResolved_(url + ":");
+        }
+        load.attempts = 0;
       },
       options_.requestTimeoutMs);
 }
 
+void CityScene::retryCityFiles() {
+  for (CityFileLoad* load : {&search_, &citySummaryLoad_}) {
+    if (load->state == TileState::Failed && load->retryAt <= clock_) load->state = TileState::Unloaded;
+  }
+  if (search_.attempts > 0 && search_.state == TileState::Unloaded) requestSearchIndex();
+  // The response summary in the index's order follows the index (it is useless without it).
+  requestCitySummary();
+}
+
+void CityScene::requestSearchIndex() {
+  if (!tileset_ || !tileset_->search) return;
+  fetchCityFile(search_, *tileset_->search, "Search index",
+                [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
+                  auto decoded = decodeSearchIndex(bytes, url);
+                  if (!decoded.ok()) return decoded.error();
+                  if (decoded->size() != tileset_->buildings) {
+                    return url + ": " + std::to_string(decoded->size()) +
+                           " entries, but the manifest says the city has " + std::to_string(tileset_->buildings) +
+                           " buildings";
+                  }
+                  for (std::size_t i = 0; i < decoded->size(); ++i) {
+                    const std::uint32_t leaf = (*decoded)[i].leaf;
+                    if (leaf >= tileset_->nodes.size() || !tileset_->nodes[leaf].children.empty()) {
+                      return url + ": entry " + std::to_string(i) + " names tile " + std::to_string(leaf) +
+                             ", which is not a leaf of this city";
+                    }
+                  }
+                  searchIndex_ = std::move(decoded).value();
+                  searchBytes_ = searchIndex_.size() * sizeof(SearchEntry);
+                  for (const SearchEntry& e : searchIndex_) {
+                    for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
+                      if (text->size() >= sizeof(std::string)) searchBytes_ += text->size() + 1;
+                    }
+                  }
+                  return {};
+                });
+}
+
+void CityScene::requestCitySummary() {
+  if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
+      search_.state != TileState::Loaded || citySummaryLoad_.state != TileState::Unloaded) {
+    return;
+  }
+  fetchCityFile(citySummaryLoad_, *tileset_->response->summaryIndex, "Response summary",
+                [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
+                  auto decoded = decodeResponseSummary(bytes, url);
+                  if (!decoded.ok()) return decoded.error();
+                  if (decoded->buildings.size() != searchIndex_.size()) {
+                    return url + ": " + std::to_string(decoded->buildings.size()) +
+                           " buildings, the search index has " + std::to_string(searchIndex_.size());
+                  }
+                  citySummary_ = std::move(decoded).value();
+                  searchBytes_ += citySummary_->buildings.size() * sizeof(BuildingResponse) +
+                                  citySummary_->storeyPeakDrift.size() * sizeof(float);
+                  return {};
+                });
+}
+
 bool CityScene::searchIndexSettled() const {
   if (!tileset_) return manifestFailed_;
-  if (!tileset_->search || searchState_ == TileState::Failed) return true;
-  if (searchState_ != TileState::Loaded) return false;
-  return citySummaryState_ != TileState::Loading;
+  if (!tileset_->search || search_.state == TileState::Failed) return true;
+  if (search_.state != TileState::Loaded) return false;
+  const bool summaryExpected = tileset_->response && tileset_->response->summaryIndex && !tileset_->responseOutOfDate();
+  return !summaryExpected || citySummaryLoad_.state == TileState::Loaded || citySummaryLoad_.state == TileState::Failed;
 }
 
 const BuildingResponse* CityScene::cityResponse(std::uint32_t index) const {
@@ -1362,7 +1380,7 @@ BuildingListEntry CityScene::listEntry(std::uint32_t index) const {
 std::vector<BuildingListEntry> CityScene::search(std::string_view query, std::size_t limit) {
   std::vector<BuildingListEntry> out;
   requestSearchIndex();
-  if (searchState_ != TileState::Loaded) return out;
+  if (search_.state != TileState::Loaded) return out;
   for (std::uint32_t i = 0; i < searchIndex_.size() && out.size() < limit; ++i) {
     const SearchEntry& e = searchIndex_[i];
     if (matchesQuery(e.id, query) || matchesQuery(e.name, query) || matchesQuery(e.address, query)) {
@@ -1376,7 +1394,7 @@ std::vector<BuildingListEntry> CityScene::filteredList(std::size_t limit, std::s
   std::vector<BuildingListEntry> out;
   if (total != nullptr) *total = 0;
   requestSearchIndex();
-  if (searchState_ != TileState::Loaded) return out;
+  if (search_.state != TileState::Loaded) return out;
   struct Key {
     int damage;
     float drift;

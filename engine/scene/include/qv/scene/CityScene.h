@@ -155,7 +155,7 @@ class CityScene {
   /// Buildings passing the filters, most damaged first (then by peak drift), at most `limit`;
   /// `total` receives how many pass in all.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(std::size_t limit, std::size_t* total = nullptr);
-  [[nodiscard]] bool searchIndexLoaded() const { return searchState_ == TileState::Loaded; }
+  [[nodiscard]] bool searchIndexLoaded() const { return search_.state == TileState::Loaded; }
   /// The search index (and the response summary in its order) has loaded or failed, or the city has none.
   [[nodiscard]] bool searchIndexSettled() const;
   /// Damage states (none .. complete, no result) of the buildings in view, from the last frame.
@@ -253,10 +253,21 @@ class CityScene {
   bool showLod1_ = true;
   bool showLod2_ = true;
   [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
-  TileState searchState_ = TileState::Unloaded;
+  /// A city-wide file (the search index, the response summary in its order): fetched once, retried
+  /// with backoff after a failure.
+  struct CityFileLoad {
+    TileState state = TileState::Unloaded;
+    int attempts = 0;  // failures so far
+    double retryAt = 0.0;
+  };
+  /// Fetches `file` into `load`; `accept` decodes and keeps the bytes or returns what is wrong.
+  void fetchCityFile(CityFileLoad& load, const CityFile& file, const std::string& label,
+                     std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept);
+  void retryCityFiles();
+  CityFileLoad search_;
   std::vector<SearchEntry> searchIndex_;
   std::uint64_t searchBytes_ = 0;  // heap held by the index and its summary (estimate)
-  TileState citySummaryState_ = TileState::Unloaded;
+  CityFileLoad citySummaryLoad_;
   std::optional<ResponseSummaryTile> citySummary_;  // the response, in the index's order
   void requestCitySummary();
   [[nodiscard]] const BuildingResponse* cityResponse(std::uint32_t index) const;
