@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # The long fuzz run (docs/fuzzing.md): runs each target until its coverage has not grown for
-# PLATEAU_MINUTES (default 30) or it has used CPU_MINUTES of CPU (default 60), SLOTS targets at a
-# time (default 2), at the lowest CPU priority. Needs the fuzz build and its seeds (run
-# `scripts/fuzz.sh 1` once first). Prints one row per target: wall minutes, CPU minutes,
-# executions, coverage at start and end, minutes since coverage last grew, and the result.
+# PLATEAU_MINUTES (default 30) of the fuzzer's own CPU time or it has used CPU_MINUTES of CPU
+# (default 60), SLOTS targets at a time (default 2), at the lowest CPU priority (so the plateau is
+# counted in CPU time, not wall time: a fuzzer starved by other work has not been fuzzing). Needs
+# the fuzz build and its seeds (run `scripts/fuzz.sh 1` once first). Prints one row per target:
+# wall minutes, CPU minutes, executions, coverage at start and end, CPU minutes since coverage
+# last grew, and the result.
 #
 #   scripts/fuzz-plateau.sh fuzz_tileset fuzz_osm ...
 set -uo pipefail
@@ -25,17 +27,17 @@ run_one() {
   [ -f "$root/tests/fuzz/dicts/$what.dict" ] && extra=(-dict="$root/tests/fuzz/dicts/$what.dict")
   nice -n 19 "$exe" "$corpus" "$build/seeds/$what" -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$crashes/" \
     -print_final_stats=1 "${extra[@]}" >"$log" 2>&1 &
-  local pid=$! start=$SECONDS last_growth=$SECONDS cov0="" cov="" cpu=0
+  local pid=$! start=$SECONDS last_growth=0 cov0="" cov="" cpu=0
   while kill -0 "$pid" 2>/dev/null; do
     sleep 20
     local now_cov
     now_cov=$(grep -oE 'cov: [0-9]+' "$log" | tail -n 1 | awk '{print $2}')
     [ -z "$cov0" ] && cov0=$now_cov
-    if [ -n "$now_cov" ] && [ "$now_cov" != "$cov" ]; then cov=$now_cov; last_growth=$SECONDS; fi
     if [ -r "/proc/$pid/stat" ]; then
       cpu=$(awk -v t="$ticks" '{print int(($14 + $15) / t)}' "/proc/$pid/stat")
     fi
-    if [ $((SECONDS - last_growth)) -ge "$plateau" ] || [ "$cpu" -ge "$cpu_cap" ]; then
+    if [ -n "$now_cov" ] && [ "$now_cov" != "$cov" ]; then cov=$now_cov; last_growth=$cpu; fi
+    if [ $((cpu - last_growth)) -ge "$plateau" ] || [ "$cpu" -ge "$cpu_cap" ]; then
       kill -INT "$pid"
       break
     fi
@@ -51,10 +53,10 @@ run_one() {
     result="ok (exit $rc)"
   fi
   printf '%-28s %6.1f %6.1f %12s %7s %7s %6.1f  %s\n' "$target" "$(echo "($SECONDS - $start) / 60" | bc -l)" \
-    "$(echo "$cpu / 60" | bc -l)" "${runs:-?}" "${cov0:-?}" "${cov:-?}" "$(echo "($SECONDS - $last_growth) / 60" | bc -l)" "$result"
+    "$(echo "$cpu / 60" | bc -l)" "${runs:-?}" "${cov0:-?}" "${cov:-?}" "$(echo "($cpu - $last_growth) / 60" | bc -l)" "$result"
 }
 
-printf '%-28s %6s %6s %12s %7s %7s %6s  %s\n' target wall_m cpu_m runs cov0 cov idle_m result
+printf '%-28s %6s %6s %12s %7s %7s %6s  %s\n' target wall_m cpu_m runs cov0 cov idle_cpu_m result
 running=0
 for target in "$@"; do
   run_one "$target" &
