@@ -14,6 +14,9 @@ build="$root/build/fuzz"
 plateau=$((${PLATEAU_MINUTES:-30} * 60))
 cpu_cap=$((${CPU_MINUTES:-60} * 60))
 slots=${SLOTS:-2}
+# libFuzzer's -timeout is wall time: a niced fuzzer starved by other work for a while would report
+# a false hang with the short run's 10 s. Real hangs still stop it; slow inputs are listed.
+timeout=${UNIT_TIMEOUT_SECONDS:-120}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:suppressions=$root/tests/fuzz/ubsan-suppressions.txt}
 [ $# -gt 0 ] || { echo "usage: scripts/fuzz-plateau.sh fuzz_TARGET..." >&2; exit 2; }
 ticks=$(getconf CLK_TCK)
@@ -25,7 +28,7 @@ run_one() {
   mkdir -p "$corpus" "$crashes" "$(dirname "$log")"
   local extra=()
   [ -f "$root/tests/fuzz/dicts/$what.dict" ] && extra=(-dict="$root/tests/fuzz/dicts/$what.dict")
-  nice -n 19 "$exe" "$corpus" "$build/seeds/$what" -timeout=10 -rss_limit_mb=2048 -artifact_prefix="$crashes/" \
+  nice -n 19 "$exe" "$corpus" "$build/seeds/$what" -timeout="$timeout" -report_slow_units=10 -rss_limit_mb=2048 -artifact_prefix="$crashes/" \
     -print_final_stats=1 "${extra[@]}" >"$log" 2>&1 &
   local pid=$! start=$SECONDS last_growth=0 cov0="" cov="" cpu=0
   while kill -0 "$pid" 2>/dev/null; do

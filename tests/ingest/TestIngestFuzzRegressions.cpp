@@ -48,6 +48,26 @@ TEST_CASE("Fuzzer-found OSM inputs are read or rejected cleanly", "[ingest][osm]
   }
 }
 
+TEST_CASE("An OSM coordinate with a huge exponent is refused, not read as a wrong place", "[ingest][osm][fuzz]") {
+  // libosmium 2.18 scales "40.750e705" by multiplying an int64 705 times (signed overflow, which
+  // OsmReader.cpp compiles with -fwrapv to make defined): the latitude wraps to 0. The building
+  // then spans 40 degrees, which the city's extent check refuses, naming the building.
+  const TempDir dir;
+  std::string text;
+  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "osm")) {
+    if (input.path.ends_with("coordinate-with-huge-exponent.osm")) text.assign(input.bytes.begin(), input.bytes.end());
+  }
+  REQUIRE(text.find("lat=\"40.750e705\"") != std::string::npos);
+  const std::string path = dir.write("exponent.osm", text);
+  IngestOptions options;
+  options.threads = 1;
+  const auto city = readCity({path}, options);
+  REQUIRE_FALSE(city.ok());
+  CHECK(city.error().find(path) != std::string::npos);
+  CHECK(city.error().find("absurd coordinates") != std::string::npos);
+  CHECK(city.error().find("w10") != std::string::npos);
+}
+
 TEST_CASE("Fuzzer-found GeoJSON inputs are read or rejected cleanly", "[ingest][geojson][fuzz]") {
   const TempDir dir;
   for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "geojson")) {
