@@ -2,6 +2,8 @@
 // default 512 MB budget, or ?memory=MB), then flies a low pass over an N x N grid of the city (each
 // stop brings in other leaf tiles, responses and histories) and back to the overview, recording
 // quakeview.stats().heapBytes (live WASM heap) and the tiles and buildings loaded at every stop.
+// The city-wide search index (and the response in its order) is waited for after the overview, so
+// the whole flight carries it, as a user's session does once search and the lists are ready.
 // Not part of the test run (a benchmark, not a test); prints the heap curve as a markdown table.
 //
 //   node tests/e2e/bench-memory.mjs CITY_DIR [--memory MB] [--grid N] [--distance M]
@@ -50,9 +52,13 @@ try {
     const s = await page.evaluate(() => window.quakeview.stats());
     rows.push({ stop, seconds: (Date.now() - started) / 1000, heapMb: s.heapBytes / 1048576,
       reservedMb: s.heapReservedBytes / 1048576, tiles: s.tiles.loaded, loaded: s.buildings.loaded,
-      visible: s.buildings.visible, animated: s.buildings.animated });
+      visible: s.buildings.visible, animated: s.buildings.animated,
+      index: await page.evaluate(() => window.quakeview.searchReady()) });
   };
   await record('overview');
+  await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 1800000, polling: 1000 });
+  await calm(page);
+  await record('overview, city index loaded');
   for (let j = 0; j < grid; ++j) {
     for (let i = 0; i < grid; ++i) {
       const x = x0 + (x1 - x0) * ((j % 2 ? grid - 1 - i : i) + 0.5) / grid;
@@ -74,11 +80,11 @@ try {
 
 const budget = memoryMb || 512;
 console.log(`\nLive WASM heap over a flight of ${manifest.buildings} buildings (${path.basename(dir)}), budget ${budget} MB\n`);
-console.log('| stop | s | heap MB | WASM memory MB | tiles loaded | buildings loaded | visible | animated |');
-console.log('| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |');
+console.log('| stop | s | heap MB | WASM memory MB | tiles loaded | buildings loaded | visible | animated | city index |');
+console.log('| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- |');
 for (const r of rows) {
   console.log(`| ${r.stop} | ${r.seconds.toFixed(0)} | ${r.heapMb.toFixed(1)} | ${r.reservedMb.toFixed(0)} | ${r.tiles} | ` +
-    `${r.loaded} | ${r.visible} | ${r.animated} |`);
+    `${r.loaded} | ${r.visible} | ${r.animated} | ${r.index ? 'loaded' : 'not yet'} |`);
 }
 const peak = Math.max(...rows.map((r) => r.heapMb));
 console.log(`\npeak live heap ${peak.toFixed(1)} MB (budget ${budget} MB for tiles, meshes and histories)`);

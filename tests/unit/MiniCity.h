@@ -25,9 +25,11 @@ class FakeFetcher final : public Fetcher {
   std::map<std::string, int> statusOverride;  ///< url -> HTTP status to answer instead
   std::set<std::string> held;                 ///< urls not answered (yet): a slow server
   std::vector<std::string> requested;
+  std::map<std::string, std::uint32_t> lastTimeoutMs;  ///< url -> the time limit of its last request
 
-  RequestId fetch(const std::string& url, Done done, std::uint32_t) override {
+  RequestId fetch(const std::string& url, Done done, std::uint32_t timeoutMs) override {
     requested.push_back(url);
+    lastTimeoutMs[url] = timeoutMs;
     const RequestId id = next_++;
     queue_.push_back({id, url, std::move(done)});
     return id;

@@ -579,11 +579,17 @@ TEST_CASE("A search index and city-wide response that fail are retried with back
   CHECK(viewer.errors()[0].find("Search index city/search.qvi failed: HTTP 503") != std::string::npos);
   const std::size_t firstTries = fetcher.count("city/search.qvi");
   CHECK(firstTries == 1);
+  // Its time limit grows with its size (a city-wide file may be large) and with each failure.
+  const CitySceneOptions defaults;
+  const double indexBytes = static_cast<double>(fetcher.files.at("city/search.qvi").size());
+  const double firstLimitMs = defaults.requestTimeoutMs + indexBytes * 1000.0 / defaults.slowestBytesPerSecond;
+  CHECK(fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(firstLimitMs));
 
   // The server still fails: retried after a backoff (one second of real time after the first
   // failure), reported once.
   runFramesUntil(viewer, 5.0, [&] { return fetcher.count("city/search.qvi") > firstTries; });
   CHECK(fetcher.count("city/search.qvi") > firstTries);
+  CHECK(fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(2 * firstLimitMs));
   CHECK(viewer.errors().size() == 1);
 
   // The server recovers but the response summary in the index's order fails now.

@@ -43,6 +43,14 @@ bool transientStatus(int status) {
   return status == 0 || status == 408 || status == 429 || status >= 500;
 }
 
+// The time limit of a request for a file of `bytes` (CitySceneOptions::requestTimeoutMs).
+std::uint32_t requestTimeout(const CitySceneOptions& options, std::uint64_t bytes, int failures) {
+  const double rate = std::max<double>(options.slowestBytesPerSecond, 1.0);
+  const double ms = (static_cast<double>(options.requestTimeoutMs) + static_cast<double>(bytes) * 1000.0 / rate) *
+                    static_cast<double>(1 << std::clamp(failures, 0, 3));
+  return static_cast<std::uint32_t>(std::min(ms, 30.0 * 60.0 * 1000.0));
+}
+
 }  // namespace
 
 struct CityScene::LoadedTile {
@@ -216,7 +224,8 @@ void CityScene::request(std::uint32_t node, double now) {
   ++inFlight_;
   const std::string url = resolveUrl(manifestUrl_, tileset_->nodes[node].file);
   t.request = fetcher_.fetch(
-      url, [this, node](FetchResponse r) { onTile(node, std::move(r), clock_); }, options_.requestTimeoutMs);
+      url, [this, node](FetchResponse r) { onTile(node, std::move(r), clock_); },
+      requestTimeout(options_, tileset_->nodes[node].bytes, t.attempts));
   // Its response summary travels alongside (it colours the tile's first frame): both downloads
   // overlap instead of the summary waiting for the tile to arrive and be decoded.
   requestSummary(node);
@@ -478,7 +487,7 @@ void CityScene::requestSummary(std::uint32_t node) {
         rt.summaryAttempts = 0;
         applySummary(node);
       },
-      options_.requestTimeoutMs);
+      requestTimeout(options_, n.response->summaryBytes, t.summaryAttempts));
 }
 
 void CityScene::markNoResult(std::uint32_t node) {
@@ -551,7 +560,7 @@ void CityScene::requestHistory(std::uint32_t node) {
         rt.historyState = TileState::Loaded;
         ++residencyGeneration_;
       },
-      options_.requestTimeoutMs);
+      requestTimeout(options_, n.response->historyBytes, t.historyAttempts));
 }
 
 void CityScene::reindexAnimated() {
@@ -1283,7 +1292,7 @@ void CityScene::fetchCityFile(CityFileLoad& load, const CityFile& file, const st
         }
         load.attempts = 0;
       },
-      options_.requestTimeoutMs);
+      requestTimeout(options_, file.bytes, load.attempts));
 }
 
 void CityScene::retryCityFiles() {

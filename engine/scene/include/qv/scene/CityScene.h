@@ -36,7 +36,13 @@ struct CitySceneOptions {
   /// Tile, summary and history requests issued and not yet answered (the browser queues them
   /// over its own connections; more than its six lets a tile arrive while others are queued).
   std::uint32_t maxRequestsInFlight = 16;
+  /// A request's time limit: this, plus the file's size (from the manifest) at
+  /// `slowestBytesPerSecond`, doubled for each failure of the same file so far (at most 8x, and
+  /// never beyond 30 minutes). A 100 KiB tile gets 20.4 s; the 64 MiB search index of a
+  /// million-building city 4.6 minutes, which it needs where frames are slow (the browser reads a
+  /// download on the page's thread, between frames).
   std::uint32_t requestTimeoutMs = 20000;
+  std::uint32_t slowestBytesPerSecond = 256u << 10;
   float animationRadiusM = 1000.0f;  ///< around the eye (metres); 0 animates nothing
   std::uint32_t maxAnimatedBuildings = 20000;
   std::uint64_t memoryBudgetBytes = 512ull << 20;  ///< decoded tiles + GPU meshes + histories
