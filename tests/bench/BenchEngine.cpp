@@ -3,7 +3,15 @@
 // overview of the whole city and for a street-level camera, plus the visible-set query against
 // a linear scan. Runs natively and in WASM under node (the product's numbers are the WASM ones):
 //
-//   bench_engine CITY_DIR [--radius M] [--frames N]
+//   bench_engine CITY_DIR [--radius M] [--frames N] [--animated N,N...]
+//   bench_engine CITY_DIR --flight N [--memory MB]
+//
+// --flight flies bench-memory.mjs's path instead (overview, the city index, a low pass over an
+// N x N grid, the overview again) and prints, per stop, the scene's own memory account (what the
+// budget is enforced on) beside the live heap that malloc reports: the browser's heapBytes
+// without a browser (the null device keeps no meshes, as WebGL keeps them outside the heap).
+#include <malloc.h>
+
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -39,6 +47,16 @@ void print(const Row& r) {
               r.name.c_str(), s.frameMs.cull, s.frameMs.lod, s.frameMs.animate, s.frameMs.upload,
               s.frameMs.cull + s.frameMs.lod + s.frameMs.animate, s.drawCalls, s.triangles, s.latest.buildingsLoaded,
               s.latest.buildingsVisible, s.latest.buildingsAnimated, s.latest.modelsAnimated, s.uploadBytes / 1024.0);
+}
+
+std::uint64_t liveHeapBytes() {
+#if defined(__GLIBC__)
+  const struct mallinfo2 m = mallinfo2();
+  return m.uordblks + m.hblkhd;
+#else
+  const struct mallinfo m = mallinfo();  // dlmalloc (Emscripten): allocated bytes
+  return static_cast<std::uint64_t>(static_cast<unsigned>(m.uordblks));
+#endif
 }
 
 double msSince(std::chrono::steady_clock::time_point t0) {
@@ -110,11 +128,74 @@ void benchVisibleSet(const std::string& dir, const Tileset& tileset, const std::
   }
 }
 
+/// bench-memory.mjs's flight; returns the process exit code.
+int flight(const std::string& dir, int grid, double memoryMb) {
+  bench::FileFetcher fetcher;
+  NullRenderDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  if (memoryMb > 0.0) options.memoryBudgetBytes = static_cast<std::uint64_t>(memoryMb * 1048576.0);
+  viewer.openCity(dir + "/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  viewer.frame(1.0 / 60.0);
+  viewer.frame(1.0 / 60.0);
+  if (!viewer.city() || !viewer.city()->manifestLoaded()) {
+    std::fprintf(stderr, "bench_engine: cannot load %s/tileset.json\n", dir.c_str());
+    return 1;
+  }
+  const std::uint64_t baseline = liveHeapBytes();
+  std::printf("\nMemory over a flight of %s (budget %.0f MB; MB)\n\n", dir.c_str(),
+              static_cast<double>(viewer.city()->mutableOptions().memoryBudgetBytes) / 1048576.0);
+  std::printf("| %-28s | %6s | %11s | %11s | %9s | %11s | %6s | %8s | %7s |\n", "stop", "tiles", "scene bytes",
+              "of it: GPU", "live heap", "heap-GPU-sc", "draws", "visible", "index");
+  std::printf("|%s|\n", std::string(118, '-').c_str());
+  double peakHeap = 0.0;
+  auto settle = [&](const CameraState& camera, const std::string& name) {
+    viewer.setCamera(camera);
+    for (int i = 0; i < 20000 && !(i > 4 && viewer.settled() && viewer.city()->tileCounts().pending == 0); ++i)
+      viewer.frame(1.0 / 60.0);
+    const StatsSummary s = viewer.stats();
+    const double scene = static_cast<double>(viewer.city()->memoryBytes()) / 1048576.0;
+    const double gpu = static_cast<double>(device.gpuBytes()) / 1048576.0;
+    const double heap = static_cast<double>(liveHeapBytes() - std::min(liveHeapBytes(), baseline)) / 1048576.0;
+    peakHeap = std::max(peakHeap, heap);
+    std::printf("| %-28s | %6u | %11.1f | %11.1f | %9.1f | %11.1f | %6.0f | %8u | %7s |\n", name.c_str(),
+                viewer.city()->tileCounts().loaded, scene, gpu, heap, heap - (scene - gpu), s.drawCalls,
+                s.latest.buildingsVisible, viewer.city()->searchIndexLoaded() ? "loaded" : "-");
+  };
+  const CameraState overview = viewer.city()->overviewCamera();
+  settle(overview, "overview");
+  (void)viewer.city()->search("", 1);  // requests the city index
+  for (int i = 0; i < 20000 && !viewer.city()->searchIndexSettled(); ++i) viewer.frame(1.0 / 60.0);
+  settle(overview, "overview, city index loaded");
+  const Tileset* tileset = viewer.city()->tileset();
+  if (tileset == nullptr) return 1;
+  const Rect b = tileset->bounds;
+  for (int j = 0; j < grid; ++j) {
+    for (int i = 0; i < grid; ++i) {
+      CameraState c = overview;
+      const int col = j % 2 ? grid - 1 - i : i;
+      c.x = b.minX + (b.maxX - b.minX) * (col + 0.5) / grid;
+      c.y = b.minY + (b.maxY - b.minY) * (j + 0.5) / grid;
+      c.distance = 600.0;
+      c.headingDeg = 30.0;
+      c.pitchDeg = 45.0;
+      settle(c, "low pass " + std::to_string(j * grid + i + 1));
+    }
+  }
+  settle(overview, "overview again");
+  std::printf("\npeak live heap above the start %.1f MB; errors: %zu\n", peakHeap, viewer.errors().size());
+  for (const auto& e : viewer.errors()) std::printf("  %s\n", e.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: bench_engine CITY_DIR [--radius M] [--frames N] [--animated N,N...]\n");
+    std::fprintf(stderr,
+                 "usage: bench_engine CITY_DIR [--radius M] [--frames N] [--animated N,N...]\n"
+                 "       bench_engine CITY_DIR --flight N [--memory MB]\n");
     return 2;
   }
   const std::string dir = argv[1];
@@ -124,7 +205,11 @@ int main(int argc, char** argv) {
   // 20,000 by default; a city with detailed towers (synth-city --detailed-towers) measures the
   // skeletal animation of LOD2 models with, e.g., --animated 1000,10000.
   std::vector<std::uint32_t> animatedCounts = {10000u, 20000u};
+  int flightGrid = 0;
+  double memoryMb = 0.0;
   for (int i = 2; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--flight") == 0) flightGrid = std::atoi(argv[i + 1]);
+    if (std::strcmp(argv[i], "--memory") == 0) memoryMb = std::strtod(argv[i + 1], nullptr);
     if (std::strcmp(argv[i], "--radius") == 0) radius = std::strtof(argv[i + 1], nullptr);
     if (std::strcmp(argv[i], "--frames") == 0) frames = std::atoi(argv[i + 1]);
     if (std::strcmp(argv[i], "--animated") == 0) {
@@ -141,6 +226,7 @@ int main(int argc, char** argv) {
       }
     }
   }
+  if (flightGrid > 0) return flight(dir, flightGrid, memoryMb);
   bench::FileFetcher fetcher;
   NullRenderDevice device;
   Viewer viewer(device);

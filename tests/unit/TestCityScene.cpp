@@ -265,7 +265,6 @@ TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed",
   Viewer viewer(device);
   CitySceneOptions options;
   options.animationRadiusM = 100.0f;
-  options.memoryBudgetBytes = 1;  // everything not in use this frame goes
   viewer.openCity("city/tileset.json", fetcher, options);
   viewer.setViewport(1280, 720, 1280.0, 720.0);
   viewer.setCamera(CameraState{-80.0, -80.0, 120.0, 0.0, 60.0, 45.0});
@@ -274,15 +273,58 @@ TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed",
                        << " failed " << viewer.city()->tileCounts().failed << " requests " << fetcher.requested.size());
   REQUIRE(viewer.settled());
   CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 1);
+  // A budget that holds what this view needs, and not much more.
+  const std::uint64_t budget = viewer.city()->memoryBytes() + 1024;
+  viewer.city()->mutableOptions().memoryBudgetBytes = budget;
   // Fly to the opposite corner: the first leaf is no longer used and is evicted.
   viewer.setCamera(CameraState{80.0, 80.0, 120.0, 0.0, 60.0, 45.0});
   runFrames(viewer, 15);
   CHECK(viewer.settled());
+  CHECK(viewer.city()->memoryBytes() <= budget);
   // Back again: it is requested a second time.
   viewer.setCamera(CameraState{-80.0, -80.0, 120.0, 0.0, 60.0, 45.0});
   runFrames(viewer, 15);
   CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 2);
   CHECK(viewer.stats().latest.buildingsVisible > 0);
+  CHECK(viewer.city()->memoryBytes() <= budget);
+}
+
+TEST_CASE("A view larger than the memory budget is drawn coarser, within the budget, without reloading",
+          "[scene][city][memory]") {
+  MiniCity city;
+  FakeFetcher fetcher;
+  city.serve(fetcher);
+  RecordingDevice device;
+  Viewer viewer(device);
+  CitySceneOptions options;
+  options.animationRadiusM = 0.0f;
+  viewer.openCity("city/tileset.json", fetcher, options);
+  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  // Close over the whole city: the four leaves replace the root.
+  const CameraState close{0.0, 0.0, 150.0, 0.0, 89.0, 60.0};
+  viewer.setCamera(close);
+  for (int i = 0; i < 60 && !viewer.settled(); ++i) runFrames(viewer, 1);
+  REQUIRE(viewer.settled());
+  const std::uint32_t fullDraws = viewer.stats().latest.drawCalls;
+  REQUIRE(fullDraws >= 4);
+  const std::size_t visible = viewer.stats().latest.buildingsVisible;
+  // A budget below what the leaves take: only the root fits.
+  const std::uint64_t full = viewer.city()->memoryBytes();
+  viewer.city()->mutableOptions().memoryBudgetBytes = full * 2 / 3;
+  runFrames(viewer, 10);
+  CHECK(viewer.settled());
+  CHECK(viewer.city()->tileSelection().memoryLimited);
+  CHECK(viewer.city()->tileSelection().draw == std::vector<std::uint32_t>{0});
+  CHECK(viewer.city()->memoryBytes() <= full * 2 / 3);
+  CHECK(viewer.stats().latest.buildingsVisible == visible);  // the root draws every building, coarser
+  // Steady: nothing is fetched again frame after frame.
+  const std::size_t requests = fetcher.requested.size();
+  runFrames(viewer, 30);
+  CHECK(fetcher.requested.size() == requests);
+  // With the budget back, the leaves return.
+  viewer.city()->mutableOptions().memoryBudgetBytes = full * 2;
+  for (int i = 0; i < 60 && viewer.city()->tileSelection().draw.size() < 4; ++i) runFrames(viewer, 1);
+  CHECK(viewer.city()->tileSelection().draw.size() == 4);
 }
 
 TEST_CASE("A manifest that cannot be loaded is an error, not a hang", "[scene][city][errors]") {

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <memory>
 
 #include "qv/lod/TileSelector.h"
 
@@ -119,4 +120,76 @@ TEST_CASE("Tiles within the detail radius of the eye refine even when their erro
   const CameraView far(CameraState{500, 500, 30000, 0, 60, 45}, 1280, 720);
   selectTiles(t, states, far, options, s);
   CHECK(s.draw == std::vector<std::uint32_t>{0});
+}
+
+TEST_CASE("The memory budget caps refinement: coarser tiles are drawn instead", "[lod][memory]") {
+  const Tileset t = twoLevels();
+  const CameraView view(CameraState{0, 0, 1500, 0, 80, 45}, 1280, 720);
+  const std::vector<TileState> states(5, TileState::Loaded);
+  const std::vector<std::uint64_t> bytes = {100, 40, 40, 40, 40};
+  TileSelectorOptions options;
+  options.nodeBytes = bytes;
+  options.memoryBudgetBytes = 150;  // the root (100) or its four children (160): only the root fits
+  TileSelection s;
+  selectTiles(t, states, view, options, s);
+  CHECK(s.draw == std::vector<std::uint32_t>{0});
+  CHECK(s.memoryLimited);
+  CHECK(s.bytes == 100);
+  CHECK(s.replaced.empty());
+  // The children are not kept from eviction: nothing the view draws needs them.
+  for (std::uint32_t c = 1; c <= 4; ++c) CHECK_FALSE(contains(s.used, c));
+  options.memoryBudgetBytes = 160;
+  selectTiles(t, states, view, options, s);
+  CHECK(s.draw.size() == 4);
+  CHECK_FALSE(s.memoryLimited);
+  CHECK(s.bytes == 160);
+  CHECK(s.replaced == std::vector<std::uint32_t>{0});  // the scene may evict it under pressure
+}
+
+TEST_CASE("Children are not wanted when they would not fit beside the tile they replace", "[lod][memory]") {
+  const Tileset t = twoLevels();
+  const CameraView view(CameraState{0, 0, 1500, 0, 80, 45}, 1280, 720);
+  std::vector<TileState> states = {TileState::Loaded, TileState::Unloaded, TileState::Unloaded, TileState::Unloaded,
+                                   TileState::Unloaded};
+  const std::vector<std::uint64_t> bytes = {100, 40, 40, 40, 40};
+  TileSelectorOptions options;
+  options.nodeBytes = bytes;
+  options.memoryBudgetBytes = 200;  // the root stays drawn while they load: 100 + 160 > 200
+  TileSelection s;
+  selectTiles(t, states, view, options, s);
+  CHECK(s.draw == std::vector<std::uint32_t>{0});
+  CHECK(s.wanted.empty());
+  CHECK(s.memoryLimited);
+  CHECK(s.complete());
+  options.memoryBudgetBytes = 260;
+  selectTiles(t, states, view, options, s);
+  CHECK(s.wanted.size() == 4);
+  CHECK(s.bytes == 260);
+}
+
+TEST_CASE("An evicted coarse tile is passed through to its children, not loaded again", "[lod][memory]") {
+  const Tileset t = twoLevels();
+  const CameraView view(CameraState{0, 0, 1500, 0, 80, 45}, 1280, 720);
+  std::vector<TileState> states = {TileState::Unloaded, TileState::Loaded, TileState::Loaded, TileState::Unloaded,
+                                   TileState::Loaded};
+  const std::unique_ptr<bool[]> wasLoaded(new bool[5]{true, false, false, false, false});
+  TileSelectorOptions options;
+  options.wasLoaded = std::span<const bool>(wasLoaded.get(), 5);
+  TileSelection s;
+  selectTiles(t, states, view, options, s);
+  // The view wants the children: the loaded ones are drawn, the missing one is wanted, the root is not.
+  CHECK(s.draw.size() == 3);
+  CHECK_FALSE(contains(s.draw, 3));
+  CHECK(s.wanted == std::vector<std::uint32_t>{3});
+  // Never loaded, the same root is loaded first (coarse first), its loaded children standing in.
+  options.wasLoaded = {};
+  selectTiles(t, states, view, options, s);
+  CHECK(s.wanted == std::vector<std::uint32_t>{0});
+  CHECK(s.draw.size() == 3);
+  // From far away the evicted root is the right tile again: wanted, its children drawn meanwhile.
+  options.wasLoaded = std::span<const bool>(wasLoaded.get(), 5);
+  const CameraView far(CameraState{0, 0, 40000, 0, 60, 45}, 1280, 720);
+  selectTiles(t, states, far, options, s);
+  CHECK(s.wanted == std::vector<std::uint32_t>{0});
+  CHECK(s.draw.size() == 3);
 }

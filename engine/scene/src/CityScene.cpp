@@ -161,6 +161,9 @@ void CityScene::onManifest(FetchResponse response) {
   tiles_.resize(tileset_->nodes.size());
   for (auto& t : tiles_) t = std::make_unique<TileRuntime>();
   states_.assign(tileset_->nodes.size(), TileState::Unloaded);
+  nodeBytes_.assign(tileset_->nodes.size(), 0);
+  nodeBytesMeasured_.assign(tileset_->nodes.size(), false);
+  wasLoaded_ = std::make_unique<bool[]>(tileset_->nodes.size());
   if (tileset_->responseOutOfDate()) {
     onError_(
         "The response results are older than the buildings of this city (run quakeview-prep response "
@@ -208,13 +211,44 @@ TileCounts CityScene::tileCounts() const {
   return c;
 }
 
-std::uint64_t CityScene::memoryBytes() const {
-  std::uint64_t total = searchBytes_;
-  for (const auto& t : tiles_) {
-    if (t->loaded) total += t->loaded->cpuBytes + t->loaded->gpuBytes;
-    total += t->bytes.size() + t->historyBytes;
+std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
+  const TileRuntime& t = *tiles_[node];
+  std::uint64_t total = t.bytes.size() + t.historyBytes;
+  if (t.loaded) total += t.loaded->cpuBytes + t.loaded->gpuBytes;
+  if (t.summary) {
+    total += t.summary->buildings.size() * sizeof(BuildingResponse) + t.summary->storeyPeakDrift.size() * sizeof(float);
   }
   return total;
+}
+
+std::uint64_t CityScene::memoryBytes() const {
+  std::uint64_t total = searchBytes_;
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) total += tileBytes(i);
+  return total;
+}
+
+void CityScene::updateNodeBytes() {
+  // Resident bytes per file byte, as measured on the tiles loaded so far; before any, what the
+  // synthetic and OSM cities measure natively (coarse tiles about 9, leaves about 17: a leaf's
+  // mesh has a ring of vertices per floor).
+  constexpr double kDefaultRatio[2] = {17.0, 9.0};
+  double ratio[2];
+  for (int k = 0; k < 2; ++k) {
+    ratio[k] = fileOfResident_[k] > 0
+                   ? static_cast<double>(residentOfFile_[k]) / static_cast<double>(fileOfResident_[k])
+                   : kDefaultRatio[k];
+  }
+  for (std::uint32_t i = 0; i < nodeBytes_.size(); ++i) {
+    if (states_[i] == TileState::Loaded) {
+      // Histories come and go with the animation radius: the tile's own bytes, measured.
+      nodeBytes_[i] = tileBytes(i) - tiles_[i]->historyBytes;
+      nodeBytesMeasured_[i] = true;
+      wasLoaded_[i] = true;
+    } else if (!nodeBytesMeasured_[i]) {
+      const TileNode& n = tileset_->nodes[i];
+      nodeBytes_[i] = static_cast<std::uint64_t>(static_cast<double>(n.bytes) * ratio[n.children.empty() ? 0 : 1]);
+    }
+  }
 }
 
 void CityScene::request(std::uint32_t node, double now) {
@@ -420,6 +454,11 @@ void CityScene::finishTile(std::uint32_t node) {
                       m.farPositions.size() * sizeof(glm::vec3) + m.farTriangles.size() * 2;
   }
   writeBuildingRows(tile->slotBase, count);
+  {
+    const int kind = tileset_->nodes[node].children.empty() ? 0 : 1;
+    residentOfFile_[kind] += tile->cpuBytes + tile->gpuBytes;
+    fileOfResident_[kind] += tileset_->nodes[node].bytes;
+  }
   t.loaded = std::move(tile);
   ++residencyGeneration_;
   t.lastUsed = frame_;
@@ -614,13 +653,31 @@ void CityScene::enforceMemoryBudget() {
       tiles_[i]->historyState = TileState::Unloaded;
       if (total <= options_.memoryBudgetBytes) return;
     }
-    if (tiles_[i]->loaded && tiles_[i]->lastUsed < frame_ && i != 0) candidates.push_back(i);
+    if (tiles_[i]->loaded && tiles_[i]->lastUsed < frame_) candidates.push_back(i);
   }
   std::sort(candidates.begin(), candidates.end(),
             [&](std::uint32_t a, std::uint32_t b) { return tiles_[a]->lastUsed < tiles_[b]->lastUsed; });
   for (std::uint32_t i : candidates) {
     if (total <= options_.memoryBudgetBytes) break;
-    const std::uint64_t bytes = tiles_[i]->loaded->cpuBytes + tiles_[i]->loaded->gpuBytes + tiles_[i]->historyBytes;
+    const std::uint64_t bytes = tileBytes(i);
+    evict(i);
+    total -= std::min(total, bytes);
+  }
+  if (total <= options_.memoryBudgetBytes) return;
+  // Still over: the coarse tiles this frame replaced by their children, largest first. The
+  // selector passes through an evicted tile to its children instead of loading it again.
+  candidates.clear();
+  for (std::uint32_t i : selection_.replaced) {
+    if (tiles_[i]->loaded && std::find(detailWanted_.begin(), detailWanted_.end(), i) == detailWanted_.end())
+      candidates.push_back(i);
+  }
+  std::sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const std::uint64_t ba = tileBytes(a), bb = tileBytes(b);
+    return ba != bb ? ba > bb : a < b;
+  });
+  for (std::uint32_t i : candidates) {
+    if (total <= options_.memoryBudgetBytes) break;
+    const std::uint64_t bytes = tileBytes(i);
     evict(i);
     total -= std::min(total, bytes);
   }
@@ -660,6 +717,16 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   selectorOptions.maxScreenSpaceError = options_.maxScreenSpaceError;
   selectorOptions.maxDrawTiles = options_.maxDrawTiles;
   selectorOptions.detailRadiusM = options_.animationRadiusM;
+  // The tiles drawn and wanted get what the city index and the animated buildings' histories leave
+  // of the budget (at least an eighth of it: something must be drawn).
+  updateNodeBytes();
+  std::uint64_t histories = 0;
+  for (const auto& t : tiles_) histories += t->historyBytes;
+  const std::uint64_t budget = options_.memoryBudgetBytes;
+  selectorOptions.nodeBytes = nodeBytes_;
+  selectorOptions.wasLoaded = std::span<const bool>(wasLoaded_.get(), nodeBytes_.size());
+  selectorOptions.memoryBudgetBytes =
+      std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, searchBytes_ + histories)});
   selectTiles(*tileset_, states_, view, selectorOptions, selection_);
   for (std::uint32_t i : selection_.used) tiles_[i]->lastUsed = frame_;
   for (std::uint32_t i : selection_.wanted) tiles_[i]->lastUsed = frame_;

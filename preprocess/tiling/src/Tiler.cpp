@@ -398,8 +398,14 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       const BuildingAttributes& a = model.buildings[b].attributes;
       size[b] = std::max(a.footprintAreaM2, 1.0f) * std::max(a.heightM, 1.0f);
     }
+    // The root, drawn alone from far away, holds up to the limit; every other inner tile up to a
+    // quarter of it. A refinement step then draws about as many buildings as the tile it replaces
+    // (four children of a quarter each), and a viewer can refine the view near the camera down to
+    // the leaves within a memory budget: a chain of tiles as large as the root would not fit.
+    const std::size_t rootLimit = std::max<std::size_t>(options.maxCoarseBuildings, 1);
     for (Node& node : nodes) {
-      if (!node.leaf()) chooseCoarse(model, size, node, std::max<std::size_t>(options.maxCoarseBuildings, 1));
+      if (!node.leaf())
+        chooseCoarse(model, size, node, node.level == 0 ? rootLimit : std::max<std::size_t>(rootLimit / 4, 1));
     }
   }
   // Leaves are numbered as readers of the manifest number tiles: depth first, children in order.

@@ -6,6 +6,14 @@
 // budget allows. A node is only replaced once all its visible children are loaded (or failed), so
 // the drawn set never has holes or overlaps while tiles stream in: coarse tiles first, then
 // refining where the camera needs detail.
+//
+// With a memory budget, refinement also stops where the tiles drawn and wanted would not fit
+// (nodeBytes: each node's resident size, measured once it has been loaded, estimated before), so a
+// city larger than the budget is drawn coarser far away instead of exceeding it; the most important
+// nodes (the detail radius, then the largest errors) get the budget first. A tile that was replaced
+// by its children is not needed any more: under memory pressure the scene may evict it, and the
+// selector then passes through it to its children (wanting the missing ones) instead of loading it
+// again.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +33,14 @@ struct TileSelectorOptions {
   /// Tiles closer to the eye than this (metres) are refined to leaves: the buildings animated
   /// there need full detail. 0 disables.
   float detailRadiusM = 0.0f;
+  /// Bytes each node holds once loaded (indexed like Tileset::nodes), and the budget the drawn and
+  /// wanted nodes must fit in. Empty or 0: no memory limit.
+  std::span<const std::uint64_t> nodeBytes;
+  std::uint64_t memoryBudgetBytes = 0;
+  /// Per node, whether it has been loaded before (and evicted): such a node that the view wants
+  /// refined is passed through to its children, missing ones wanted, instead of being loaded
+  /// again only to stand in for them. Empty: every unloaded node is loaded first (coarse first).
+  std::span<const bool> wasLoaded;
 };
 
 struct TileSelection {
@@ -33,6 +49,11 @@ struct TileSelection {
   std::vector<std::uint32_t> used;    ///< every node the selection passed through, and arrived children
                                       ///< waiting for their siblings (kept from eviction: LRU)
   bool budgetLimited = false;         ///< refinement stopped at the draw budget
+  /// Loaded nodes replaced by their children this frame (in `used`): under memory pressure the
+  /// scene may evict them; the selector then passes through them to their loaded children.
+  std::vector<std::uint32_t> replaced;
+  bool memoryLimited = false;  ///< refinement stopped at the memory budget
+  std::uint64_t bytes = 0;     ///< nodeBytes of the drawn and wanted nodes
   /// Nothing is waiting: every tile the view needs is loaded or failed.
   [[nodiscard]] bool complete() const { return wanted.empty(); }
 };

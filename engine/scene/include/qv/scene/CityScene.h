@@ -128,6 +128,8 @@ class CityScene {
   [[nodiscard]] CameraState overviewCamera(double fovDeg = 45.0) const;
   /// Bytes held: decoded tiles and histories (CPU) and meshes (GPU).
   [[nodiscard]] std::uint64_t memoryBytes() const;
+  /// The last frame's choice of tiles (drawn, wanted, limits).
+  [[nodiscard]] const TileSelection& tileSelection() const { return selection_; }
 
   // Picking, lookup and inspection.
   /// The first building a ray (city frame, any direction length) meets among the drawn tiles.
@@ -217,6 +219,16 @@ class CityScene {
   double clock_ = 0.0;                                               // seconds since creation (for retries)
   std::optional<std::chrono::steady_clock::time_point> lastUpdate_;  // the previous frame's start
   TileSelection selection_;
+  /// Per node, the bytes it holds once loaded (tile data, mesh, summary): measured when it last
+  /// loaded, else estimated from its file size at the ratio measured so far for its kind (coarse
+  /// or leaf). The selector keeps the tiles drawn and wanted within the budget with these.
+  std::vector<std::uint64_t> nodeBytes_;
+  std::vector<bool> nodeBytesMeasured_;
+  std::unique_ptr<bool[]> wasLoaded_;         // per node: loaded at some time (a span needs contiguous bools)
+  std::uint64_t residentOfFile_[2] = {0, 0};  // [leaf, coarse]: resident bytes of the tiles loaded so far
+  std::uint64_t fileOfResident_[2] = {0, 0};  // their file bytes
+  void updateNodeBytes();
+  [[nodiscard]] std::uint64_t tileBytes(std::uint32_t node) const;  // a loaded tile's resident bytes
 
   // GPU tables and their CPU mirrors.
   std::vector<BuildingGpuRecord> buildingRows_;
