@@ -2,6 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <tuple>
 
 #include <GeographicLib/Geodesic.hpp>
 #include <glm/geometric.hpp>
@@ -51,6 +52,39 @@ TEST_CASE("Projected distances are true metres (geodesic within 0.05 %)", "[inge
   // Plain (Web) Mercator would be off by 1 / cos(latitude): 32 % here.
   const double mercatorScale = 1.0 / std::cos(40.73 * M_PI / 180.0);
   CHECK(mercatorScale > 1.3);
+}
+
+TEST_CASE("The projection grid agrees with the exact projection within a millimetre", "[ingest][projection]") {
+  // A city far from its central meridian and at a high latitude too, where the second derivatives
+  // are largest.
+  for (const auto& [lon0, lat0, span] :
+       {std::tuple{-73.997, 40.727, 0.08}, std::tuple{10.7, 59.9, 0.5}, std::tuple{151.2, -33.9, 1.0}}) {
+    INFO("origin " << lon0 << ", " << lat0 << ", span " << span);
+    const CityProjection projection(lon0, lat0);
+    const double minLon = lon0 - span / 2, minLat = lat0 - span / 2, maxLon = lon0 + span * 2, maxLat = lat0 + span;
+    const auto grid = ProjectionGrid::make(projection, minLon, minLat, maxLon, maxLat, 10'000'000, 2);
+    REQUIRE(grid.has_value());
+    CHECK(grid->measuredErrorM() < 0.0002);
+    double worst = 0.0;
+    for (int k = 0; k <= 2000; ++k) {
+      // Spread over the box, corners and edges included.
+      const double u = k == 2000 ? 1.0 : std::fmod(k * 0.618034, 1.0),
+                   v = k == 2000 ? 1.0 : std::fmod(k * 0.414214, 1.0);
+      const double lon = minLon + u * (maxLon - minLon), lat = minLat + v * (maxLat - minLat);
+      worst = std::max(worst, glm::length(grid->forward(lon, lat) - projection.forward(lon, lat)));
+    }
+    CHECK(worst < ProjectionGrid::kMaxErrorM);
+  }
+}
+
+TEST_CASE("A projection grid that would be too large is not made", "[ingest][projection]") {
+  const CityProjection projection(-73.997, 40.727);
+  // 0.08 x 0.06 degrees at 0.001 degrees: about 83 x 63 nodes.
+  CHECK(ProjectionGrid::make(projection, -74.03, 40.70, -73.95, 40.76, 1000).has_value() == false);
+  const auto grid = ProjectionGrid::make(projection, -74.03, 40.70, -73.95, 40.76, 10000);
+  REQUIRE(grid.has_value());
+  CHECK(grid->nodes() < 10000);
+  CHECK_FALSE(ProjectionGrid::make(projection, -73.9, 40.70, -74.0, 40.76, 10000).has_value());  // min > max
 }
 
 TEST_CASE("Building centroids of the PBF keep their geodesic distance", "[ingest][projection][data]") {

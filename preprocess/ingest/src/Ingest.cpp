@@ -462,10 +462,16 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
   // ---- Project every point once, then clean and parse every feature (independent: a few threads).
   const unsigned maxThreads =
       options.threads > 0 ? options.threads : std::min(4u, std::max(1u, std::thread::hardware_concurrency()));
+  // Through a grid of exact values when the points outnumber its nodes (ProjectionGrid: under a
+  // millimetre from the exact projection, measured), else one by one.
+  const std::optional<ProjectionGrid> projectionGrid = ProjectionGrid::make(
+      projection, lonLat.minX, lonLat.minY, lonLat.maxX, lonLat.maxY, points.size() / 8, maxThreads);
   parallelChunks(maxThreads, points.size() / kPointsPerThreadMin, [&](unsigned t, unsigned chunks) {
     const std::size_t end = points.size() * (t + 1) / chunks;
-    for (std::size_t i = points.size() * t / chunks; i < end; ++i)
-      points[i] = projection.forward(points[i].x, points[i].y);
+    for (std::size_t i = points.size() * t / chunks; i < end; ++i) {
+      points[i] = projectionGrid ? projectionGrid->forward(points[i].x, points[i].y)
+                                 : projection.forward(points[i].x, points[i].y);
+    }
   });
   stats.points = points.size();
   std::vector<Prepared> prepared(features.size());
