@@ -305,6 +305,12 @@ std::vector<std::uint8_t> encodeCityTile(const CityTile& tile) {
   const float extent = tile.extent > 0.0f ? tile.extent : 1.0f;
   // Sections first, each into its own writer, then the header and table in front of them.
   ByteWriter bldg, part, ring, vert, tris, strs;
+  bldg.reserve(tile.buildings.size() * 36);
+  strs.reserve(tile.buildings.size() * 24);
+  part.reserve(tile.parts.size() * 20);
+  ring.reserve(tile.ringVertexCounts.size() * 2);
+  vert.reserve(tile.vertices.size() * 4);
+  tris.reserve(tile.roofTriangles.size() * 2);
   for (const TileBuilding& b : tile.buildings) {
     const BuildingAttributes& a = b.attributes;
     bldg.u16(b.partCount);
@@ -359,6 +365,11 @@ std::vector<std::uint8_t> encodeCityTile(const CityTile& tile) {
   if (!tile.meshes.empty()) sections.push_back({kMesh, &mesh});
 
   ByteWriter out;
+  {
+    std::size_t total = kHeaderSize + sections.size() * kSectionEntrySize;
+    for (const Section& s : sections) total += (s.data->size() + 3) / 4 * 4;
+    out.reserve(total);
+  }
   out.bytes(kMagic);
   out.u16(kCityTileVersion);
   out.u16(tile.coarse ? kFlagCoarse : 0);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <mutex>
+#include <span>
 #include <thread>
 #include <unordered_map>
 
@@ -28,6 +29,38 @@ struct BuildingInfo {
   std::size_t leafBytes;                          // estimated size in a leaf tile
   std::vector<std::vector<std::uint32_t>> roofs;  // per part
   bool valid = true;
+};
+
+// Coarse outlines that needed the constrained triangulation, per building: a building is drawn in
+// the coarse tiles of several levels, whose tolerances often simplify it to the same ring. Shared
+// by the threads that write tiles (one lock per stripe of buildings).
+class CoarseTriangulations {
+ public:
+  explicit CoarseTriangulations(std::size_t buildings) : entries_(buildings) {}
+  /// The triangles of `ring` as building `b` triangulated them before, or false.
+  bool find(std::uint32_t b, std::span<const glm::dvec2> ring, std::vector<std::uint32_t>& triangles) {
+    const std::lock_guard lock(stripes_[b % kStripes]);
+    for (const Entry& e : entries_[b]) {
+      if (std::equal(e.ring.begin(), e.ring.end(), ring.begin(), ring.end())) {
+        triangles = e.triangles;
+        return true;
+      }
+    }
+    return false;
+  }
+  void add(std::uint32_t b, std::span<const glm::dvec2> ring, const std::vector<std::uint32_t>& triangles) {
+    const std::lock_guard lock(stripes_[b % kStripes]);
+    entries_[b].push_back(Entry{std::vector<glm::dvec2>(ring.begin(), ring.end()), triangles});
+  }
+
+ private:
+  struct Entry {
+    std::vector<glm::dvec2> ring;
+    std::vector<std::uint32_t> triangles;
+  };
+  static constexpr std::size_t kStripes = 64;
+  std::mutex stripes_[kStripes];
+  std::vector<std::vector<Entry>> entries_;
 };
 
 struct Node {
@@ -125,17 +158,30 @@ void chooseCoarse(const CityModel& model, const std::vector<float>& size, Node& 
 
 void addAttributes(CityTile& tile, const Building& b, std::uint16_t partCount, bool coarse) {
   TileBuilding tb;
-  tb.attributes = b.attributes;
-  tb.attributes.centroidX = b.attributes.centroidX - tile.originX;
-  tb.attributes.centroidY = b.attributes.centroidY - tile.originY;
+  const BuildingAttributes& a = b.attributes;
   if (coarse) {
-    // Far-view tiles carry what drawing and picking need; the leaf has the rest.
-    tb.attributes.name.clear();
-    tb.attributes.address.clear();
-    tb.attributes.material.clear();
-    tb.attributes.structure.clear();
-    tb.attributes.amenity.clear();
+    // Far-view tiles carry what drawing and picking need; the leaf has the rest (the strings left
+    // empty are not copied at all).
+    BuildingAttributes& c = tb.attributes;
+    c.id = a.id;
+    c.use = a.use;
+    c.heightM = a.heightM;
+    c.minHeightM = a.minHeightM;
+    c.storeys = a.storeys;
+    c.heightSource = a.heightSource;
+    c.storeysSource = a.storeysSource;
+    c.startYear = a.startYear;
+    c.structuralType = a.structuralType;
+    c.codeEra = a.codeEra;
+    c.importance = a.importance;
+    c.importanceReasons = a.importanceReasons;
+    c.lod = a.lod;
+    c.footprintAreaM2 = a.footprintAreaM2;
+  } else {
+    tb.attributes = a;
   }
+  tb.attributes.centroidX = a.centroidX - tile.originX;
+  tb.attributes.centroidY = a.centroidY - tile.originY;
   tb.firstPart = static_cast<std::uint32_t>(tile.parts.size()) - partCount;
   tb.partCount = partCount;
   tile.buildings.push_back(std::move(tb));
@@ -217,7 +263,7 @@ CityTile leafTile(const CityModel& model, const std::vector<BuildingInfo>& info,
 }
 
 CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& info, const Node& node, Rect& bounds,
-                    float& geometricError) {
+                    float& geometricError, CoarseTriangulations& cache) {
   CityTile tile;
   tile.coarse = true;
   bounds = toRect(extentOf(info, node.buildings));  // the subtree's, for the viewer's culling
@@ -226,6 +272,11 @@ CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& inf
   // under a pixel of the screen-space error budget.
   const double tolerance = node.cellSize / 400.0;
   double worst = 0.0;
+  tile.buildings.reserve(node.coarse.size());
+  tile.parts.reserve(node.coarse.size());
+  tile.ringVertexCounts.reserve(node.coarse.size());
+  tile.vertices.reserve(node.coarse.size() * 6);
+  tile.roofTriangles.reserve(node.coarse.size() * 12);
   for (std::uint32_t bi : node.coarse) {
     const Building& b = model.buildings[bi];
     // The largest part's outer ring stands for the building; the prism spans all parts' heights.
@@ -247,11 +298,18 @@ CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& inf
     if (largestArea < 0.0) continue;
     const BuildingPart& p = b.parts[largest];
     double error = 0.0;
-    std::vector<glm::dvec2> ring = coarseOutline(std::span(p.points).first(p.ringEnds[0]), tolerance, error);
+    const std::span<const glm::dvec2> outer = std::span(p.points).first(p.ringEnds[0]);
+    std::vector<glm::dvec2> ring = coarseOutline(outer, tolerance, error);
     if (ring.size() < 3) continue;
     std::vector<std::uint32_t> triangles;
-    const std::uint32_t end = static_cast<std::uint32_t>(ring.size());
-    if (!triangulatePolygon(ring, std::span(&end, 1), triangles)) continue;
+    if (p.ringEnds.size() == 1 && std::equal(ring.begin(), ring.end(), outer.begin(), outer.end())) {
+      triangles = info[bi].roofs[largest];  // nothing simplified away: the roof's triangulation holds
+    } else if (!cache.find(bi, ring, triangles)) {
+      const std::uint32_t end = static_cast<std::uint32_t>(ring.size());
+      bool constrained = false;
+      if (!triangulatePolygon(ring, std::span(&end, 1), triangles, &constrained)) continue;
+      if (constrained) cache.add(bi, ring, triangles);
+    }
     worst = std::max(worst, error);
     TilePart tp;
     tp.ringCount = 1;
@@ -441,6 +499,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   }
 
   // 4. Build, encode and write every tile (in parallel).
+  CoarseTriangulations coarseTriangulations(n);
   std::mutex errorMutex;
   std::string firstError;
   {
@@ -448,8 +507,9 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
     std::atomic<std::size_t> done{0};
     parallelFor(nodes.size(), threads, [&](std::size_t i) {
       Node& node = nodes[i];
-      CityTile tile = node.leaf() ? leafTile(model, info, node, node.bounds)
-                                  : coarseTile(model, info, node, node.bounds, node.geometricError);
+      CityTile tile = node.leaf()
+                          ? leafTile(model, info, node, node.bounds)
+                          : coarseTile(model, info, node, node.bounds, node.geometricError, coarseTriangulations);
       const std::vector<std::uint8_t> bytes = encodeCityTile(tile);
       node.file = tileFileName(node.level, node.x, node.y);
       node.bytes = bytes.size();

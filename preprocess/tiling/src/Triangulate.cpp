@@ -57,7 +57,8 @@ int convexWinding(std::span<const glm::dvec2> ring) {
 }  // namespace
 
 bool triangulatePolygon(std::span<const glm::dvec2> points, std::span<const std::uint32_t> ringEnds,
-                        std::vector<std::uint32_t>& out) {
+                        std::vector<std::uint32_t>& out, bool* usedConstrained) {
+  if (usedConstrained != nullptr) *usedConstrained = false;
   // Most footprints are one convex ring (rectangles above all): a fan is their triangulation, and
   // costs nothing next to building a Delaunay triangulation.
   if (ringEnds.size() == 1 && ringEnds[0] <= points.size()) {
@@ -74,6 +75,7 @@ bool triangulatePolygon(std::span<const glm::dvec2> points, std::span<const std:
       return true;
     }
   }
+  if (usedConstrained != nullptr) *usedConstrained = true;
   try {
     Cdt cdt;
     std::vector<Cdt::Vertex_handle> ring;

@@ -40,6 +40,9 @@ class ByteWriter {
   void patchU32(std::size_t offset, std::uint32_t v);
   void align(std::size_t alignment);
 
+  /// Makes room for `n` more bytes (writers that know their size avoid regrowing).
+  void reserve(std::size_t n) { bytes_.reserve(bytes_.size() + n); }
+
   [[nodiscard]] std::size_t size() const { return bytes_.size(); }
   [[nodiscard]] const std::vector<std::uint8_t>& data() const { return bytes_; }
   std::vector<std::uint8_t> take() { return std::move(bytes_); }
@@ -47,7 +50,13 @@ class ByteWriter {
  private:
   template <typename T>
   void put(T v) {
-    for (std::size_t i = 0; i < sizeof(T); ++i) bytes_.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
+    // Little-endian whatever the host, assembled in a small array and appended at once (the
+    // compiler turns the loop into one store; byte-wise push_back checks capacity every byte).
+    std::uint8_t b[sizeof(T)];
+    for (std::size_t i = 0; i < sizeof(T); ++i) b[i] = static_cast<std::uint8_t>(v >> (8 * i));
+    const std::size_t at = bytes_.size();
+    bytes_.resize(at + sizeof(T));
+    std::memcpy(bytes_.data() + at, b, sizeof(T));
   }
   std::vector<std::uint8_t> bytes_;
 };

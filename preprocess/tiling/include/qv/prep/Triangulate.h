@@ -16,7 +16,9 @@ namespace qv::prep {
 /// any winding). Appends triangles as index triples into `points`, counter-clockwise, covering
 /// exactly the inside (even-odd nesting). Returns false (and leaves `out` unchanged) when CGAL
 /// rejects the input, e.g. rings that cross each other.
+/// `usedConstrained` (optional) tells whether the constrained triangulation ran: a convex single
+/// ring is triangulated as a fan, in a fraction of the time.
 bool triangulatePolygon(std::span<const glm::dvec2> points, std::span<const std::uint32_t> ringEnds,
-                        std::vector<std::uint32_t>& out);
+                        std::vector<std::uint32_t>& out, bool* usedConstrained = nullptr);
 
 }  // namespace qv::prep
