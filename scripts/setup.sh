@@ -25,6 +25,7 @@ packages=(
   libglm-dev libgeographiclib-dev libsimdjson-dev catch2
   libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev liblz4-dev
   libproj-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev libtinyobjloader-dev libeigen3-dev
+  libmimalloc-dev
   osmium-tool
   chromium fonts-dejavu-core
 )

@@ -141,7 +141,9 @@ class OsmReader {
       const osmium::io::File file{path_};
       if (file.format() == osmium::io::file_format::unknown)
         return fail(path_ + ": not an OSM file name (expected .osm, .osm.bz2, .osm.gz or .osm.pbf)");
-      reader = std::make_unique<osmium::io::Reader>(file);
+      // Nodes, ways and relations without their metadata (versions, timestamps, users: unused here),
+      // which libosmium then does not decode.
+      reader = std::make_unique<osmium::io::Reader>(file, osmium::osm_entity_bits::nwr, osmium::io::read_meta::no);
       LocationIndex index;
       osmium::handler::NodeLocationsForWays<LocationIndex> locations{index};
       locations.ignore_errors();  // missing nodes leave invalid locations; counted below
