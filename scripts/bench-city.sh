@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # Benchmark of the whole `quakeview-prep city` command (read, clean, project, infer, tile, write)
-# against `osmium export` of the same file to GeoJSON (Debian osmium-tool), side by side in one
-# run (interleaved, median of RUNS, default 5), and of `synth-city` at 1M buildings (wall time,
-# peak memory, tile bytes per building). Prints markdown tables.
+# against `osmium export` of the same file to GeoJSON (Debian osmium-tool) and, for OSM XML, the
+# seed paper's approach (Python's XML parser and GeoPandas, scripts/paper-approach.py; needs
+# Debian's python3-geopandas), side by side in one run (interleaved, median of RUNS, default 5),
+# and of `synth-city` at 1M buildings (wall time, peak memory, tile bytes per building). Prints
+# markdown tables.
 #
 #   bash scripts/bench-city.sh [PREP_BINARY]   (default: build/native-release/.../quakeview-prep)
 set -euo pipefail
@@ -30,24 +32,36 @@ echo
 echo "(city --no-lod2 does what osmium export does: footprints out; plain city also makes LOD2 models"
 echo "of the buildings with building:parts)"
 echo
-echo "| file | size MB | buildings | city s | city --no-lod2 s | osmium export s | ratio --no-lod2 / osmium (goal <= 1.5) |"
-echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: |"
+paper=0
+if /usr/bin/python3 -c 'import geopandas' 2>/dev/null; then paper=1; fi
+echo "| file | size MB | buildings | city s | city --no-lod2 s | osmium export s | ratio --no-lod2 / osmium (goal <= 1.5) | paper's approach s | speed-up --no-lod2 over it (goal >= 8) |"
+echo "| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |"
 for f in manhattan-midtown-buildings.osm nyc-manhattan-south-buildings.osm.pbf; do
   in="$data/osm/$f"
   [ -f "$in" ] || { echo "| $f | missing | | | | |"; continue; }
-  city=() lod1=() osm=()
+  city=() lod1=() osm=() py=()
   for _ in $(seq "$runs"); do
     city+=("$(wall "$prep" city --input "$in" --out "$work/city")")
     lod1+=("$(wall "$prep" city --no-lod2 --input "$in" --out "$work/city-lod1")")
     osm+=("$(wall osmium export "$in" -o "$work/export.geojson" --overwrite)")
+    if [ "$paper" = 1 ] && [[ "$f" == *.osm ]]; then
+      py+=("$(wall /usr/bin/python3 "$root/scripts/paper-approach.py" "$in" "$work/paper.json")")
+    fi
   done
   mc=$(median "${city[@]}")
   ml=$(median "${lod1[@]}")
   mo=$(median "${osm[@]}")
+  mp="" speedup=""
+  if [ "${#py[@]}" -gt 0 ]; then
+    mp=$(printf '%.3f' "$(median "${py[@]}")")
+    speedup=$(awk -v a="$mp" -v b="$ml" 'BEGIN {printf "%.1fx", a / b}')
+  elif [[ "$f" == *.osm ]]; then
+    mp="skipped (apt install python3-geopandas)"
+  fi
   buildings=$("$prep" info "$work/city" --json | sed -nE 's/.*"buildings":([0-9]+).*/\1/p')
   size=$(du -m --apparent-size "$in" | cut -f1)
-  printf '| %s | %s | %s | %.3f | %.3f | %.3f | %.2fx |\n' "$f" "$size" "$buildings" "$mc" "$ml" "$mo" \
-    "$(awk -v a="$ml" -v b="$mo" 'BEGIN {print a / b}')"
+  printf '| %s | %s | %s | %.3f | %.3f | %.3f | %.2fx | %s | %s |\n' "$f" "$size" "$buildings" "$mc" "$ml" "$mo" \
+    "$(awk -v a="$ml" -v b="$mo" 'BEGIN {print a / b}')" "$mp" "$speedup"
 done
 
 echo
