@@ -112,6 +112,21 @@ void runFramesUntil(Viewer& viewer, double limitSeconds, Done done) {
   }
 }
 
+// A MiniCity served by a fake fetcher, and a viewer with a recording device to open it in.
+struct SceneRig {
+  MiniCity city;
+  FakeFetcher fetcher;
+  RecordingDevice device;
+  Viewer viewer{device};
+  explicit SceneRig(MiniCity c = MiniCity()) : city(std::move(c)) { city.serve(fetcher); }
+  /// Opens the city in a 1280 x 720 viewport, animating within `animationRadiusM` of the eye.
+  void open(float animationRadiusM, CitySceneOptions options = {}) {
+    options.animationRadiusM = animationRadiusM;
+    viewer.openCity("city/tileset.json", fetcher, options);
+    viewer.setViewport(1280, 720, 1280.0, 720.0);
+  }
+};
+
 // The grid cell (i, j) whose building has its centre at `world`.
 std::pair<int, int> cellOf(glm::vec2 world) {
   const int i = static_cast<int>(std::lround(world.x / 40.0 - 0.5 + MiniCity::kSide / 2));
@@ -122,23 +137,17 @@ std::pair<int, int> cellOf(glm::vec2 world) {
 }  // namespace
 
 TEST_CASE("A streamed city loads coarse tiles first and refines where the camera needs detail", "[scene][city]") {
-  MiniCity city;
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
   // Far away: the coarse root suffices.
   viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
   runFrames(viewer, 5);
   REQUIRE(viewer.city()->manifestLoaded());
   CHECK(viewer.settled());
-  CHECK(fetcher.count("city/tiles/0-0-0.qvt") == 1);
-  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 0);
-  CHECK(device.lastItems.size() == 1);
+  CHECK(rig.fetcher.count("city/tiles/0-0-0.qvt") == 1);
+  CHECK(rig.fetcher.count("city/tiles/1-0-0.qvt") == 0);
+  CHECK(rig.device.lastItems.size() == 1);
   CHECK(viewer.stats().latest.buildingsLoaded == 64);
   CHECK(viewer.stats().latest.buildingsVisible == 64);
   const auto tiles = viewer.city()->tileCounts();
@@ -151,30 +160,24 @@ TEST_CASE("A streamed city loads coarse tiles first and refines where the camera
   CHECK_FALSE(viewer.settled());
   runFrames(viewer, 10);
   CHECK(viewer.settled());
-  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 1);
+  CHECK(rig.fetcher.count("city/tiles/1-0-0.qvt") == 1);
   CHECK(viewer.city()->tileCounts().loaded >= 2);
   // Every building drawn at most once.
-  const auto drawn = device.drawnSlots();
+  const auto drawn = rig.device.drawnSlots();
   std::set<std::pair<int, int>> cells;
   for (const auto& [slot, centre] : drawn) {
     CHECK(cells.insert(cellOf(centre)).second);
   }
   // The summary tier colours the buildings: damage states from the response.
   int withDamage = 0;
-  for (const auto& [slot, row] : device.buildings) withDamage += row.damageState >= 0.0f ? 1 : 0;
+  for (const auto& [slot, row] : rig.device.buildings) withDamage += row.damageState >= 0.0f ? 1 : 0;
   CHECK(withDamage > 0);
 }
 
 TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {
-  MiniCity city;
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 1000.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig;
+  rig.open(1000.0f);
+  Viewer& viewer = rig.viewer;
   viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
   viewer.pause();
   runFrames(viewer, 20);
@@ -189,20 +192,20 @@ TEST_CASE("Each animated building moves by its own history", "[scene][city][anim
     viewer.frame(1.0 / 60.0);
     std::set<long> distinct;
     int checked = 0;
-    for (const auto& [slot, centre] : device.drawnSlots()) {
-      const BuildingGpuRecord& row = device.buildings.at(slot);
+    for (const auto& [slot, centre] : rig.device.drawnSlots()) {
+      const BuildingGpuRecord& row = rig.device.buildings.at(slot);
       REQUIRE(row.floorBase >= 0.0f);
       const auto [i, j] = cellOf(centre);
       const auto base = static_cast<std::size_t>(row.floorBase);
       const double expectedRoof = MiniCity::roofX(i, j, t);
       // Linear interpolation of 50 Hz samples and 16-bit quantization: well within 2 %.
-      CHECK(device.floors[base + MiniCity::kStoreys].dxMeters ==
+      CHECK(rig.device.floors[base + MiniCity::kStoreys].dxMeters ==
             Approx(expectedRoof).margin(0.02 * MiniCity::amplitude(i, j)));
-      CHECK(device.floors[base].dxMeters == 0.0f);  // the ground does not move relative to itself
-      CHECK(device.floors[base + 2].dxMeters ==
+      CHECK(rig.device.floors[base].dxMeters == 0.0f);  // the ground does not move relative to itself
+      CHECK(rig.device.floors[base + 2].dxMeters ==
             Approx(expectedRoof * 2.0 / 5.0).margin(0.02 * MiniCity::amplitude(i, j)));
-      CHECK(device.floors[base + 1].peakDriftAbove > 0.0f);
-      distinct.insert(std::lround(device.floors[base + MiniCity::kStoreys].dxMeters * 1e5));
+      CHECK(rig.device.floors[base + 1].peakDriftAbove > 0.0f);
+      distinct.insert(std::lround(rig.device.floors[base + MiniCity::kStoreys].dxMeters * 1e5));
       ++checked;
     }
     CHECK(checked == 64);
@@ -210,31 +213,25 @@ TEST_CASE("Each animated building moves by its own history", "[scene][city][anim
   }
 
   // Paused: the displacements stay as they are from frame to frame.
-  const auto before = device.floors;
+  const auto before = rig.device.floors;
   runFrames(viewer, 3);
-  CHECK(device.floors.size() == before.size());
-  for (std::size_t k = 0; k < before.size(); ++k) CHECK(device.floors[k].dxMeters == before[k].dxMeters);
+  CHECK(rig.device.floors.size() == before.size());
+  for (std::size_t k = 0; k < before.size(); ++k) CHECK(rig.device.floors[k].dxMeters == before[k].dxMeters);
 
   // Outside the radius nothing animates, and rows are released.
   CitySceneOptions& live = viewer.city()->mutableOptions();
   live.animationRadiusM = 0.0f;
   viewer.frame(1.0 / 60.0);
   CHECK(viewer.stats().latest.buildingsAnimated == 0);
-  for (const auto& [slot, centre] : device.drawnSlots()) CHECK(device.buildings.at(slot).floorBase == -1.0f);
+  for (const auto& [slot, centre] : rig.device.drawnSlots()) CHECK(rig.device.buildings.at(slot).floorBase == -1.0f);
 }
 
 TEST_CASE("A corrupt tile and a missing tile are reported while the rest renders", "[scene][city][errors]") {
-  MiniCity city;
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  fetcher.files["city/tiles/1-1-0.qvt"][100] ^= 0xFF;  // corrupt
-  fetcher.files.erase("city/tiles/1-0-1.qvt");         // missing
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 1000.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig;
+  rig.fetcher.files["city/tiles/1-1-0.qvt"][100] ^= 0xFF;  // corrupt
+  rig.fetcher.files.erase("city/tiles/1-0-1.qvt");         // missing
+  rig.open(1000.0f);
+  Viewer& viewer = rig.viewer;
   viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
   runFrames(viewer, 20);
   CHECK(viewer.settled());
@@ -250,7 +247,7 @@ TEST_CASE("A corrupt tile and a missing tile are reported while the rest renders
   CHECK(missing);
   CHECK(viewer.city()->tileCounts().failed == 2);
   // The two good leaves are drawn (32 buildings) and the failed quadrants leave holes, no overlap.
-  CHECK(device.drawnSlots().size() == 32);
+  CHECK(rig.device.drawnSlots().size() == 32);
   // Errors are reported once, not every frame, even while retries happen.
   const std::size_t count = errors.size();
   runFrames(viewer, 30);
@@ -258,21 +255,16 @@ TEST_CASE("A corrupt tile and a missing tile are reported while the rest renders
 }
 
 TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed", "[scene][city][memory]") {
-  MiniCity city;
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 100.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig;
+  rig.open(100.0f);
+  Viewer& viewer = rig.viewer;
   viewer.setCamera(CameraState{-80.0, -80.0, 120.0, 0.0, 60.0, 45.0});
   runFrames(viewer, 15);
   INFO("tiles loaded " << viewer.city()->tileCounts().loaded << " pending " << viewer.city()->tileCounts().pending
-                       << " failed " << viewer.city()->tileCounts().failed << " requests " << fetcher.requested.size());
+                       << " failed " << viewer.city()->tileCounts().failed << " requests "
+                       << rig.fetcher.requested.size());
   REQUIRE(viewer.settled());
-  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 1);
+  CHECK(rig.fetcher.count("city/tiles/1-0-0.qvt") == 1);
   // A budget that holds what this view needs, and not much more.
   const std::uint64_t budget = viewer.city()->memoryBytes() + 1024;
   viewer.city()->mutableOptions().memoryBudgetBytes = budget;
@@ -284,22 +276,16 @@ TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed",
   // Back again: it is requested a second time.
   viewer.setCamera(CameraState{-80.0, -80.0, 120.0, 0.0, 60.0, 45.0});
   runFrames(viewer, 15);
-  CHECK(fetcher.count("city/tiles/1-0-0.qvt") == 2);
+  CHECK(rig.fetcher.count("city/tiles/1-0-0.qvt") == 2);
   CHECK(viewer.stats().latest.buildingsVisible > 0);
   CHECK(viewer.city()->memoryBytes() <= budget);
 }
 
 TEST_CASE("A view larger than the memory budget is drawn coarser, within the budget, without reloading",
           "[scene][city][memory]") {
-  MiniCity city;
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
   // Close over the whole city: the four leaves replace the root.
   const CameraState close{0.0, 0.0, 150.0, 0.0, 89.0, 60.0};
   viewer.setCamera(close);
@@ -318,9 +304,9 @@ TEST_CASE("A view larger than the memory budget is drawn coarser, within the bud
   CHECK(viewer.city()->memoryBytes() <= full * 2 / 3);
   CHECK(viewer.stats().latest.buildingsVisible == visible);  // the root draws every building, coarser
   // Steady: nothing is fetched again frame after frame.
-  const std::size_t requests = fetcher.requested.size();
+  const std::size_t requests = rig.fetcher.requested.size();
   runFrames(viewer, 30);
-  CHECK(fetcher.requested.size() == requests);
+  CHECK(rig.fetcher.requested.size() == requests);
   // With the budget back, the leaves return.
   viewer.city()->mutableOptions().memoryBudgetBytes = full * 2;
   for (int i = 0; i < 60 && viewer.city()->tileSelection().draw.size() < 4; ++i) runFrames(viewer, 1);
@@ -347,15 +333,9 @@ TEST_CASE("A manifest that cannot be loaded is an error, not a hang", "[scene][c
 
 TEST_CASE("Picking finds the building under the cursor, hidden kinds and filters show in the GPU flags",
           "[scene][city][pick]") {
-  MiniCity city;
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
   viewer.setCamera(CameraState{0.0, 0.0, 600.0, 0.0, 70.0, 45.0});
   runFrames(viewer, 20);
   REQUIRE(viewer.settled());
@@ -378,7 +358,7 @@ TEST_CASE("Picking finds the building under the cursor, hidden kinds and filters
   viewer.city()->setLodVisibility(false, true);
   runFrames(viewer, 2);
   CHECK_FALSE(viewer.pick(screen->x, screen->y).has_value());
-  for (const auto& [slot, row] : device.buildings) CHECK((static_cast<unsigned>(row.flags) & kFlagHidden) != 0);
+  for (const auto& [slot, row] : rig.device.buildings) CHECK((static_cast<unsigned>(row.flags) & kFlagHidden) != 0);
   viewer.city()->setLodVisibility(true, true);
   runFrames(viewer, 2);
   CHECK(viewer.pick(screen->x, screen->y).has_value());
@@ -390,7 +370,7 @@ TEST_CASE("Picking finds the building under the cursor, hidden kinds and filters
   runFrames(viewer, 2);
   int dimmed = 0;
   int kept = 0;
-  for (const auto& [slot, row] : device.buildings) {
+  for (const auto& [slot, row] : rig.device.buildings) {
     const bool isDimmed = (static_cast<unsigned>(row.flags) & kFlagDimmed) != 0;
     CHECK(isDimmed == (row.damageState < static_cast<float>(filters.minDamage)));
     (isDimmed ? dimmed : kept) += 1;
@@ -404,15 +384,9 @@ TEST_CASE("Picking finds the building under the cursor, hidden kinds and filters
 
 TEST_CASE("A building's results show while its full-detail tile's results are still on their way",
           "[scene][city][select]") {
-  MiniCity city;
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
   // Far away: only the coarse root and its results.
   viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
   runFrames(viewer, 5);
@@ -424,7 +398,7 @@ TEST_CASE("A building's results show while its full-detail tile's results are st
 
   // Selecting it brings in its leaf; the leaf's results are held back by a slow server.
   for (int q = 0; q < 4; ++q) {
-    fetcher.held.insert("city/response/1-" + std::to_string(q % 2) + "-" + std::to_string(q / 2) + ".qvs");
+    rig.fetcher.held.insert("city/response/1-" + std::to_string(q % 2) + "-" + std::to_string(q / 2) + ".qvs");
   }
   REQUIRE(viewer.select("s1"));
   for (int i = 0; i < 50 && !viewer.building("s1")->detailed; ++i) runFrames(viewer, 1);
@@ -434,21 +408,15 @@ TEST_CASE("A building's results show while its full-detail tile's results are st
   CHECK(detailed->hasResponse);
   CHECK(detailed->response.damage == coarse->response.damage);
   CHECK(detailed->storeyPeakDrift == coarse->storeyPeakDrift);
-  fetcher.held.clear();
+  rig.fetcher.held.clear();
   runFrames(viewer, 5);
   CHECK(viewer.building("s1")->hasResponse);
 }
 
 TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with the LOD2 switch", "[scene][city][lod2]") {
-  MiniCity city(true, true);
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig(MiniCity(true, true));
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
   const double x = MiniCity::centreX(0), y = MiniCity::centreY(0);
   // Close to the model, from the side: the leaf (skinned mesh) is drawn.
   viewer.setCamera(CameraState{x, y, 150.0, 30.0, 20.0, 45.0});
@@ -481,9 +449,9 @@ TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with th
 
   // The drawn mesh holds the model's six triangles for its slot (flat-shaded: 18 vertices), not
   // an extruded prism.
-  CHECK(device.verticesAt(glm::vec2(x, y)) == 18);
+  CHECK(rig.device.verticesAt(glm::vec2(x, y)) == 18);
   // Its neighbour, a LOD1 building, is an extruded prism with a ring per floor.
-  CHECK(device.verticesAt(glm::vec2(MiniCity::centreX(1), y)) > 18);
+  CHECK(rig.device.verticesAt(glm::vec2(MiniCity::centreX(1), y)) > 18);
 
   // LOD2 switched off: the building is its LOD1 extrusion again (a prism with a ring per floor,
   // drawn and picked), so the spire is gone but the walls are still there.
@@ -494,7 +462,7 @@ TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with th
   const auto prismWall = viewer.pick(wall->x, wall->y);
   REQUIRE(prismWall.has_value());
   CHECK(prismWall->attributes.id == MiniCity::kLod2Id);
-  CHECK(device.verticesAt(glm::vec2(x, y)) > 18);
+  CHECK(rig.device.verticesAt(glm::vec2(x, y)) > 18);
   // LOD1 off as well: now it is hidden like every other building.
   viewer.city()->setLodVisibility(false, false);
   runFrames(viewer, 2);
@@ -506,7 +474,7 @@ TEST_CASE("A LOD2 model is drawn, picked on its own triangles and hidden with th
   const auto onlyModel = viewer.pick(spire->x, spire->y);
   REQUIRE(onlyModel.has_value());
   CHECK(onlyModel->attributes.id == MiniCity::kLod2Id);
-  CHECK(device.verticesAt(glm::vec2(x, y)) == 18);
+  CHECK(rig.device.verticesAt(glm::vec2(x, y)) == 18);
 }
 
 TEST_CASE("Hostile city addresses are refused before any request, with a message", "[scene][city][errors]") {
@@ -539,15 +507,9 @@ TEST_CASE("Hostile city addresses are refused before any request, with a message
 
 TEST_CASE("A root that holds only some buildings: lists, search and selection come from the city index",
           "[scene][city][index]") {
-  MiniCity city(true, false, 16);  // the root draws 16 of the 64 buildings
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig(MiniCity(true, false, 16));  // the root draws 16 of the 64 buildings
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
   // Far away: only the root is drawn.
   viewer.setCamera(CameraState{0.0, 0.0, 200000.0, 0.0, 70.0, 45.0});
   std::size_t total = 0;
@@ -602,16 +564,10 @@ TEST_CASE("A root that holds only some buildings: lists, search and selection co
 
 TEST_CASE("A search index and city-wide response that fail are retried with backoff and recover",
           "[scene][city][index][errors]") {
-  MiniCity city(true, false, 16);
-  FakeFetcher fetcher;
-  city.serve(fetcher);
-  fetcher.statusOverride["city/search.qvi"] = 503;
-  RecordingDevice device;
-  Viewer viewer(device);
-  CitySceneOptions options;
-  options.animationRadiusM = 0.0f;
-  viewer.openCity("city/tileset.json", fetcher, options);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
+  SceneRig rig(MiniCity(true, false, 16));
+  rig.fetcher.statusOverride["city/search.qvi"] = 503;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
   viewer.setCamera(CameraState{0.0, 0.0, 200000.0, 0.0, 70.0, 45.0});
   for (int i = 0; i < 40 && !viewer.city()->searchIndexSettled(); ++i) runFrames(viewer, 1);
   // The failure is shown and the city-wide list is empty, but the view keeps working.
@@ -619,24 +575,24 @@ TEST_CASE("A search index and city-wide response that fail are retried with back
   CHECK_FALSE(viewer.city()->searchIndexLoaded());
   REQUIRE(viewer.errors().size() == 1);
   CHECK(viewer.errors()[0].find("Search index city/search.qvi failed: HTTP 503") != std::string::npos);
-  const std::size_t firstTries = fetcher.count("city/search.qvi");
+  const std::size_t firstTries = rig.fetcher.count("city/search.qvi");
   CHECK(firstTries == 1);
   // Its time limit grows with its size (a city-wide file may be large) and with each failure.
   const CitySceneOptions defaults;
-  const double indexBytes = static_cast<double>(fetcher.files.at("city/search.qvi").size());
+  const double indexBytes = static_cast<double>(rig.fetcher.files.at("city/search.qvi").size());
   const double firstLimitMs = defaults.requestTimeoutMs + indexBytes * 1000.0 / defaults.slowestBytesPerSecond;
-  CHECK(fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(firstLimitMs));
+  CHECK(rig.fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(firstLimitMs));
 
   // The server still fails: retried after a backoff (one second of real time after the first
   // failure), reported once.
-  runFramesUntil(viewer, 5.0, [&] { return fetcher.count("city/search.qvi") > firstTries; });
-  CHECK(fetcher.count("city/search.qvi") > firstTries);
-  CHECK(fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(2 * firstLimitMs));
+  runFramesUntil(viewer, 5.0, [&] { return rig.fetcher.count("city/search.qvi") > firstTries; });
+  CHECK(rig.fetcher.count("city/search.qvi") > firstTries);
+  CHECK(rig.fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(2 * firstLimitMs));
   CHECK(viewer.errors().size() == 1);
 
   // The server recovers but the response summary in the index's order fails now.
-  fetcher.statusOverride.erase("city/search.qvi");
-  fetcher.statusOverride["city/response/index.qvs"] = 500;
+  rig.fetcher.statusOverride.erase("city/search.qvi");
+  rig.fetcher.statusOverride["city/response/index.qvs"] = 500;
   runFramesUntil(viewer, 10.0, [&] { return viewer.city()->searchIndexLoaded(); });
   REQUIRE(viewer.city()->searchIndexLoaded());
   runFramesUntil(viewer, 10.0, [&] {
@@ -649,7 +605,7 @@ TEST_CASE("A search index and city-wide response that fail are retried with back
   CHECK(viewer.errors()[0].find("Response summary city/response/index.qvs failed: HTTP 500") != std::string::npos);
 
   // Once the summary comes back too, the list carries the damage and no error remains.
-  fetcher.statusOverride.clear();
+  rig.fetcher.statusOverride.clear();
   runFramesUntil(viewer, 10.0, [&] { return viewer.errors().empty(); });
   CHECK(viewer.errors().empty());
   list = viewer.city()->filteredList(1000, &total);
