@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "Lod2TestData.h"
 #include "qv/format/CityTile.h"
@@ -110,6 +111,77 @@ TEST_CASE("lod2: the tiler writes skinned meshes to leaves and far meshes to inn
   }
   CHECK(leafMeshes == imported->models.size());
   CHECK(innerMeshes >= imported->models.size());  // the root and any inner tile on the way
+  removeTree(dir);
+}
+
+TEST_CASE("tiler: coarse tiles carry every attribute of the leaf except the descriptive strings", "[lod2][tiles]") {
+  CityModel city = syntheticCity().model;
+  for (std::size_t i = 0; i < city.buildings.size(); ++i) {
+    BuildingAttributes& a = city.buildings[i].attributes;
+    a.name = "A building with a name longer than the small-string buffer " + std::to_string(i);
+    a.address = std::to_string(i) + " Fifth Avenue, 10118 New York";
+    a.material = "brick";
+    a.structure = "frame";
+    a.amenity = "school";
+    a.startYear = static_cast<std::int16_t>(1900 + i % 120);
+    a.importanceReasons = static_cast<std::uint8_t>(i % 64);
+  }
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("qv-coarse-attributes-" + std::to_string(::getpid()))).string();
+  TilerOptions options;
+  options.maxBuildingsPerLeaf = 16;
+  options.threads = 1;
+  options.showProgress = false;
+  const Result<TilerReport> report = writeCityTiles(city, dir, options);
+  REQUIRE(report.ok());
+  REQUIRE(report->tiles > report->leaves);
+
+  // Centroids are stored relative to each tile's origin: compare them in city coordinates.
+  const auto inCity = [](BuildingAttributes a, const CityTile& tile) {
+    a.centroidX += tile.originX;
+    a.centroidY += tile.originY;
+    return a;
+  };
+  std::map<std::string, BuildingAttributes> leaf;
+  std::vector<BuildingAttributes> coarse;
+  for (const TileNode& node : report->tileset.nodes) {
+    const auto bytes = readFile(dir + "/" + node.file);
+    REQUIRE(bytes.ok());
+    const Result<CityTile> tile = decodeCityTile(*bytes, node.file);
+    REQUIRE(tile.ok());
+    for (const TileBuilding& b : tile->buildings) {
+      if (node.coarse) {
+        coarse.push_back(inCity(b.attributes, *tile));
+      } else {
+        leaf.emplace(b.attributes.id, inCity(b.attributes, *tile));
+      }
+    }
+  }
+  CHECK(leaf.size() == city.buildings.size());
+  REQUIRE(coarse.size() >= city.buildings.size());  // the root holds every building, coarser
+  for (const BuildingAttributes& c : coarse) {
+    INFO(c.id);
+    REQUIRE(leaf.count(c.id) == 1);
+    BuildingAttributes expected = leaf.at(c.id);
+    CHECK_FALSE(expected.name.empty());  // the leaf keeps the strings...
+    CHECK_FALSE(expected.address.empty());
+    CHECK(c.name.empty());  // ...the coarse tile drops them
+    CHECK(c.address.empty());
+    CHECK(c.material.empty());
+    CHECK(c.structure.empty());
+    CHECK(c.amenity.empty());
+    // Everything else is the same (centroids within the float precision of the tile offsets).
+    CHECK(std::abs(c.centroidX - expected.centroidX) < 0.01);
+    CHECK(std::abs(c.centroidY - expected.centroidY) < 0.01);
+    expected.name.clear();
+    expected.address.clear();
+    expected.material.clear();
+    expected.structure.clear();
+    expected.amenity.clear();
+    expected.centroidX = c.centroidX;
+    expected.centroidY = c.centroidY;
+    CHECK(c == expected);
+  }
   removeTree(dir);
 }
 

@@ -159,26 +159,17 @@ void chooseCoarse(const CityModel& model, const std::vector<float>& size, Node& 
 void addAttributes(CityTile& tile, const Building& b, std::uint16_t partCount, bool coarse) {
   TileBuilding tb;
   const BuildingAttributes& a = b.attributes;
+  tb.attributes = a;
   if (coarse) {
-    // Far-view tiles carry what drawing and picking need; the leaf has the rest (the strings left
-    // empty are not copied at all).
+    // Far-view tiles carry what drawing and picking need; the leaf has the rest. Everything is
+    // copied and only the descriptive strings are dropped, so a field added to BuildingAttributes
+    // reaches coarse tiles without anyone remembering to list it here.
     BuildingAttributes& c = tb.attributes;
-    c.id = a.id;
-    c.use = a.use;
-    c.heightM = a.heightM;
-    c.minHeightM = a.minHeightM;
-    c.storeys = a.storeys;
-    c.heightSource = a.heightSource;
-    c.storeysSource = a.storeysSource;
-    c.startYear = a.startYear;
-    c.structuralType = a.structuralType;
-    c.codeEra = a.codeEra;
-    c.importance = a.importance;
-    c.importanceReasons = a.importanceReasons;
-    c.lod = a.lod;
-    c.footprintAreaM2 = a.footprintAreaM2;
-  } else {
-    tb.attributes = a;
+    c.name.clear();
+    c.address.clear();
+    c.material.clear();
+    c.structure.clear();
+    c.amenity.clear();
   }
   tb.attributes.centroidX = a.centroidX - tile.originX;
   tb.attributes.centroidY = a.centroidY - tile.originY;

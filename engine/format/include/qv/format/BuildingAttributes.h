@@ -86,6 +86,8 @@ struct BuildingAttributes {
   double centroidX = 0.0;        ///< metres east of the city origin
   double centroidY = 0.0;        ///< metres north of the city origin
 
+  bool operator==(const BuildingAttributes&) const = default;
+
   /// Height of one storey in metres (floor k sits at minHeightM + k × this).
   [[nodiscard]] float storeyHeightM() const {
     return storeys > 0 ? (heightM - minHeightM) / static_cast<float>(storeys) : heightM;
