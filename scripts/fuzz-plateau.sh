@@ -8,6 +8,9 @@
 # last grew, and the result.
 #
 #   scripts/fuzz-plateau.sh fuzz_tileset fuzz_osm ...
+#
+# A target written as fuzz_NAME:MINUTES gets its own CPU cap (for example the rest of an hour
+# that an earlier run started: the bar is one CPU-hour per target in total).
 set -uo pipefail
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 build="$root/build/fuzz"
@@ -22,7 +25,9 @@ export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:suppressions=$root/test
 ticks=$(getconf CLK_TCK)
 
 run_one() {
-  local target=$1 what=${1#fuzz_}
+  local target=${1%%:*} cpu_cap=$cpu_cap
+  [ "$target" != "$1" ] && cpu_cap=$((${1#*:} * 60))
+  local what=${target#fuzz_}
   local exe="$build/tests/fuzz/$target" corpus="$build/corpus/$what" crashes="$build/crashes/$what"
   local log="$build/logs/$what.long.log"
   mkdir -p "$corpus" "$crashes" "$(dirname "$log")"
