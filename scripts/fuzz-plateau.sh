@@ -21,7 +21,10 @@ slots=${SLOTS:-2}
 # a false hang with the short run's 10 s. Real hangs still stop it; slow inputs are listed.
 timeout=${UNIT_TIMEOUT_SECONDS:-120}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:suppressions=$root/tests/fuzz/ubsan-suppressions.txt}
-[ $# -gt 0 ] || { echo "usage: scripts/fuzz-plateau.sh fuzz_TARGET..." >&2; exit 2; }
+[ $# -gt 0 ] || { echo "usage: scripts/fuzz-plateau.sh fuzz_TARGET[:MINUTES]..." >&2; exit 2; }
+for arg in "$@"; do
+  [[ $arg =~ ^fuzz_[a-z_]+(:[1-9][0-9]*)?$ ]] || { echo "fuzz-plateau.sh: '$arg' is not fuzz_NAME or fuzz_NAME:MINUTES" >&2; exit 2; }
+done
 ticks=$(getconf CLK_TCK)
 
 run_one() {
