@@ -75,7 +75,9 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
    ! "$prep" lod2 --city "$e2e_data/lod2" --input ../shared/data/cityjson/DH_01_subs.city.json \
        --place -74.0,40.71 >/dev/null ||
    ! "$prep" response --city "$e2e_data/lod2" --synthetic 7 >/dev/null ||
-   ! "$prep" info "$e2e_data/lod2" --json >"$e2e_data/lod2-info.json"; then
+   ! "$prep" info "$e2e_data/lod2" --json >"$e2e_data/lod2-info.json" ||
+   ! "$prep" city --input tests/e2e/data/hostile-names.geojson --out "$e2e_data/hostile" >/dev/null ||
+   ! "$prep" response --city "$e2e_data/hostile" --synthetic 7 >/dev/null; then
   failures+=("e2e data")
 fi
 

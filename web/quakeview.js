@@ -200,11 +200,10 @@
   const lose = gl.getExtension('WEBGL_lose_context');
   if (lose) lose.loseContext();
 
-  // Engine arguments from the page URL.
-  // Without ?data= or ?scene= the page shows the city prepared beside it (the demo's default).
+  // Engine arguments from the page URL (the city's address is checked against the data origin
+  // policy in start(), before anything of it is fetched).
   const args = [];
   if (params.get('scene')) args.push('--scene', params.get('scene'));
-  else args.push('--data', params.get('data') || 'data/default/tileset.json');
   if (params.get('aa') === '0') args.push('--no-antialias');
   if (params.get('bench')) args.push('--bench', params.get('bench'));
   if (params.get('memory')) args.push('--memory-mb', params.get('memory'));
@@ -242,6 +241,62 @@
     }
   }
 
+  // The data origin policy. A link can name any address in ?data=, but this site shows only data
+  // from its own origin and from the origins its administrator lists in config.json beside
+  // index.html: {"dataOrigins": ["https://data.example.org"]}. Otherwise a link to the official
+  // viewer could show fabricated damage under the city's own address. A missing config.json
+  // (HTTP 404) means "this site only"; a broken one is reported and also means "this site only".
+  async function loadConfig() {
+    const config = { dataOrigins: [], problems: [] };
+    let response;
+    try {
+      response = await fetch('config.json', { cache: 'no-cache', credentials: 'same-origin' });
+    } catch (e) {
+      config.problems.push('config.json beside the page could not be read (' + e.message +
+        '); only data from this site is loaded.');
+      return config;
+    }
+    if (response.status === 404) return config;
+    if (!response.ok) {
+      config.problems.push('config.json beside the page answered HTTP ' + response.status +
+        '; only data from this site is loaded.');
+      return config;
+    }
+    let json;
+    try {
+      json = JSON.parse(await response.text());
+    } catch (e) {
+      config.problems.push('config.json beside the page is not valid JSON (' + e.message +
+        '); only data from this site is loaded.');
+      return config;
+    }
+    const list = json && typeof json === 'object' ? json.dataOrigins : undefined;
+    if (list === undefined) return config;
+    if (!Array.isArray(list)) {
+      config.problems.push('config.json: "dataOrigins" must be a list of origins such as ' +
+        '"https://data.example.org"; only data from this site is loaded.');
+      return config;
+    }
+    for (const entry of list) {
+      let origin = null;
+      try {
+        const url = new URL(String(entry));
+        if ((url.protocol === 'https:' || url.protocol === 'http:') && url.origin === String(entry)) {
+          origin = url.origin;
+        }
+      } catch {
+        origin = null;
+      }
+      if (origin) {
+        config.dataOrigins.push(origin);
+      } else {
+        config.problems.push('config.json: "dataOrigins" entry ' + JSON.stringify(entry) +
+          ' is not an origin (scheme://host[:port], nothing after it, e.g. "https://data.example.org"); ignored.');
+      }
+    }
+    return config;
+  }
+
   // Download the .wasm ourselves to show progress, then hand the bytes to the engine.
   async function fetchWasm(url) {
     const response = await fetch(url);
@@ -274,6 +329,23 @@
 
   async function start() {
     setProgress(0.02, 'Loading QuakeView…');
+    if (!params.get('scene')) {
+      // The engine applies the policy (qv::dataOriginProblem) before it requests anything: it
+      // gets the page's origin, the allowed ones and the origin the browser resolves ?data= to.
+      const config = await loadConfig();
+      for (const problem of config.problems) {
+        console.warn(problem);
+        args.push('--shell-error', problem);
+      }
+      const address = params.get('data') || 'data/default/tileset.json';
+      args.push('--data', address, '--page-origin', window.location.origin);
+      try {
+        args.push('--data-origin', new URL(address, window.location.href).origin);
+      } catch {
+        // Not an address the browser understands: the engine refuses it with its reason.
+      }
+      for (const origin of config.dataOrigins) args.push('--allow-origin', origin);
+    }
     const [wasmBytes] = await Promise.all([fetchWasm('quakeview-engine.wasm'), loadScript('quakeview-engine.js')]);
     setProgress(0.95, 'Starting…');
     const module = {

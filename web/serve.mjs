@@ -1,6 +1,8 @@
 #!/usr/bin/env node
 // A small static file server for the QuakeView site: correct MIME types (application/wasm lets the
-// browser compile while downloading), no caching surprises, 127.0.0.1 by default.
+// browser compile while downloading), no caching surprises, 127.0.0.1 by default, and the security
+// headers a deployment should send (README, "Deploying"): a Content-Security-Policy the page works
+// under, X-Content-Type-Options: nosniff, no framing, no referrer.
 //
 //   node web/serve.mjs --root DIR [--port 8080] [--host 127.0.0.1] [--mount /data=DIR ...]
 //
@@ -16,12 +18,69 @@ export const MIME_TYPES = {
   '.mjs': 'text/javascript; charset=utf-8',
   '.css': 'text/css; charset=utf-8',
   '.json': 'application/json',
+  '.geojson': 'application/geo+json',
   '.wasm': 'application/wasm',
   '.png': 'image/png',
   '.svg': 'image/svg+xml',
+  '.ico': 'image/x-icon',
   '.csv': 'text/csv; charset=utf-8',
   '.txt': 'text/plain; charset=utf-8',
+  '.md': 'text/markdown; charset=utf-8',
+  // A city's binary files: tiles, response summaries and histories, the search index.
+  '.qvt': 'application/octet-stream',
+  '.qvs': 'application/octet-stream',
+  '.qvh': 'application/octet-stream',
+  '.qvi': 'application/octet-stream',
 };
+
+/// The origins a site's config.json (beside index.html) allows cities to be loaded from:
+/// {"dataOrigins": ["https://data.example.org"]}. Entries that are not origins are left out (the
+/// page reports them); a missing or unreadable file allows none.
+export function allowedDataOrigins(root) {
+  let json;
+  try {
+    json = JSON.parse(fs.readFileSync(path.join(root, 'config.json'), 'utf8'));
+  } catch {
+    return [];
+  }
+  const list = json && Array.isArray(json.dataOrigins) ? json.dataOrigins : [];
+  return list.filter((entry) => {
+    try {
+      const url = new URL(String(entry));
+      return (url.protocol === 'https:' || url.protocol === 'http:') && url.origin === String(entry);
+    } catch {
+      return false;
+    }
+  });
+}
+
+/// The Content-Security-Policy the site works under: its own scripts only (no inline script, no
+/// eval; 'wasm-unsafe-eval' lets it compile its WebAssembly), its own styles, data only from
+/// itself and the allowed origins, and no plugins, frames, forms or base-URL tricks.
+export function contentSecurityPolicy(dataOrigins = []) {
+  const connect = ["'self'", ...dataOrigins].join(' ');
+  return [
+    "default-src 'none'",
+    "script-src 'self' 'wasm-unsafe-eval'",
+    "style-src 'self'",
+    "img-src 'self' data: blob:",
+    `connect-src ${connect}`,
+    "object-src 'none'",
+    "base-uri 'none'",
+    "form-action 'none'",
+    "frame-ancestors 'none'",
+  ].join('; ');
+}
+
+/// Headers every response of the site carries.
+export function securityHeaders(root) {
+  return {
+    'Content-Security-Policy': contentSecurityPolicy(allowedDataOrigins(root)),
+    'X-Content-Type-Options': 'nosniff',
+    'Referrer-Policy': 'no-referrer',
+    'X-Frame-Options': 'DENY',
+  };
+}
 
 /// Maps a URL path to a file under one of the roots; null when it escapes them.
 export function resolvePath(urlPath, root, mounts = {}) {
@@ -46,14 +105,15 @@ export function resolvePath(urlPath, root, mounts = {}) {
 }
 
 export function handleStatic(req, res, root, mounts = {}) {
+  const security = securityHeaders(root);
   if (req.method !== 'GET' && req.method !== 'HEAD') {
-    res.writeHead(405, { Allow: 'GET, HEAD' });
+    res.writeHead(405, { ...security, Allow: 'GET, HEAD' });
     res.end();
     return;
   }
   let file = resolvePath(req.url, root, mounts);
   if (file === null) {
-    res.writeHead(400);
+    res.writeHead(400, { ...security, 'Content-Type': 'text/plain; charset=utf-8' });
     res.end('bad path');
     return;
   }
@@ -67,12 +127,13 @@ export function handleStatic(req, res, root, mounts = {}) {
       }
     }
     if (err || !stat.isFile()) {
-      res.writeHead(404, { 'Content-Type': 'text/plain' });
+      res.writeHead(404, { ...security, 'Content-Type': 'text/plain; charset=utf-8' });
       res.end('not found');
       return;
     }
     const type = MIME_TYPES[path.extname(file).toLowerCase()] || 'application/octet-stream';
     res.writeHead(200, {
+      ...security,
       'Content-Type': type,
       'Content-Length': stat.size,
       'Cache-Control': 'no-cache',

@@ -9,6 +9,7 @@ namespace {
 Tileset sample() {
   Tileset t;
   t.generator = "test";
+  t.name = "Lower \"Manhattan\"";
   t.originLon = -74.0;
   t.originLat = 40.71;
   t.bounds = Rect{-500, -400, 500, 400};
@@ -63,6 +64,7 @@ TEST_CASE("The manifest round-trips through JSON", "[format][tileset]") {
   const Tileset& p = *parsed;
   CHECK(p.originLon == -74.0);
   CHECK(p.originLat == 40.71);
+  CHECK(p.name == "Lower \"Manhattan\"");
   CHECK(p.buildings == 3);
   CHECK(p.maxHeightM == 443.2f);
   REQUIRE(p.nodes.size() == 2);
@@ -128,4 +130,20 @@ TEST_CASE("Checksums are hex digits only and file sizes fit the formats' 32-bit 
   const std::size_t at = huge.find("\"bytes\":") + 8;
   huge.replace(at, huge.find(',', at) - at, "4294967296");
   CHECK(errorOf(huge).find("\"bytes\" is larger than a QuakeView file can be") != std::string::npos);
+}
+
+TEST_CASE("The city's name is optional in a manifest and must be text when present", "[format][tileset]") {
+  Tileset t = sample();
+  t.name.clear();
+  const std::string unnamed = tilesetToJson(t);
+  CHECK(unnamed.find("\"name\"") == std::string::npos);  // as manifests written before names existed
+  const auto parsed = parseTileset(unnamed, "old/tileset.json");
+  REQUIRE(parsed.ok());
+  CHECK(parsed->name.empty());
+  std::string numeric = unnamed;
+  numeric.replace(numeric.find("\"generator\""), 0, "\"name\":42,");
+  const auto refused = parseTileset(numeric, "bad/tileset.json");
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error().find("\"name\"") != std::string::npos);
+  CHECK(refused.error().find("bad/tileset.json") != std::string::npos);
 }

@@ -192,3 +192,27 @@ TEST_CASE("An out-of-range --max-coarse-buildings is a usage error", "[prep][til
   CHECK(r.output.find("--max-coarse-buildings") != std::string::npos);
   CHECK_FALSE(fs::exists("/tmp/qv-never"));
 }
+
+TEST_CASE("Each city's manifest carries its name: --name, else the folder's, synth-city its size", "[prep][tiling]") {
+  const std::string base = (fs::temp_directory_path() / "qv-city-names").string();
+  fs::remove_all(base);
+  const auto named =
+      test::runTool(kTool, "synth-city --buildings 50 --seed 2 --name 'Harbour district' --out '" + base + "/a'");
+  REQUIRE(named.exitCode == 0);
+  const auto plain = test::runTool(kTool, "synth-city --buildings 50 --seed 2 --out '" + base + "/b/'");
+  REQUIRE(plain.exitCode == 0);
+  auto nameOf = [](const std::string& dir) {
+    std::ifstream in(dir + "/tileset.json");
+    const std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto t = parseTileset(json, dir);
+    REQUIRE(t.ok());
+    return t->name;
+  };
+  CHECK(nameOf(base + "/a") == "Harbour district");
+  CHECK(nameOf(base + "/b") == "Synthetic city, 50 buildings (seed 2)");
+  const auto bad = test::runTool(kTool, "synth-city --buildings 50 --seed 2 --name '' --out '" + base + "/c'", true);
+  CHECK(bad.exitCode == 2);
+  CHECK(bad.output.find("--name must be") != std::string::npos);
+  CHECK_FALSE(fs::exists(base + "/c"));
+  fs::remove_all(base);
+}

@@ -612,3 +612,52 @@ TEST_CASE("A search index and city-wide response that fail are retried with back
   REQUIRE(list.size() == 64);
   CHECK(list.front().damage == DamageState::Complete);
 }
+
+TEST_CASE("A city on an origin the site does not allow is refused before any request, with how to allow it",
+          "[scene][city][trust]") {
+  DataOriginPolicy policy;
+  policy.pageOrigin = "https://quake.city.gov";
+  policy.allowedOrigins = {"https://data.city.gov"};
+
+  policy.urlOrigin = "https://quake.city.gov";
+  CHECK(dataOriginProblem(policy).empty());
+  CHECK(dataOriginDescription(policy) == "this site (https://quake.city.gov)");
+  policy.urlOrigin = "https://data.city.gov";
+  CHECK(dataOriginProblem(policy).empty());
+  CHECK(dataOriginDescription(policy) == "https://data.city.gov (allowed by this site's config.json)");
+  // Another port, another scheme or a look-alike host is another origin.
+  for (const char* other : {"https://data.city.gov:8443", "http://data.city.gov", "https://data.city.gov.evil.example",
+                            "https://evil.example", "null", ""}) {
+    policy.urlOrigin = other;
+    INFO(other);
+    CHECK_FALSE(dataOriginProblem(policy).empty());
+  }
+  policy.urlOrigin = "https://evil.example";
+  const std::string message = dataOriginProblem(policy);
+  CHECK(message.find("a city from https://evil.example, which this site does not allow") != std::string::npos);
+  CHECK(message.find("config.json") != std::string::npos);
+  CHECK(message.find("{\"dataOrigins\": [\"https://evil.example\"]}") != std::string::npos);
+  // Without a page origin (tools, tests) there is no policy.
+  CHECK(dataOriginProblem(DataOriginPolicy{}).empty());
+
+  // The scene asks for nothing, settles, and the viewer shows the message.
+  SceneRig rig;
+  CitySceneOptions options;
+  options.origin = policy;
+  rig.open(0.0f, options);
+  runFrames(rig.viewer, 5);
+  CHECK(rig.fetcher.requested.empty());
+  CHECK(rig.viewer.settled());
+  REQUIRE(rig.viewer.errors().size() == 1);
+  CHECK(rig.viewer.errors()[0] == message);
+  CHECK(rig.viewer.dataSource().empty());
+
+  // Allowed: it loads, and the viewer says where it came from.
+  SceneRig allowed;
+  options.origin.urlOrigin = "https://data.city.gov";
+  allowed.open(0.0f, options);
+  runFrames(allowed.viewer, 5);
+  CHECK(allowed.viewer.city()->manifestLoaded());
+  CHECK(allowed.viewer.errors().empty());
+  CHECK(allowed.viewer.dataSource() == "https://data.city.gov (allowed by this site's config.json)");
+}

@@ -84,6 +84,37 @@ TEST_CASE("Labels mirror only their visible part", "[ui]") {
   CHECK(ui::format("%d storeys, %.1f m", 102, 443.2) == "102 storeys, 443.2 m");
 }
 
+TEST_CASE("Names with control characters or bidirectional overrides cannot reorder or break a panel", "[ui]") {
+  HeadlessImGui imgui;
+  TextMirror mirror;
+  ImGui::NewFrame();
+  mirror.beginFrame();
+  ui::Widgets w(mirror);
+  // U+202E RIGHT-TO-LEFT OVERRIDE would show "exe.fdp" as "pdf.exe" and turn the rest around.
+  const std::string name =
+      "Clinic \xE2\x80\xAE"
+      "exe.fdp\nEvil\x07";
+  w.begin(("Building " + name + "##inspection").c_str());
+  w.text("Name: " + name);
+  w.field("Address",
+          "1 Main St\r\n\xE2\x81\xA6"
+          "Apt 2");
+  w.selectable((name + "##row").c_str());
+  w.textWrapped(name);
+  w.end();
+  ImGui::Render();
+  mirror.endFrame();
+  const std::string& text = mirror.text();
+  CHECK(text.find("== Building Clinic exe.fdp Evil\xEF\xBF\xBD ==") != std::string::npos);
+  CHECK(text.find("Name: Clinic exe.fdp Evil\xEF\xBF\xBD\n") != std::string::npos);
+  CHECK(text.find("Address: 1 Main St  Apt 2\n") != std::string::npos);
+  CHECK(text.find("> Clinic exe.fdp Evil\xEF\xBF\xBD\n") != std::string::npos);
+  CHECK(text.find("\xE2\x80\xAE") == std::string::npos);
+  CHECK(text.find("\xE2\x81\xA6") == std::string::npos);
+  CHECK(text.find('\x07') == std::string::npos);
+  CHECK(text.find('\r') == std::string::npos);
+}
+
 TEST_CASE("Selecting a building shows its inspection window and exports list the filtered buildings", "[ui][city]") {
   HeadlessImGui imgui;
   test::MiniCity city;

@@ -103,6 +103,14 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
       }
     } else if (a == "--data" && hasValue) {
       options.dataUrl = args[++i];
+    } else if (a == "--page-origin" && hasValue) {
+      options.city.origin.pageOrigin = args[++i];
+    } else if (a == "--data-origin" && hasValue) {
+      options.city.origin.urlOrigin = args[++i];
+    } else if (a == "--allow-origin" && hasValue) {
+      options.city.origin.allowedOrigins.push_back(args[++i]);
+    } else if (a == "--shell-error" && hasValue) {
+      errors.push_back(args[++i]);  // a message of the page shell (a broken config.json)
     } else if (a == "--no-antialias") {
       options.antialias = false;
     } else if (a == "--camera" && hasValue) {

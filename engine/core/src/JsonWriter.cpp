@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "qv/core/Text.h"
+
 namespace qv {
 
 void JsonWriter::separate() {
@@ -123,6 +125,12 @@ JsonWriter& JsonWriter::raw(std::string_view json) {
 }
 
 void JsonWriter::appendQuoted(std::string& out, std::string_view text) {
+  // JSON text is UTF-8 (RFC 8259): bytes that are not become U+FFFD, so strict parsers accept it.
+  std::string repaired;
+  if (!isValidUtf8(text)) {
+    repaired = toValidUtf8(text);
+    text = repaired;
+  }
   out += '"';
   for (char c : text) {
     const auto u = static_cast<unsigned char>(c);

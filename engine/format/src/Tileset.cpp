@@ -225,6 +225,7 @@ std::string tilesetToJson(const Tileset& t) {
   w.beginObject();
   w.field("format", kTilesetFormat).field("version", t.version);
   w.field("generator", t.generator);
+  if (!t.name.empty()) w.field("name", t.name);
   w.key("origin").beginArray().value(t.originLon).value(t.originLat).endArray();
   w.key("projection").beginObject();
   w.field("type", t.projection).field("ellipsoid", "WGS84").field("centralMeridian", t.originLon);
@@ -294,6 +295,7 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
   }
   t.version = kTilesetVersion;
   p.text(root, "generator", t.generator, "manifest", false);
+  if (!p.text(root, "name", t.name, "manifest", false)) return Error{p.error};
   simdjson::dom::array origin;
   if (root["origin"].get(origin) != simdjson::SUCCESS || origin.size() != 2) {
     return Error{p.prefix + "\"origin\" must be [lon, lat]"};

@@ -121,6 +121,11 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
     onError_("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
     return;
   }
+  if (const std::string problem = dataOriginProblem(options_.origin); !problem.empty()) {
+    manifestFailed_ = true;  // refused before any request, as above
+    onError_(problem);
+    return;
+  }
   ++inFlight_;
   manifestRequest_ = fetcher_.fetch(
       manifestUrl_, [this](FetchResponse r) { onManifest(std::move(r)); }, options_.requestTimeoutMs);

@@ -3,13 +3,22 @@
 #include <cstdio>
 
 #include "qv/core/JsonWriter.h"
+#include "qv/core/Text.h"
 
 namespace qv {
 namespace {
 
-std::string csvField(std::string_view text) {
-  if (text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
-  std::string out = "\"";
+// An RFC 4180 field of text from outside (names, addresses, ids). A field that a spreadsheet would
+// take for a formula (it begins with =, +, -, @, a tab or a carriage return: OWASP's list against
+// CSV injection, CWE-1236) gets a leading apostrophe inside a quoted field, which spreadsheets show
+// as text. Invalid UTF-8 becomes U+FFFD. Numbers never pass through here: they stay numbers.
+std::string csvField(std::string_view raw) {
+  std::string repaired;
+  if (!isValidUtf8(raw)) repaired = toValidUtf8(raw);
+  const std::string_view text = repaired.empty() ? raw : std::string_view(repaired);
+  const bool formula = !text.empty() && std::string_view("=+-@\t\r").find(text.front()) != std::string_view::npos;
+  if (!formula && text.find_first_of(",\"\r\n") == std::string_view::npos) return std::string(text);
+  std::string out = formula ? "\"'" : "\"";
   for (char c : text) {
     if (c == '"') out += '"';
     out += c;

@@ -43,4 +43,27 @@ std::string dataUrlProblem(const std::string& url) {
   return {};
 }
 
+std::string dataOriginProblem(const DataOriginPolicy& policy) {
+  if (policy.pageOrigin.empty()) return {};
+  const std::string& origin = policy.urlOrigin;
+  if (origin.empty() || origin == "null") {
+    return "The city's address in this link could not be resolved to a web site, so nothing was loaded.";
+  }
+  if (origin == policy.pageOrigin) return {};
+  for (const std::string& allowed : policy.allowedOrigins) {
+    if (origin == allowed) return {};
+  }
+  const std::string shown = origin.substr(0, 200);
+  return "This link asks QuakeView to show a city from " + shown +
+         ", which this site does not allow, so nothing was loaded from it. This site (" + policy.pageOrigin +
+         ") shows data only from itself and from the origins listed in config.json beside its index.html. If " + shown +
+         " is a source you trust, the site's administrator can allow it there: {\"dataOrigins\": [\"" + shown + "\"]}.";
+}
+
+std::string dataOriginDescription(const DataOriginPolicy& policy) {
+  if (policy.pageOrigin.empty()) return {};
+  if (policy.urlOrigin == policy.pageOrigin) return "this site (" + policy.pageOrigin + ")";
+  return policy.urlOrigin + " (allowed by this site's config.json)";
+}
+
 }  // namespace qv

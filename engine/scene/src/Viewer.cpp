@@ -71,6 +71,7 @@ void Viewer::openCity(const std::string& manifestUrl, Fetcher& fetcher, const Ci
   city_->setResolvedSink([this](const std::string& prefix) { withdrawErrors(prefix); });
   cityFramed_ = false;
   settled_ = false;
+  dataSource_ = dataOriginProblem(options.origin).empty() ? dataOriginDescription(options.origin) : std::string();
 }
 
 void Viewer::startBench(double seconds) {

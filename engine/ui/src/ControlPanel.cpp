@@ -146,7 +146,15 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     w.text(ui::format("City: %llu buildings, %u of %zu tiles loaded%s",
                       static_cast<unsigned long long>(tileset->buildings), tiles.loaded, tileset->nodes.size(),
                       tiles.pending > 0 ? ", loading..." : ""));
+    // Provenance: which city this is and where its files (tiles and results alike: a manifest
+    // names only files beside it) came from, so a link to someone else's data cannot pass as ours.
+    w.textWrapped("Data: " + (tileset->name.empty() ? std::string("(unnamed city)") : "\"" + tileset->name + "\"") +
+                  " from " + (viewer.dataSource().empty() ? std::string("this site") : viewer.dataSource()));
     if (tileset->response) {
+      const bool imported = tileset->response->method.rfind("imported", 0) == 0;
+      w.textColored(0.55f, 0.25f, 0.0f,
+                    imported ? "Shaking: IMPORTED RESULTS (not stated whether a scenario or an actual event)"
+                             : "Shaking: SCENARIO (computed, not a recorded event)");
       w.textWrapped("Earthquake: " + (tileset->response->scenario.empty() ? std::string("one record for every building")
                                                                           : tileset->response->scenario));
       w.textWrapped("Record: " + tileset->response->motion);

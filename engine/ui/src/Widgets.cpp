@@ -7,7 +7,37 @@
 
 #include <imgui.h>
 
+#include "qv/core/Text.h"
+
 namespace qv::ui {
+namespace {
+
+// Text as the screen and the mirror show it: names and addresses come from OpenStreetMap and ids
+// and values from links, so control characters, line breaks and bidirectional overrides are
+// cleaned (qv::displaySafe) before ImGui draws them or a screen reader reads them. Clean text is
+// passed through without a copy.
+class Shown {
+ public:
+  explicit Shown(std::string_view text) : view_(text) {
+    if (needsDisplayCleaning(text)) {
+      owned_ = displaySafe(text);
+      view_ = owned_;
+    }
+  }
+  Shown(const Shown&) = delete;
+  Shown& operator=(const Shown&) = delete;
+  [[nodiscard]] std::string_view view() const { return view_; }
+  [[nodiscard]] const char* begin() const { return view_.data(); }
+  [[nodiscard]] const char* end() const { return view_.data() + view_.size(); }
+  /// NUL-terminated (labels): the cleaned copy, or a copy of the original.
+  [[nodiscard]] std::string str() const { return std::string(view_); }
+
+ private:
+  std::string owned_;
+  std::string_view view_;
+};
+
+}  // namespace
 
 std::string_view visibleLabel(std::string_view label) {
   const auto hashes = label.find("##");
@@ -31,8 +61,9 @@ std::string format(const char* fmt, ...) {
 }
 
 bool Widgets::begin(const char* title, bool* open, int flags) {
-  mirror_.beginWindow(visibleLabel(title));
-  return ImGui::Begin(title, open, flags);
+  const Shown t(title);
+  mirror_.beginWindow(visibleLabel(t.view()));
+  return ImGui::Begin(t.str().c_str(), open, flags);
 }
 
 void Widgets::end() {
@@ -40,23 +71,26 @@ void Widgets::end() {
   mirror_.endWindow();
 }
 
-void Widgets::text(std::string_view t) {
-  ImGui::TextUnformatted(t.data(), t.data() + t.size());
-  mirror_.line(t);
+void Widgets::text(std::string_view raw) {
+  const Shown t(raw);
+  ImGui::TextUnformatted(t.begin(), t.end());
+  mirror_.line(t.view());
 }
 
-void Widgets::textColored(float r, float g, float b, std::string_view t) {
+void Widgets::textColored(float r, float g, float b, std::string_view raw) {
+  const Shown t(raw);
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(r, g, b, 1.0f));
-  ImGui::TextUnformatted(t.data(), t.data() + t.size());
+  ImGui::TextUnformatted(t.begin(), t.end());
   ImGui::PopStyleColor();
-  mirror_.line(t);
+  mirror_.line(t.view());
 }
 
-void Widgets::textWrapped(std::string_view t) {
+void Widgets::textWrapped(std::string_view raw) {
+  const Shown t(raw);
   ImGui::PushTextWrapPos(0.0f);
-  ImGui::TextUnformatted(t.data(), t.data() + t.size());
+  ImGui::TextUnformatted(t.begin(), t.end());
   ImGui::PopTextWrapPos();
-  mirror_.line(t);
+  mirror_.line(t.view());
 }
 
 void Widgets::separator() {
@@ -127,8 +161,9 @@ bool Widgets::collapsingHeader(const char* label, bool defaultOpen) {
 }
 
 void Widgets::field(std::string_view label, std::string_view value) {
-  const std::string line =
-      format("%.*s: %.*s", static_cast<int>(label.size()), label.data(), static_cast<int>(value.size()), value.data());
+  const Shown v(value);
+  const std::string line = format("%.*s: %.*s", static_cast<int>(label.size()), label.data(),
+                                  static_cast<int>(v.view().size()), v.view().data());
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextUnformatted(line.c_str());
   ImGui::PopTextWrapPos();
@@ -149,9 +184,10 @@ bool Widgets::inputText(const char* label, std::string& buffer, bool focus) {
 }
 
 bool Widgets::selectable(const char* label, bool selected) {
-  const auto v = visibleLabel(label);
+  const Shown shown(label);
+  const auto v = visibleLabel(shown.view());
   mirror_.line(format("> %.*s", static_cast<int>(v.size()), v.data()));
-  return ImGui::Selectable(label, selected);
+  return ImGui::Selectable(shown.str().c_str(), selected);
 }
 
 void Widgets::plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
@@ -179,7 +215,8 @@ void Widgets::bars(const char* id, const float* values, int count, float maxValu
   mirror_.line(summary);
 }
 
-void Widgets::swatch(float r, float g, float b, std::string_view text, bool hatched) {
+void Widgets::swatch(float r, float g, float b, std::string_view raw, bool hatched) {
+  const Shown text(raw);
   const ImVec2 p = ImGui::GetCursorScreenPos();
   const float size = ImGui::GetTextLineHeight();
   ImDrawList* draw = ImGui::GetWindowDrawList();
@@ -194,8 +231,8 @@ void Widgets::swatch(float r, float g, float b, std::string_view text, bool hatc
   draw->AddRect(p, ImVec2(p.x + size * 1.6f, p.y + size), IM_COL32(80, 80, 80, 255));
   ImGui::Dummy(ImVec2(size * 1.6f, size));
   ImGui::SameLine();
-  ImGui::TextUnformatted(text.data(), text.data() + text.size());
-  mirror_.line(text);
+  ImGui::TextUnformatted(text.begin(), text.end());
+  mirror_.line(text.view());
 }
 
 }  // namespace qv::ui

@@ -20,7 +20,7 @@ const std::string kUsage =
         "  .geojson/.json), cleans and projects them, infers storeys and seismic attributes, and writes\n"
         "  the city's tiles to DIR (replacing a previous city there only when everything succeeded).\n"
         "  --origin LON,LAT            projection centre in degrees (default: the centre of the data)\n") +
-    kLeafOptionsUsage +
+    kLeafOptionsUsage + kNameOptionUsage +
     std::string(
         "  --no-lod2                   keep OSM buildings with building:part members as LOD1 prisms (by\n"
         "                              default each becomes one LOD2 model, re-meshed and skinned per floor)\n"
@@ -52,6 +52,7 @@ int runCity(const CommandArgs& argv) {
                                  {"year-property"},
                                  {"use-property"},
                                  {"no-lod2", false},
+                                 {"name"},
                                  {"help", false}},
                                 error);
   if (!args || args->has("help")) {
@@ -93,6 +94,7 @@ int runCity(const CommandArgs& argv) {
   TilerOptions tiler;
   tiler.generator = "quakeview-prep city";
   if (std::string leafError; !readLeafOptions(*args, tiler, leafError)) return usage(leafError);
+  if (std::string nameError; !readCityName(*args, *out, {}, tiler, nameError)) return usage(nameError);
 
   installInterruptHandler();
   const auto start = std::chrono::steady_clock::now();

@@ -203,6 +203,7 @@ int runLod2(const CommandArgs& argv) {
 
   TilerOptions tiler;
   tiler.generator = "quakeview-prep lod2";
+  tiler.name = tileset->name;
   tiler.buildingsRevision = tileset->buildingsRevision + 1;
   tiler.response = tileset->response;  // kept, now older than the buildings: out of date
   const auto written = writeCityTiles(*city, *dir, tiler);

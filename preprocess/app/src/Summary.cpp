@@ -1,5 +1,10 @@
 #include "Summary.h"
 
+#include <algorithm>
+#include <filesystem>
+
+#include "qv/core/Text.h"
+
 namespace qv::prep {
 
 std::string humanBytes(std::uint64_t bytes) {
@@ -52,6 +57,26 @@ void printTilingSummary(std::FILE* out, const CityModel& model, const TilerRepor
     }
   }
   std::fprintf(out, "time        %.2f s\n", seconds);
+}
+
+bool readCityName(const Args& args, const std::string& out, const std::string& defaultName, TilerOptions& tiler,
+                  std::string& error) {
+  std::string name = defaultName;
+  if (const auto given = args.value("name")) {
+    name = *given;
+  } else if (name.empty()) {
+    std::filesystem::path folder(out);
+    if (!folder.has_filename()) folder = folder.parent_path();  // "out/" names "out"
+    name = folder.filename().string();
+  }
+  const bool control =
+      std::any_of(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  if (name.empty() || name.size() > 200 || !isValidUtf8(name) || control) {
+    error = "--name must be 1 to 200 bytes of UTF-8 text without control characters";
+    return false;
+  }
+  tiler.name = name;
+  return true;
 }
 
 bool readLeafOptions(const Args& args, TilerOptions& tiler, std::string& error) {

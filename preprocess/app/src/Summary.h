@@ -23,6 +23,17 @@ inline constexpr const char* kLeafOptionsUsage =
 /// Reads the tile-size options into `tiler`; false with `error` set for a bad value.
 bool readLeafOptions(const Args& args, TilerOptions& tiler, std::string& error);
 
+/// The usage line of --name, which the commands that create a city take.
+inline constexpr const char* kNameOptionUsage =
+    "  --name TEXT                 the city's name, shown by the viewer with where its files come\n"
+    "                              from (default: the output folder's name; synth-city: its size)\n";
+
+/// Reads --name into `tiler.name`, else `defaultName`, else the last component of the output
+/// folder `out`; false with `error` set for a name that is empty, longer than 200 bytes, not UTF-8
+/// or holds control characters.
+bool readCityName(const Args& args, const std::string& out, const std::string& defaultName, TilerOptions& tiler,
+                  std::string& error);
+
 /// "1.2 MB", "350 KB", "12 B".
 std::string humanBytes(std::uint64_t bytes);
 

@@ -22,7 +22,7 @@ const std::string kUsage =
         "  --detailed-towers N         the N tallest rectangular or L-shaped buildings (3 storeys or\n"
         "                              more) get setbacks (podium, shaft, crown) and become LOD2 models\n"
         "                              (default 0)\n") +
-    kLeafOptionsUsage;
+    kLeafOptionsUsage + kNameOptionUsage;
 
 }  // namespace
 
@@ -37,6 +37,7 @@ int runSynthCity(const CommandArgs& argv) {
                                  {"max-leaf-kib"},
                                  {"max-coarse-buildings"},
                                  {"detailed-towers"},
+                                 {"name"},
                                  {"help", false}},
                                 error);
   if (!args || args->has("help")) {
@@ -75,6 +76,11 @@ int runSynthCity(const CommandArgs& argv) {
   TilerOptions tiler;
   tiler.generator = "quakeview-prep synth-city";
   if (std::string leafError; !readLeafOptions(*args, tiler, leafError)) return usage(leafError);
+  if (std::string nameError;
+      !readCityName(*args, *out,
+                    "Synthetic city, " + std::to_string(*buildings) + " buildings (seed " + std::to_string(*seed) + ")",
+                    tiler, nameError))
+    return usage(nameError);
 
   installInterruptHandler();
   const auto start = std::chrono::steady_clock::now();

@@ -526,6 +526,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
     t.search = CityFile{"search.qvi", bytes.size(), crc32(bytes)};
   }
   t.generator = options.generator;
+  t.name = options.name;
   t.originLon = model.originLon;
   t.originLat = model.originLat;
   t.projection = model.projection;

@@ -73,6 +73,10 @@ struct ResponseInfo {
 struct Tileset {
   int version = kTilesetVersion;
   std::string generator;
+  /// The city's own name, shown by the viewer beside where its files came from ("midtown",
+  /// "Synthetic city, 100000 buildings"): `--name` of the tool that made it, by default the output
+  /// folder's name. Empty in manifests written before it existed.
+  std::string name;
   double originLon = 0.0, originLat = 0.0;  ///< degrees, WGS84; the city frame's (0, 0)
   std::string projection = "transverse-mercator";
   Rect bounds;  ///< metres

@@ -47,6 +47,9 @@ struct CitySceneOptions {
   std::uint32_t maxAnimatedBuildings = 20000;
   std::uint64_t memoryBudgetBytes = 512ull << 20;  ///< decoded tiles + GPU meshes + histories
   double workBudgetMs = 12.0;                      ///< decoding and meshing per frame
+  /// The deployment's data origin policy: a city from an origin it does not allow is refused
+  /// before any request (qv::dataOriginProblem).
+  DataOriginPolicy origin;
 };
 
 struct TileCounts {

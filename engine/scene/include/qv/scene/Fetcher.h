@@ -43,6 +43,25 @@ std::string resolveUrl(const std::string& base, const std::string& relative);
 /// empty or over-long addresses are refused before any request.
 std::string dataUrlProblem(const std::string& url);
 
+/// The data origin policy of a deployment. A link can put any address in the page's ?data=, but a
+/// site shows only cities from its own origin and from the origins its administrator lists in
+/// config.json beside index.html (web/quakeview.js reads it; README, "Deploying"): otherwise a
+/// link to the official viewer could show fabricated damage under the city's own address.
+/// Origins are as the browser serializes them ("https://data.example.org", "http://127.0.0.1:8080").
+struct DataOriginPolicy {
+  std::string pageOrigin;                   ///< the page's origin; empty: no policy (native use, tests)
+  std::vector<std::string> allowedOrigins;  ///< other origins the site allows
+  std::string urlOrigin;                    ///< the origin the browser resolves the city's address to
+};
+
+/// Why the city may not be loaded under `policy` (a message naming the origin and how to allow it),
+/// or empty when it may: no policy, the page's own origin, or an allowed one.
+std::string dataOriginProblem(const DataOriginPolicy& policy);
+
+/// Where an allowed city comes from, as the panel says it: "this site (http://127.0.0.1:8080)" or
+/// "https://data.example.org (allowed by this site's config.json)"; empty without a policy.
+std::string dataOriginDescription(const DataOriginPolicy& policy);
+
 /// True when `url` names another site (an absolute http(s) URL), whose server must allow the page
 /// to read its files (CORS) for a request to succeed.
 bool isAbsoluteHttpUrl(const std::string& url);

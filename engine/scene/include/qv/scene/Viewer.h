@@ -37,6 +37,10 @@ class Viewer {
   /// Streams the city whose tileset.json is at `manifestUrl`; the camera frames the whole city
   /// once the manifest arrives unless setCamera() was called before.
   void openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options = {});
+  /// Where the city's files come from under the data origin policy of openCity's options ("this
+  /// site (https://…)", or an origin the site's configuration allows; empty without a policy). The
+  /// panel shows it beside the manifest's own name.
+  [[nodiscard]] const std::string& dataSource() const { return dataSource_; }
   [[nodiscard]] CityScene* city() { return city_.get(); }
   [[nodiscard]] const CityScene* city() const { return city_.get(); }
 
@@ -124,6 +128,7 @@ class Viewer {
   ColorMode colorMode_ = ColorMode::CurrentDrift;
   bool settled_ = false;
   std::vector<std::string> errors_;
+  std::string dataSource_;
   FrameStats stats_;
 
   struct TestContent;

@@ -25,6 +25,7 @@ struct TilerOptions {
   std::size_t maxCoarseBuildings = 100000;
   unsigned threads = 0;  ///< 0: all cores
   std::string generator = "quakeview-prep";
+  std::string name;  ///< the manifest's `name` (the city's own name)
   std::uint64_t buildingsRevision = 1;
   bool showProgress = true;
   /// Written into the manifest as is. A tool that changes the buildings of a city with a response

