@@ -129,6 +129,31 @@ test('an origin allowed in config.json loads, and the panel says where the city 
   }
 });
 
+test('an allowed origin whose server does not let the page read its files (no CORS) says so', async () => {
+  const bare = http.createServer((req, res) => {
+    res.writeHead(200, { 'Content-Type': 'application/json' });
+    res.end('{"format":"quakeview-tileset"}');
+  });
+  await new Promise((resolve) => bare.listen(0, '127.0.0.1', resolve));
+  const origin = `http://127.0.0.1:${bare.address().port}`;
+  const site = siteWithConfig({ dataOrigins: [origin] });
+  const { startServer } = await import('../../web/serve.mjs');
+  const server = await startServer({ root: site, port: 0, host: '127.0.0.1' });
+  const { context, close } = await launchBrowser();
+  try {
+    const { page } = await openPage(context,
+      `http://127.0.0.1:${server.address().port}/?data=${encodeURIComponent(`${origin}/tileset.json`)}`);
+    assert.deepEqual(await waitReady(page, 30000), { ok: true });
+    const errors = await page.evaluate(() => window.quakeview.errors());
+    assert.ok(errors.some((e) => /Access-Control-Allow-Origin/.test(e)), JSON.stringify(errors));
+  } finally {
+    await close();
+    await new Promise((resolve) => server.close(resolve));
+    bare.close();
+    fs.rmSync(site, { recursive: true, force: true });
+  }
+});
+
 test('the page runs under the site\'s Content-Security-Policy, with nosniff and the right MIME types', async () => {
   const server = await serveSite({ '/data': DATA });
   const { context, close } = await launchBrowser();
@@ -200,8 +225,9 @@ test('exports of hostile names are safe in a spreadsheet, parse with standard CS
     for (const row of rows) {
       const original = names.get(row.id);
       assert.ok(original !== undefined, `unknown id ${row.id}`);
-      for (const [column, value] of Object.entries(row)) {
-        assert.doesNotMatch(value, formula, `${row.id} ${column} would run as a formula: ${JSON.stringify(value)}`);
+      // Text columns never start a formula; numeric ones are numbers (a minus sign included).
+      for (const column of ['id', 'name', 'address', 'use', 'importance', 'damage_state']) {
+        assert.doesNotMatch(row[column], formula, `${row.id} ${column} would run as a formula: ${JSON.stringify(row[column])}`);
       }
       if (formula.test(original)) {
         assert.equal(row.name, `'${original}`, row.id);
@@ -209,8 +235,8 @@ test('exports of hostile names are safe in a spreadsheet, parse with standard CS
       } else {
         assert.equal(row.name, original, row.id);
       }
-      // Numbers stay numbers, negative ones included.
-      assert.ok(Number.isFinite(Number(row.lon)) && Number(row.lon) < 0, `${row.id} lon ${row.lon}`);
+      assert.match(row.lon, /^-7[34]\.\d+$/, `${row.id} lon ${row.lon}`);
+      assert.match(row.x_m, /^-?\d+\.\d+$/, `${row.id} x ${row.x_m}`);
       assert.ok(Number.isFinite(Number(row.peak_drift_ratio)), `${row.id} drift ${row.peak_drift_ratio}`);
     }
     assert.equal(neutralised, 6, 'the fixture plants six formula triggers (=, +, -, @, tab, CR)');

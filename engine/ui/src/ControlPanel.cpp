@@ -114,14 +114,17 @@ void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory
   if (!viewer.errors().empty()) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
     ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 20.0f, display.y - 10.0f), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
-    ImGui::SetNextWindowSizeConstraints(ImVec2(200.0f, 0.0f),
-                                        ImVec2(display.x - kPanelWidth - 40.0f, display.y * 0.3f));
+    const float maxWidth = std::max(200.0f, display.x - kPanelWidth - 40.0f);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(200.0f, 0.0f), ImVec2(maxWidth, display.y * 0.3f));
     ImGui::SetNextWindowBgAlpha(0.92f);
     if (w.begin("Errors", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+      // Long messages (what to do about a refused address) wrap at the widest the window may be.
+      ImGui::PushTextWrapPos(maxWidth - 2.0f * ImGui::GetStyle().WindowPadding.x);
       const auto& errors = viewer.errors();
       const std::size_t first = errors.size() > 6 ? errors.size() - 6 : 0;
       if (first > 0) w.text(ui::format("(%zu earlier messages not shown)", first));
       for (std::size_t i = first; i < errors.size(); ++i) w.textColored(0.75f, 0.1f, 0.05f, errors[i]);
+      ImGui::PopTextWrapPos();
     }
     w.end();
   }
