@@ -209,13 +209,14 @@
   if (params.get('memory')) args.push('--memory-mb', params.get('memory'));
 
   // The shareable view lives in the URL hash: #cam=x,y,distance,heading,pitch,fov&t=seconds
-  // &sel=id&f=minDamage,use,critical. The engine validates every value (a malformed one falls
+  // &play=0|1&sel=id&f=minDamage,use,critical. The engine validates every value (a malformed one falls
   // back to the default with a message).
   const hash = new URLSearchParams(window.location.hash.replace(/^#/, ''));
   if (hash.get('cam')) args.push('--camera', hash.get('cam'));
   if (hash.get('t')) args.push('--time', hash.get('t'));
   if (hash.get('sel')) args.push('--select', hash.get('sel'));
   if (hash.get('f')) args.push('--filters', hash.get('f'));
+  if (hash.get('play')) args.push('--playing', hash.get('play'));
 
   function viewHash() {
     const c = api.getCamera();
@@ -224,6 +225,7 @@
     const parts = ['cam=' + [round(c.x, 1), round(c.y, 1), round(c.distance, 1), round(c.headingDeg, 1),
       round(c.pitchDeg, 1), round(c.fovDeg, 1)].join(',')];
     parts.push('t=' + round(api.time(), 2));
+    parts.push('play=' + (api.playing() ? 1 : 0));  // a link copied while paused opens paused
     const sel = api.selection();
     if (sel) parts.push('sel=' + encodeURIComponent(sel));
     const f = api.filters();

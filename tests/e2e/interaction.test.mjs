@@ -197,14 +197,20 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     assert.match(shared, /#cam=/);
 
     // A colleague opens the link in a fresh page.
+    assert.match(shared, /&play=0/);
     const { page: other, problems } = await openPage(context, shared);
     assert.deepEqual(await waitReady(other), { ok: true });
-    await other.evaluate(() => window.quakeview.pause());
+    // Copied while paused, it opens paused at that moment (and stays there).
+    await other.waitForTimeout(1000);
+    assert.equal(await other.evaluate(() => window.quakeview.playing()), false);
     const restored = await other.evaluate(() => window.quakeview.getCamera());
     for (const k of Object.keys(camera)) assert.ok(Math.abs(restored[k] - camera[k]) < 0.11, `${k}: ${restored[k]} vs ${camera[k]}`);
     assert.ok(Math.abs((await other.evaluate(() => window.quakeview.time())) - 7.5) < 0.05);
     assert.equal(await other.evaluate(() => window.quakeview.selection()), ESB);
     assert.equal((await other.evaluate(() => window.quakeview.filters())).minDamage, 'slight');
+    // The active filter shows on the canvas whatever the panel's state.
+    assert.match(await other.evaluate(() => window.quakeview.uiText()),
+      /== Active filters ==\nFiltered \(the rest is dimmed\): damage at least slight/);
     assert.deepEqual(await other.evaluate(() => window.quakeview.errors()), []);
     assert.deepEqual(problems, []);
 

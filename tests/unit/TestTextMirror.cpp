@@ -153,7 +153,12 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
   // The export writes the filtered list (every building when no filter is set) with lon/lat.
   BuildingFilters f;
   f.minDamage = 3;  // extensive or worse
+  CHECK(drawPanel(viewer, mirror, panel, host).find("== Active filters ==") == std::string::npos);
   viewer.city()->setFilters(f);
+  // The filter shows on the canvas (not only inside the panel's section).
+  text = drawPanel(viewer, mirror, panel, host);
+  CHECK(text.find("== Active filters ==\nFiltered (the rest is dimmed): damage at least extensive\n[Clear]") !=
+        std::string::npos);
   const std::string csv = panel.exportList(viewer, "csv", host);
   REQUIRE(host.downloads.size() == 1);
   CHECK(host.downloads[0].first == "quakeview-buildings.csv");

@@ -147,6 +147,13 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
       } else {
         options.timeSeconds = t;
       }
+    } else if (a == "--playing" && hasValue) {
+      const std::string& v = args[++i];
+      if (v == "0" || v == "1") {
+        options.playing = v == "1";
+      } else {
+        errors.push_back("The play state in the link (" + v.substr(0, 40) + ") is not 0 or 1; playing.");
+      }
     } else if (a == "--select" && hasValue) {
       const std::string& v = args[++i];
       if (v.empty() || v.size() > 200 || v.find_first_of("\n\r\t") != std::string::npos) {
@@ -221,6 +228,7 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   if (options.benchSeconds > 0.0) viewer_->startBench(options.benchSeconds);
   if (options.camera) viewer_->setCamera(*options.camera);
   pendingTime_ = options.timeSeconds;
+  if (!options.playing) viewer_->pause();
   pendingSelect_ = options.select;
   if (options.filters && viewer_->city() != nullptr) viewer_->city()->setFilters(*options.filters);
   input_ = std::make_unique<BrowserInput>(kCanvas);

@@ -27,6 +27,7 @@ struct AppOptions {
   // The shareable view (from the URL hash), applied once the city is there.
   std::optional<CameraState> camera;
   std::optional<double> timeSeconds;
+  bool playing = true;  ///< false: the link was copied while paused, and opens paused
   std::string select;
   std::optional<BuildingFilters> filters;
 };

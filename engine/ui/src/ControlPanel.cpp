@@ -110,6 +110,7 @@ void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory
   drawPanel(viewer, w, memory, host);
   drawInspection(viewer, w, host);
   drawOverlay(viewer, w);
+  drawFilterChips(viewer, w);
 
   if (!viewer.errors().empty()) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -472,6 +473,30 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
   }
   w.end();
   if (!open) viewer.select("");
+}
+
+void ControlPanel::drawFilterChips(Viewer& viewer, ui::Widgets& w) {
+  CityScene* city = viewer.city();
+  if (city == nullptr || !city->filters().active()) return;
+  const BuildingFilters& f = city->filters();
+  std::string chips;
+  auto add = [&chips](const std::string& chip) { chips += (chips.empty() ? "" : "  |  ") + chip; };
+  if (f.minDamage >= 0 && f.minDamage <= 4) {
+    add("damage at least " + std::string(damageStateName(static_cast<DamageState>(f.minDamage))));
+  }
+  if (!f.use.empty()) add("use: " + f.use);
+  if (f.criticalOnly) add("critical facilities only");
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, 10.0f), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoSavedSettings;
+  if (w.begin("Active filters", nullptr, flags)) {
+    w.text("Filtered (the rest is dimmed): " + chips);
+    w.sameLine();
+    if (w.button("Clear##filterchips")) city->setFilters(BuildingFilters{});
+  }
+  w.end();
 }
 
 void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {

@@ -44,6 +44,8 @@ class ControlPanel {
   void drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);
   void drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host);
   void drawOverlay(Viewer& viewer, ui::Widgets& w);
+  /// The active filters as a strip at the top of the canvas, whatever the panel's state.
+  void drawFilterChips(Viewer& viewer, ui::Widgets& w);
   std::string lengthText(const Viewer& viewer, double metres) const;
 
   std::optional<std::pair<double, double>> cursor_;
