@@ -206,7 +206,7 @@ TEST_CASE("City tiles round-trip through the codec", "[format][tile]") {
   CHECK(a.heightSource == ValueSource::Inferred);
   CHECK(a.importanceReasons == (kReasonTall | kReasonComplex));
   CHECK(a.lod == 2);
-  // The attribute notes (docs/formats.md, BLDG byte 23): why values were inferred.
+  // The attribute notes (docs/formats.md, BLDG byte 21): why values were inferred.
   CHECK(a.notes == (kNoteStoreysFromNave | kNotePreFrameMasonry));
   CHECK(d.buildings[0].attributes.notes == kNoteNone);
   CHECK(attributeNoteNames(a.notes) == std::vector<std::string_view>{"storeys-from-nave", "pre-frame-masonry"});
