@@ -31,7 +31,8 @@ const BuildingAttributes& attributesOf(const CityModel& model, const std::string
 
 }  // namespace
 
-TEST_CASE("Underground buildings are left out and counted; height=0 above ground is told", "[ingest][plausibility]") {
+TEST_CASE("Underground buildings are left out and counted, and height=0 above ground is told",
+          "[ingest][plausibility]") {
   const Ingested in = ingest({fixture("plausibility.osm")});
   REQUIRE(in.model.ok());
   const CityModel& model = *in.model;
@@ -121,7 +122,7 @@ TEST_CASE("A building of 1868 is masonry with 19th-century storeys", "[ingest][p
   CHECK(hotel.notes == (kNoteOldStoreyHeight | kNotePreFrameMasonry));
 }
 
-TEST_CASE("An outline tagged building:part stands under its rooftop part; a lone rooftop part keeps its base",
+TEST_CASE("An outline tagged building:part stands under its rooftop part and a lone rooftop part keeps its base",
           "[ingest][plausibility]") {
   const Ingested in = ingest({fixture("plausibility.osm")});
   REQUIRE(in.model.ok());

@@ -28,7 +28,7 @@ std::string tempCity(const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("Underground buildings are counted by city, the manifest and info; the notes are shown",
+TEST_CASE("Underground buildings are counted by city and the manifest and info, which shows the notes",
           "[prep][plausibility]") {
   const std::string dir = tempCity("plausibility");
   const auto made = qv::test::runTool(
