@@ -9,13 +9,21 @@
 # - npm packages pinned by tests/e2e/package-lock.json (playwright-core; never a browser download).
 #
 # On a system without apt it stops and lists what to install.
-set -euo pipefail
+set -Eeuo pipefail
 
 root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 deps="$root/.deps"
 
 log() { printf '[setup] %s\n' "$*"; }
 die() { printf '[setup] error: %s\n' "$*" >&2; exit 1; }
+# Any other failure (set -e) names the command, its status and the line, instead of ending quietly.
+on_error() {
+  printf '[setup] error: "%s" failed with status %s (scripts/setup.sh line %s)\n' "$3" "$1" "$2" >&2
+}
+trap 'on_error $? $LINENO "$BASH_COMMAND"' ERR
+
+# shellcheck source=SCRIPTDIR/lib/apt-sources.sh
+source "$root/scripts/lib/apt-sources.sh"
 
 # Build tools, libraries (native tools and tests), the WebAssembly toolchain, the browser for the
 # end-to-end tests, and the fuzzing runtime.
@@ -78,27 +86,18 @@ if [ "${#missing[@]}" -gt 0 ]; then
 fi
 
 # Source packages need a deb-src entry for bookworm main. It must repeat the URI and Signed-By of
-# the existing binary entry, or apt rejects the pair as conflicting.
+# the existing binary entry, or apt rejects the pair as conflicting. Both source formats (one-line
+# sources.list, deb822 .sources) are read by scripts/lib/apt-sources.sh.
 ensure_deb_src() {
-  if grep -rqsE '^[[:space:]]*(deb-src|Types:.*deb-src)' /etc/apt/sources.list /etc/apt/sources.list.d/; then
+  if qv_apt_has_deb_src /etc/apt; then
     return
   fi
   log "adding a deb-src entry for bookworm main"
-  local deb822=/etc/apt/sources.list.d/debian.sources entry
-  if [ -f "$deb822" ]; then
-    # The stanza that lists the plain "bookworm" suite: keep its URIs and Signed-By.
-    entry=$(awk -v RS= '/Suites:[^\n]*bookworm([[:space:]]|$)/ && !/security/ {print; exit}' "$deb822" |
-      grep -E '^(URIs|Signed-By):')
-    [ -n "$entry" ] || entry='URIs: http://deb.debian.org/debian'
-    printf 'Types: deb-src\n%s\nSuites: bookworm\nComponents: main\n' "$entry" |
-      "${sudo_cmd[@]}" tee /etc/apt/sources.list.d/quakeview-deb-src.sources >/dev/null
-  else
-    entry=$(grep -hE '^[[:space:]]*deb[[:space:]].*[[:space:]]bookworm[[:space:]].*main' \
-      /etc/apt/sources.list /etc/apt/sources.list.d/*.list 2>/dev/null | head -n 1)
-    [ -n "$entry" ] || entry='deb http://deb.debian.org/debian bookworm main'
-    echo "$entry" | sed -E 's/^[[:space:]]*deb[[:space:]]/deb-src /' |
-      "${sudo_cmd[@]}" tee /etc/apt/sources.list.d/quakeview-deb-src.list >/dev/null
-  fi
+  local plan file
+  plan=$(qv_apt_plan_deb_src /etc/apt 2>&1) || die "cannot add a deb-src entry: $plan"
+  file=${plan%%$'\n'*}
+  log "writing $file"
+  printf '%s\n' "${plan#*$'\n'}" | "${sudo_cmd[@]}" tee "$file" >/dev/null
   apt_updated=0
 }
 

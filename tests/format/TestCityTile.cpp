@@ -170,6 +170,7 @@ TEST_CASE("City tiles round-trip through the codec", "[format][tile]") {
   b.attributes.importance = Importance::Critical;
   b.attributes.importanceReasons = kReasonTall | kReasonComplex;
   b.attributes.lod = 2;
+  b.attributes.notes = kNoteStoreysFromNave | kNotePreFrameMasonry;
   t.buildings.push_back(b);
 
   const auto bytes = encodeCityTile(t);
@@ -205,6 +206,10 @@ TEST_CASE("City tiles round-trip through the codec", "[format][tile]") {
   CHECK(a.heightSource == ValueSource::Inferred);
   CHECK(a.importanceReasons == (kReasonTall | kReasonComplex));
   CHECK(a.lod == 2);
+  // The attribute notes (docs/formats.md, BLDG byte 21): why values were inferred.
+  CHECK(a.notes == (kNoteStoreysFromNave | kNotePreFrameMasonry));
+  CHECK(d.buildings[0].attributes.notes == kNoteNone);
+  CHECK(attributeNoteNames(a.notes) == std::vector<std::string_view>{"storeys-from-nave", "pre-frame-masonry"});
   CHECK(d.buildings[0].attributes.structuralType == StructuralType::C1M);
   CHECK(d.buildings[0].attributes.centroidX == 3.25);
 }

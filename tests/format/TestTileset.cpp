@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <map>
+
 #include "qv/format/Tileset.h"
 
 using namespace qv;
@@ -78,6 +80,22 @@ TEST_CASE("The manifest round-trips through JSON", "[format][tileset]") {
   CHECK(p.response->damageStates[3] == 2);
   CHECK_FALSE(p.responseOutOfDate());
   CHECK(tilesetToJson(p) == json);
+}
+
+TEST_CASE("Buildings left out of the city are counted in the manifest by reason", "[format][tileset]") {
+  Tileset t = sample();
+  CHECK(tilesetToJson(t).find("excluded") == std::string::npos);  // absent when none
+  t.excluded["underground"] = 2;
+  const std::string json = tilesetToJson(t);
+  CHECK(json.find("\"excluded\":{\"underground\":2}") != std::string::npos);
+  const auto parsed = parseTileset(json, "tileset.json");
+  REQUIRE(parsed.ok());
+  CHECK(parsed->excluded == std::map<std::string, std::uint64_t>{{"underground", 2}});
+  std::string bad = json;
+  bad.replace(bad.find("\"underground\":2"), 15, "\"underground\":-1");
+  const auto refused = parseTileset(bad, "tileset.json");
+  REQUIRE_FALSE(refused.ok());
+  CHECK(refused.error() == "tileset.json: excluded: \"underground\" is not a count");
 }
 
 TEST_CASE("A response computed for older buildings is reported out of date", "[format][tileset]") {

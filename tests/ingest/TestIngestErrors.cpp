@@ -147,11 +147,13 @@ TEST_CASE("Inputs without buildings, or with absurd coordinates, are refused", "
 TEST_CASE("Several inputs merge, an object read twice is one building", "[ingest][merge]") {
   const Ingested both = ingest({fixture("small.osm"), sharedData("osm/fixture-midtown-empire-state.osm")});
   REQUIRE(both.model.ok());
-  // small.osm's coordinates are in Midtown too: its outline-less part w130 falls inside a real
-  // building of the fixture and becomes that building's part, the other 4 stay buildings.
-  CHECK(both.model->buildings.size() == 4 + 395);
-  CHECK(findBuilding(*both.model, "w130") == nullptr);
-  CHECK(both.stats.partsAttached == 2 + 237 + 1);
+  // small.osm's coordinates are in Midtown too: its outline-less part w130 falls inside an
+  // underground building of the fixture, which owns no part by containment, so it stays a building
+  // of its own with the other 4; the fixture's 2 underground buildings are left out.
+  CHECK(both.model->buildings.size() == 5 + 393);
+  CHECK(findBuilding(*both.model, "w130") != nullptr);
+  CHECK(both.stats.partsAttached == 2 + 237);
+  CHECK(both.model->excluded.at("underground") == 2);
   CHECK(both.model->sources.size() == 2);
 
   const Ingested twice = ingest({fixture("small.osm"), fixture("small.osm")});

@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <map>
 #include <set>
 #include <string>
 
@@ -139,7 +140,11 @@ TEST_CASE("The Midtown fixture gives its 391 building ways and 4 building multip
   CHECK(in.stats.osmRelations == 4);
   CHECK(in.stats.osmPartObjects == 237);
   CHECK(in.stats.osmTypeBuildingRelations == 8);
-  CHECK(model.buildings.size() == 395);
+  // Two of the 395 are underground and left out: Pennsylvania Station (w812714851) and w812938420.
+  CHECK(model.buildings.size() == 393);
+  CHECK(model.excluded == std::map<std::string, std::uint64_t>{{"underground", 2}});
+  CHECK(findBuilding(model, "w812714851") == nullptr);
+  CHECK(hasWarning(model, "w812714851: location=underground: underground, neither drawn nor analysed"));
   CHECK(in.stats.partsAttached == 237);
   CHECK(in.stats.partsAttachedByRelation == 39);
   CHECK(in.stats.partsStandalone == 0);
@@ -156,7 +161,7 @@ TEST_CASE("The Midtown fixture gives its 391 building ways and 4 building multip
     if (id[0] == 'w') ++ways;
     for (const BuildingPart& part : b.parts) partsDrawn += part.sourceId.empty() ? 0u : 1u;
   }
-  CHECK(ways == 391);
+  CHECK(ways == 391 - 2);
   CHECK(relations == std::set<std::string>{"r3564791", "r3565284", "r3565285", "r3566904"});
   CHECK(partsDrawn >= 237);  // a part multipolygon with two outer rings draws two pieces
   // Roads, routes and type=building relations are not buildings.
@@ -237,7 +242,9 @@ TEST_CASE("Lower Manhattan (PBF) ingests with its drops counted", "[ingest][osm]
   // outline was cut away), the others were mapped as parts without any outline.
   CHECK(in.stats.partsAttached + in.stats.partsStandalone == 8632);
   CHECK(in.stats.partsStandalone == Approx(160).margin(10));
-  CHECK(model.buildings.size() == 17902 + in.stats.partsStandalone);
+  // 7 underground buildings (location=underground, or a negative layer without height) are left out.
+  CHECK(model.excluded.at("underground") == 7);
+  CHECK(model.buildings.size() == 17902 - 7 + in.stats.partsStandalone);
   CHECK(in.stats.buildings == model.buildings.size());
 
   SECTION("building:levels=concrete is warned, the part still placed at its base") {

@@ -165,6 +165,60 @@ TEST_CASE("Header variants: pre-NGA PEER, one-line header, Fortran fields, two c
   }
 }
 
+TEST_CASE("An older PEER record whose units are followed by punctuation reads as g", "[seismic][reader]") {
+  // Line 3: "ACCELERATION TIME HISTORY IN UNITS OF G. FILTER POINTS: HP=0.1 Hz LP=40.0 Hz", values
+  // in E notation, 5 a line (issue 21: refused with "the file does not state its units").
+  GroundMotionSource source;
+  const auto m = readGroundMotionFile(kFixtures + "peer-filter-points.AT2", {}, &source);
+  REQUIRE(m.ok());
+  CHECK(source.unitsFromFile);
+  CHECK(source.units == AccelerationUnit::G);
+  CHECK(m->size() == 10);
+  CHECK(m->timeStepS == 0.005);
+  CHECK(m->accelerationMps2[0] == Approx(0.1234e-2 * 9.81));
+  CHECK(m->accelerationMps2[9] == Approx(0.1023e-1 * 9.81));
+}
+
+TEST_CASE("Header units are recognised whatever the punctuation and spacing", "[seismic][reader]") {
+  struct Case {
+    const char* header;
+    AccelerationUnit units;
+  };
+  const Case cases[] = {
+      {"ACCELERATION TIME HISTORY IN UNITS OF G.", AccelerationUnit::G},
+      {"ACCELERATION TIME HISTORY IN UNITS OF G, FILTERED", AccelerationUnit::G},
+      {"Units of g; corrected", AccelerationUnit::G},
+      {"Station 090 (g)", AccelerationUnit::G},
+      {"Station 090 [ g ]", AccelerationUnit::G},
+      {"horizontal component, values in g", AccelerationUnit::G},
+      {"Acceleration in g.", AccelerationUnit::G},
+      {"Acceleration, cm/s/s", AccelerationUnit::CentimetresPerSecond2},
+      {"Acceleration (CM/SEC**2)", AccelerationUnit::CentimetresPerSecond2},
+      {"ACCELERATION IN CM/SEC**2.", AccelerationUnit::CentimetresPerSecond2},
+      {"UNITS: gal", AccelerationUnit::CentimetresPerSecond2},
+      {"acceleration in gal, 200 Hz", AccelerationUnit::CentimetresPerSecond2},
+      {"Acceleration (m/s**2)", AccelerationUnit::MetresPerSecond2},
+      {"ACCEL M/S^2.", AccelerationUnit::MetresPerSecond2},
+  };
+  for (const Case& c : cases) {
+    CAPTURE(c.header);
+    GroundMotionReadOptions o;
+    o.timeStepS = 0.01;
+    GroundMotionSource source;
+    const auto m = parseGroundMotion(std::string(c.header) + "\n0.5\n-0.25\n", "variant.txt", o, &source);
+    REQUIRE(m.ok());
+    CHECK(source.unitsFromFile);
+    CHECK(source.units == c.units);
+    CHECK(m->accelerationMps2[0] == Approx(0.5 * metresPerSecond2Per(c.units)));
+  }
+  // A lone letter g elsewhere in prose does not state units.
+  GroundMotionReadOptions o;
+  o.timeStepS = 0.01;
+  const auto prose = parseGroundMotion("Station G, recorded 1979\n0.5\n", "prose.txt", o);
+  REQUIRE_FALSE(prose.ok());
+  CHECK(prose.error() == "prose.txt: the file does not state its units: pass them (--units g|m/s2|cm/s2)");
+}
+
 TEST_CASE("Unit conversions use g = 9.81 m/s2", "[seismic][reader]") {
   CHECK(metresPerSecond2Per(AccelerationUnit::G) == 9.81);
   CHECK(metresPerSecond2Per(AccelerationUnit::CentimetresPerSecond2) == 0.01);

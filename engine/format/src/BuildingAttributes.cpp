@@ -89,6 +89,42 @@ std::vector<std::string_view> importanceReasonNames(unsigned reasons) {
   return names;
 }
 
+namespace {
+struct NoteRow {
+  unsigned bit;
+  std::string_view name;
+  std::string_view text;
+};
+constexpr NoteRow kNotes[] = {
+    {kNoteZeroHeight, "zero-height", "height=0 is tagged but the building stands above ground: height inferred"},
+    {kNoteStoreysFromNave, "storeys-from-nave",
+     "storeys from the nave or main body (the outline's height, or height minus roof:height), not the "
+     "towers or spire"},
+    {kNoteLevelsConflict, "levels-conflict",
+     "the tagged height and levels give storeys under 2.2 m or over 7 m: storeys inferred from the height"},
+    {kNoteOldStoreyHeight, "old-storey-height", "built before 1890: storeys inferred at 4.5 m floor to floor"},
+    {kNotePreFrameMasonry, "pre-frame-masonry",
+     "built before 1890, before steel and concrete frames: masonry bearing walls"},
+    {kNoteTraditionalMasonry, "traditional-masonry",
+     "religious building, tower or chimney built before 1950 or undated: masonry bearing walls"},
+};
+}  // namespace
+
+std::vector<std::string_view> attributeNoteNames(unsigned notes) {
+  std::vector<std::string_view> names;
+  for (const NoteRow& row : kNotes) {
+    if ((notes & row.bit) != 0) names.push_back(row.name);
+  }
+  return names;
+}
+
+std::string_view attributeNoteText(unsigned note) {
+  for (const NoteRow& row : kNotes) {
+    if (row.bit == note) return row.text;
+  }
+  return {};
+}
+
 std::string_view valueSourceName(ValueSource source) {
   return source == ValueSource::Tagged ? "tagged" : "inferred";
 }

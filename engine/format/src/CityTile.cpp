@@ -327,7 +327,7 @@ std::vector<std::uint8_t> encodeCityTile(const CityTile& tile) {
     bldg.u8(static_cast<std::uint8_t>(a.importance));
     bldg.u8(a.importanceReasons);
     bldg.u8(a.lod);
-    bldg.u8(0);
+    bldg.u8(a.notes);
     bldg.u16(0);
     bldg.f32(a.footprintAreaM2);
     bldg.f32(static_cast<float>(a.centroidX));
@@ -615,7 +615,8 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
     const std::uint8_t importance = b.u8("importance");
     a.importanceReasons = b.u8("importance reasons");
     a.lod = b.u8("lod");
-    b.skip(3, "reserved");
+    a.notes = b.u8("attribute notes");
+    b.skip(2, "reserved");
     a.footprintAreaM2 = b.f32("footprint area");
     a.centroidX = b.f32("centroid x");
     a.centroidY = b.f32("centroid y");

@@ -239,6 +239,11 @@ std::string tilesetToJson(const Tileset& t) {
   w.key("sources").beginArray();
   for (const std::string& s : t.sources) w.value(s);
   w.endArray();
+  if (!t.excluded.empty()) {
+    w.key("excluded").beginObject();
+    for (const auto& [reason, n] : t.excluded) w.field(reason, n);
+    w.endObject();
+  }
   if (t.response) {
     const ResponseInfo& r = *t.response;
     w.key("response").beginObject();
@@ -326,6 +331,15 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
     for (element s : sources) {
       std::string_view v;
       if (s.get(v) == simdjson::SUCCESS) t.sources.emplace_back(v);
+    }
+  }
+  object excluded;
+  if (root["excluded"].get(excluded) == simdjson::SUCCESS) {
+    for (auto field : excluded) {
+      std::uint64_t n = 0;
+      const std::string reason(field.key);
+      if (!p.unsignedNumber(excluded, reason.c_str(), n, "excluded")) return Error{p.error};
+      t.excluded[reason] = n;
     }
   }
   object response;

@@ -192,11 +192,30 @@ struct HeaderInfo {
   std::size_t unitsLine = 0;
 };
 
-std::optional<AccelerationUnit> unitWord(const std::string& w) {
+// A unit as written in a header, upper case: trailing sentence punctuation ("UNITS OF G.") and the
+// spelling of a power ("CM/SEC**2", "M/S^2", "M/S 2" once '*' split the word) do not matter.
+// `next` is the following word of the line, which completes "M/S" + "2".
+std::optional<AccelerationUnit> unitWord(std::string w, std::string_view next = {}) {
+  w.erase(std::remove_if(w.begin(), w.end(), [](char c) { return c == '*' || c == '^' || c == ' '; }), w.end());
+  while (!w.empty() && (w.back() == '.' || w.back() == ',' || w.back() == ';' || w.back() == ':')) w.pop_back();
+  while (!w.empty() && w.front() == '.') w.erase(w.begin());
+  if ((w == "M/S" || w == "M/SEC" || w == "CM/S" || w == "CM/SEC") && next == "2") w += '2';
   if (w == "G") return AccelerationUnit::G;
   if (w == "GAL" || w == "GALS" || w.rfind("CM/S", 0) == 0) return AccelerationUnit::CentimetresPerSecond2;
-  if (w == "M/S/S" || w == "M/S2" || w == "M/S^2" || w == "M/SEC/SEC" || w == "M/SEC2" || w == "M/SEC^2" || w == "MPS2")
+  if (w == "M/S/S" || w == "M/S2" || w == "M/SEC/SEC" || w == "M/SEC2" || w == "MPS2")
     return AccelerationUnit::MetresPerSecond2;
+  return std::nullopt;
+}
+
+// A unit in brackets anywhere on the line: "ACCELERATION (g)", "[CM/SEC**2]".
+std::optional<AccelerationUnit> bracketedUnit(const std::string& upperLine) {
+  std::size_t open = upperLine.find_first_of("([");
+  while (open != std::string::npos) {
+    const std::size_t close = upperLine.find_first_of(")]", open + 1);
+    if (close == std::string::npos) break;
+    if (const auto u = unitWord(upperLine.substr(open + 1, close - open - 1))) return u;
+    open = upperLine.find_first_of("([", close + 1);
+  }
   return std::nullopt;
 }
 
@@ -206,6 +225,12 @@ void scanHeaderLine(const Line& line, HeaderInfo& info) {
   bool mentionsUnits = false;
   for (const auto& w : words) {
     if (w.rfind("UNIT", 0) == 0 || w == "ACCELERATION" || w == "ACCEL" || w == "ACC") mentionsUnits = true;
+  }
+  if (!info.units) {
+    if (const auto u = bracketedUnit(upper(line.text))) {
+      info.units = u;
+      info.unitsLine = line.number;
+    }
   }
   for (std::size_t i = 0; i < words.size(); ++i) {
     const std::string& w = words[i];
@@ -246,8 +271,9 @@ void scanHeaderLine(const Line& line, HeaderInfo& info) {
         info.timeStepLine = line.number;
       }
     }
-    if (mentionsUnits && !info.units) {
-      if (const auto u = unitWord(w)) {
+    // A unit word counts on a line about units or acceleration, or after "in" ("values in g").
+    if ((mentionsUnits || (i >= 1 && words[i - 1] == "IN")) && !info.units) {
+      if (const auto u = unitWord(w, i + 1 < words.size() ? std::string_view(words[i + 1]) : std::string_view{})) {
         info.units = u;
         info.unitsLine = line.number;
       }

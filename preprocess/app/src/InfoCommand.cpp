@@ -64,6 +64,9 @@ void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNod
   w.field("lod", static_cast<unsigned>(a.lod));
   w.field("start_year", static_cast<int>(a.startYear)).field("material", a.material).field("structure", a.structure);
   w.field("amenity", a.amenity);
+  w.key("attribute_notes").beginArray();  // why values were inferred (docs/attributes.md)
+  for (const std::string_view name : attributeNoteNames(a.notes)) w.value(name);
+  w.endArray();
   w.field("x_m", a.centroidX + tile.originX).field("y_m", a.centroidY + tile.originY);
   w.field("tile", node.key());
 }
@@ -223,6 +226,9 @@ int runInfo(const CommandArgs& argv) {
                       std::string(structuralTypeDescription(a.structuralType)).c_str(),
                       std::string(codeEraName(a.codeEra)).c_str(), std::string(importanceName(a.importance)).c_str(),
                       a.lod, node.key().c_str());
+          for (unsigned bit = 1; bit < 256; bit <<= 1) {
+            if ((a.notes & bit) != 0) std::printf("  note: %s\n", std::string(attributeNoteText(bit)).c_str());
+          }
           if (hasResult) {
             std::printf("  damage %s (%s), peak drift %.4f, peak roof displacement %.3f m, PGA %.3f g\n",
                         damage.c_str(), std::string(responseSourceName(r->summary.source)).c_str(),
@@ -316,6 +322,9 @@ int runInfo(const CommandArgs& argv) {
     w.key("lod2_ids").beginArray();  // which buildings have a detailed model (the first 1000)
     for (const std::string& id : s.lod2Ids) w.value(id);
     w.endArray();
+    w.key("excluded").beginObject();  // read but neither drawn nor analysed, by reason
+    for (const auto& [reason, n] : t.excluded) w.field(reason, n);
+    w.endObject();
     w.field("buildings_revision", t.buildingsRevision);
     w.key("sources").beginArray();
     for (const std::string& src : t.sources) w.value(src);
@@ -349,6 +358,12 @@ int runInfo(const CommandArgs& argv) {
   std::printf("buildings   %llu (%llu critical, %llu LOD2), mean %.2f storeys\n",
               static_cast<unsigned long long>(s.buildings), static_cast<unsigned long long>(s.critical),
               static_cast<unsigned long long>(s.lod2), meanStoreys);
+  if (!t.excluded.empty()) {
+    std::printf("excluded   ");
+    for (const auto& [reason, n] : t.excluded)
+      std::printf(" %s %llu;", reason.c_str(), static_cast<unsigned long long>(n));
+    std::printf(" (neither drawn nor analysed)\n");
+  }
   std::printf("storeys    ");
   for (std::size_t i = 0; i < kStoreyBuckets.size(); ++i) {
     std::printf(" %s: %llu;", bucketName(i).c_str(), static_cast<unsigned long long>(s.storeys[i]));

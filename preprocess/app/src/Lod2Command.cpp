@@ -38,6 +38,7 @@ Result<CityModel> readCityFromTiles(const std::string& dir, const Tileset& tiles
   city.originLat = tileset.originLat;
   city.projection = tileset.projection;
   city.sources = tileset.sources;
+  city.excluded = tileset.excluded;
   for (const TileNode& node : tileset.nodes) {
     if (node.coarse) continue;
     auto tile = loadCityTile(dir, node);

@@ -43,6 +43,13 @@ void printTilingSummary(std::FILE* out, const CityModel& model, const TilerRepor
   } else {
     std::fprintf(out, "dropped     none\n");
   }
+  if (!model.excluded.empty()) {
+    std::fprintf(out, "excluded   ");
+    for (const auto& [reason, n] : model.excluded) {
+      std::fprintf(out, " %s %llu;", reason.c_str(), static_cast<unsigned long long>(n));
+    }
+    std::fprintf(out, " (neither drawn nor analysed)\n");
+  }
   if (!model.warningCounts.empty()) {
     std::fprintf(out, "warnings   ");
     for (const auto& [what, n] : model.warningCounts) {

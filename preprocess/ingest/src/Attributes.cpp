@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 
 namespace qv::prep {
@@ -106,6 +107,7 @@ constexpr UseRow kUseTable[] = {
     {"police", 3.9f, 3},      {"religious", 6.0f, 1},    {"civic", 4.5f, 2},       {"transportation", 6.0f, 1},
     {"parking", 3.0f, 3},     {"sports", 6.0f, 1},       {"roof", 4.0f, 1},        {"shed", 3.0f, 1},
     {"service", 3.5f, 1},     {"construction", 3.5f, 2}, {"mobile_home", 3.0f, 1}, {"unknown", 3.5f, 2},
+    {"tower", 4.0f, 3},
 };
 
 constexpr UseRow kOtherUse{"other", 3.5f, 2};
@@ -195,6 +197,11 @@ constexpr Mapping kBuildingValues[] = {
     {"guardhouse", "service"},
     {"mobile_home", "mobile_home"},
     {"pavilion", "sports"},
+    {"tower", "tower"},
+    {"bell_tower", "tower"},
+    {"chimney", "tower"},
+    {"water_tower", "tower"},
+    {"minaret", "tower"},
 };
 
 constexpr Mapping kAmenityValues[] = {
@@ -324,7 +331,91 @@ Family familyFromUse(std::string_view use, int storeys, int year) {
   return Family::URM;  // pre-1950 or unknown low/mid-rise: the older masonry stock
 }
 
+bool traditionalMasonryUse(std::string_view use) {
+  return use == "religious" || use == "tower";
+}
+
+/// The rules that come before building:material (docs/attributes.md "Structural type", rules 2
+/// and 3): buildings begun before 1890 stand on bearing walls whatever their height or cladding,
+/// and so do religious buildings, towers and chimneys built before 1950 or undated. Wood stays wood
+/// (W1/W2 by the caller); the rest is unreinforced masonry. None when neither rule applies. Sets
+/// the matching AttributeNote bit in `notes` when given.
+Family masonryEraFamily(std::string_view use, std::string_view material, int startYear, std::uint8_t* notes) {
+  const bool known = startYear > 0;
+  const bool preFrame = known && startYear < kFrameEraYear;
+  const bool traditional = traditionalMasonryUse(use) && (!known || startYear < 1950);
+  if (!preFrame && !traditional) return Family::None;
+  if (notes != nullptr) *notes |= preFrame ? kNotePreFrameMasonry : kNoteTraditionalMasonry;
+  const bool wood = material == "wood" || material == "timber" || material == "timber_framing" || material == "log";
+  if (wood) return Family::Wood;
+  return Family::URM;
+}
+
+std::string formatMeters(double v) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.1f m", v);
+  return buffer;
+}
+
 }  // namespace
+
+std::string undergroundReason(std::string_view location, std::string_view layer, std::optional<double> heightM,
+                              std::optional<double> levels) {
+  location = trim(location);
+  if (equalsIgnoreCase(location, "underground")) return "location=underground";
+  const std::optional<double> layerNumber = parseMinLevel(layer);
+  const bool aboveGround = (heightM && *heightM > 0.0) || (levels && *levels > 0.0);
+  if (layerNumber && *layerNumber < 0.0 && !aboveGround) {
+    return "layer=" + std::string(trim(layer)) + " with no height above ground";
+  }
+  return {};
+}
+
+std::vector<std::string> applyStoreyRules(BuildingAttributes& a, const StoreyEvidence& evidence) {
+  std::vector<std::string> messages;
+  const double storeyM = storeyHeightForUse(a.use);
+  const double span = static_cast<double>(a.heightM) - static_cast<double>(a.minHeightM);
+  auto storeysFor = [](double metres, double perStorey) {
+    return static_cast<std::uint16_t>(std::clamp(std::round(metres / perStorey), 1.0, 999.0));
+  };
+  // 1. Religious buildings and towers: the nave or main body carries the storeys, not the spire.
+  if (traditionalMasonryUse(a.use) && a.storeysSource == ValueSource::Inferred && evidence.mainBodyHeightM &&
+      *evidence.mainBodyHeightM > static_cast<double>(a.minHeightM) &&
+      *evidence.mainBodyHeightM < static_cast<double>(a.heightM)) {
+    a.storeys = storeysFor(*evidence.mainBodyHeightM - static_cast<double>(a.minHeightM), storeyM);
+    a.notes |= kNoteStoreysFromNave;
+  }
+  // 2. Tagged height and tagged levels in conflict: the height wins (docs/attributes.md: most
+  //    heights in New York come from the city's measured roof heights; levels are typed by hand).
+  //    A high-rise whose floors were counted keeps the count as nearly as the range allows: its
+  //    height includes a spire, mast or crown. Religious buildings and towers are left to rule 1
+  //    (their height is the spire's; their tagged levels win).
+  if (a.heightSource == ValueSource::Tagged && a.storeysSource == ValueSource::Tagged && a.storeys > 0 && span > 0.0 &&
+      !traditionalMasonryUse(a.use)) {
+    const double perStorey = span / a.storeys;
+    if (perStorey < kMinPlausibleStoreyM || perStorey > kMaxPlausibleStoreyM) {
+      const std::uint16_t tagged = a.storeys;
+      const bool highRise = perStorey > kMaxPlausibleStoreyM && tagged >= kHighRiseStoreys;
+      a.storeys = highRise ? static_cast<std::uint16_t>(std::min(999.0, std::ceil(span / kMaxPlausibleStoreyM)))
+                           : storeysFor(span, storeyM);
+      a.storeysSource = ValueSource::Inferred;
+      a.notes |= kNoteLevelsConflict;
+      messages.push_back("height " + formatMeters(span) + " with " + std::to_string(tagged) + " tagged storeys gives " +
+                         formatMeters(perStorey) + " storeys (" +
+                         (perStorey < kMinPlausibleStoreyM ? "under 2.2 m" : "over 7 m") + "); " +
+                         std::to_string(a.storeys) +
+                         (highRise ? " storeys of at most 7 m inferred (the height includes a spire, mast or crown)"
+                                   : " storeys inferred from the height"));
+    }
+  }
+  // 3. Nineteenth-century buildings had tall floors.
+  if (a.storeysSource == ValueSource::Inferred && (a.notes & kNoteStoreysFromNave) == 0 && a.startYear >= 1000 &&
+      a.startYear < kFrameEraYear && storeyM < kOldStoreyHeightM) {
+    a.storeys = storeysFor(span, kOldStoreyHeightM);
+    a.notes |= kNoteOldStoreyHeight;
+  }
+  return messages;
+}
 
 std::optional<LengthUnit> parseLengthUnit(std::string_view name) {
   name = trim(name);
@@ -476,6 +567,7 @@ StructuralType inferStructuralType(std::string_view use, float heightM, int stor
     }
   };
   Family family = resolve(familyFromStructure(structure));
+  if (family == Family::None) family = resolve(masonryEraFamily(use, material, startYear, nullptr));
   if (family == Family::None) family = resolve(familyFromMaterial(material, use, storeys));
   if (family == Family::None || family == Family::Cladding) family = familyFromUse(use, storeys, startYear);
   return withHeightClass(family, storeys);
@@ -507,6 +599,10 @@ void classifyImportance(BuildingAttributes& attributes, bool hasParts) {
 }
 
 void inferSeismicAttributes(BuildingAttributes& attributes, bool hasParts) {
+  attributes.notes = static_cast<std::uint8_t>(attributes.notes & ~(kNotePreFrameMasonry | kNoteTraditionalMasonry));
+  if (familyFromStructure(attributes.structure) == Family::None) {
+    masonryEraFamily(attributes.use, attributes.material, attributes.startYear, &attributes.notes);
+  }
   attributes.structuralType = inferStructuralType(attributes.use, attributes.heightM, attributes.storeys,
                                                   attributes.material, attributes.structure, attributes.startYear);
   attributes.codeEra = inferCodeEra(attributes.startYear);

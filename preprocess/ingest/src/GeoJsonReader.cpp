@@ -202,6 +202,8 @@ class GeoJsonReader {
     if (key == "addr:street") return &tags.street;
     if (key == "addr:postcode") return &tags.postcode;
     if (key == "addr:city") return &tags.city;
+    if (key == "location") return &tags.location;
+    if (key == "layer") return &tags.layer;
     return nullptr;
   }
 

@@ -91,7 +91,10 @@ struct Prepared {
   HeightTags heights;
   std::string use;
   float roofHeightM = 0.0f;
+  bool roofHeightTagged = false;
   int startYear = 0;
+  bool zeroHeight = false;        ///< height=0 tagged on a building above ground (then inferred)
+  std::string undergroundReason;  ///< not empty: underground, neither drawn nor analysed
 };
 
 struct WorkerOutput {
@@ -127,8 +130,14 @@ void parseTags(const RawFeature& feature, Prepared& out, WarningLog& warnings) {
     return m;
   };
   out.heights.heightM = length(kHeightKey, heightKey, tags.height, kMaxHeightM);
+  out.undergroundReason = undergroundReason(tags.location, tags.layer, out.heights.heightM,
+                                            tags.levels.empty() ? std::nullopt : parseLevels(tags.levels));
   if (out.heights.heightM && *out.heights.heightM <= 0.0) {
-    warn("height out of range", heightKey, tags.height, "is not above the ground; inferred instead");
+    // Underground buildings are left out whole (their height=0 is right); any other is told.
+    if (out.undergroundReason.empty()) {
+      warn("height out of range", heightKey, tags.height, "is not above the ground; inferred instead");
+      out.zeroHeight = true;
+    }
     out.heights.heightM.reset();
   }
   out.heights.minHeightM = length(kMinHeightKey, minHeightKey, tags.minHeight, kMaxHeightM);
@@ -155,8 +164,10 @@ void parseTags(const RawFeature& feature, Prepared& out, WarningLog& warnings) {
       out.heights.minLevel = minLevel;
     }
   }
-  if (const auto roof = length("roof:height", "roof:height", tags.roofHeight, kMaxHeightM))
+  if (const auto roof = length("roof:height", "roof:height", tags.roofHeight, kMaxHeightM)) {
     out.roofHeightM = static_cast<float>(*roof);
+    out.roofHeightTagged = true;
+  }
   if (!tags.startDate.empty()) {
     if (const std::optional<int> year = parseStartYear(tags.startDate)) {
       out.startYear = *year;
@@ -297,7 +308,7 @@ void addParts(Prepared& prepared, const RawFeature& feature, const ResolvedHeigh
 }
 
 /// A building drawn from its own footprint (a plain outline, or a part without an outline).
-Building makeSimpleBuilding(const RawFeature& feature, Prepared& prepared) {
+Building makeSimpleBuilding(const RawFeature& feature, Prepared& prepared, WarningLog& warnings) {
   Building building;
   BuildingAttributes& a = building.attributes;
   fillIdentity(feature, prepared, a);
@@ -307,7 +318,15 @@ Building makeSimpleBuilding(const RawFeature& feature, Prepared& prepared) {
   a.storeys = h.storeys;
   a.heightSource = h.heightSource;
   a.storeysSource = h.storeysSource;
+  if (prepared.zeroHeight) a.notes |= kNoteZeroHeight;
   addParts(prepared, feature, h, feature.kind == FeatureKind::Part ? feature.id : std::string(), building);
+  StoreyEvidence evidence;
+  if (prepared.roofHeightTagged && prepared.heights.heightM) {
+    evidence.mainBodyHeightM = *prepared.heights.heightM - static_cast<double>(prepared.roofHeightM);
+  }
+  for (const std::string& message : applyStoreyRules(a, evidence)) {
+    warnings.add("height and levels in conflict", a.id + ": " + message);
+  }
   inferSeismicAttributes(a, false);
   return building;
 }
@@ -315,7 +334,8 @@ Building makeSimpleBuilding(const RawFeature& feature, Prepared& prepared) {
 /// A building whose geometry is its parts (Simple 3D Buildings): the outline gives identity,
 /// footprint and defaults; heights are the parts'.
 Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, const std::vector<std::uint32_t>& partIds,
-                               std::deque<RawFeature>& features, std::vector<Prepared>& preparedParts) {
+                               std::deque<RawFeature>& features, std::vector<Prepared>& preparedParts,
+                               WarningLog& warnings) {
   Building building;
   BuildingAttributes& a = building.attributes;
   fillIdentity(outline, prepared, a);
@@ -325,10 +345,29 @@ Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, co
   std::optional<double> maxLevels = prepared.heights.levels;
   std::string tallestMaterial;
   std::string tallestStructure;
+  double largestPartAreaM2 = -1.0;
+  float largestPartHeightM = 0.0f;
+  // An outline tagged building:part as well is one of its own parts (Simple 3D Buildings; 437
+  // buildings of Lower Manhattan): a cathedral's nave under its spires, the lower storeys under a
+  // rooftop addition. Without it the building would float on its rooftop part.
+  const std::string_view outlinePart = outline.tags.buildingPart;
+  if (!outlinePart.empty() && outlinePart != "no") {
+    const ResolvedHeights h = resolveHeights(prepared.heights, a.use);
+    top = h.heightM;
+    topSource = h.heightSource;
+    bottom = h.minHeightM;
+    largestPartAreaM2 = prepared.areaM2;
+    largestPartHeightM = h.heightM;
+    addParts(prepared, outline, h, outline.id, building);
+  }
   for (const std::uint32_t p : partIds) {
     Prepared& part = preparedParts[p];
     const std::string& partUse = part.use == "unknown" ? a.use : part.use;
     const ResolvedHeights h = resolveHeights(part.heights, partUse, prepared.heights.heightM);
+    if (part.areaM2 > largestPartAreaM2) {
+      largestPartAreaM2 = part.areaM2;
+      largestPartHeightM = h.heightM;
+    }
     if (h.heightM > top) {
       top = h.heightM;
       topSource = h.heightSource;
@@ -356,6 +395,14 @@ Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, co
   }
   if (a.material.empty()) a.material = tallestMaterial;
   if (a.structure.empty()) a.structure = tallestStructure;
+  if (prepared.zeroHeight) a.notes |= kNoteZeroHeight;
+  // The main body: the outline's own height under taller parts (a cathedral's nave under its
+  // spires), else the largest part's.
+  StoreyEvidence evidence;
+  evidence.mainBodyHeightM = prepared.heights.heightM ? *prepared.heights.heightM : double{largestPartHeightM};
+  for (const std::string& message : applyStoreyRules(a, evidence)) {
+    warnings.add("height and levels in conflict", a.id + ": " + message);
+  }
   inferSeismicAttributes(a, true);
   return building;
 }
@@ -516,12 +563,13 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
     const auto it = byId.find(id);
     return it != byId.end() && kept(it->second, kind) ? it->second : kNone;
   };
+  auto underground = [&](std::uint32_t i) { return !prepared[i].undergroundReason.empty(); };
   for (const detail::BuildingGroup& group : raw.groups) {
     const std::uint32_t outline = findKept(group.outlineId, FeatureKind::Building);
     if (outline == kNone) continue;
     for (const std::string& partId : group.partIds) {
       const std::uint32_t part = findKept(partId, FeatureKind::Part);
-      if (part == kNone || owner[part] != kNone) continue;
+      if (part == kNone || owner[part] != kNone || underground(part)) continue;
       owner[part] = outline;
       ++stats.partsAttachedByRelation;
     }
@@ -529,11 +577,13 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
   OutlineGrid grid;
   bool anyPart = false;
   for (std::uint32_t i = 0; i < features.size(); ++i) {
-    if (kept(i, FeatureKind::Building)) grid.insert(i, prepared[i].box);
+    // An underground outline owns no part by containment (Penn Station lies under Madison Square
+    // Garden's parts).
+    if (kept(i, FeatureKind::Building) && !underground(i)) grid.insert(i, prepared[i].box);
     anyPart = anyPart || kept(i, FeatureKind::Part);
   }
   for (std::uint32_t i = 0; anyPart && i < features.size(); ++i) {
-    if (!kept(i, FeatureKind::Part) || owner[i] != kNone) continue;
+    if (!kept(i, FeatureKind::Part) || owner[i] != kNone || underground(i)) continue;
     const auto largest = std::max_element(prepared[i].polygons.begin(), prepared[i].polygons.end(),
                                           [](const Polygon& a, const Polygon& b) { return a.areaM2 < b.areaM2; });
     const std::optional<glm::dvec2> inside = interiorPoint(largest->points, largest->ringEnds);
@@ -560,16 +610,24 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
   model.buildings.reserve(byId.size());
   for (std::uint32_t i = 0; i < features.size(); ++i) {
     if (prepared[i].polygons.empty()) continue;
+    if (underground(i) && (features[i].kind == FeatureKind::Building || owner[i] == kNone)) {
+      // Not drawn above ground and not analysed; counted (summary, manifest, `info`) and named.
+      model.excluded["underground"] += 1;
+      warnings.add("underground",
+                   features[i].id + ": " + prepared[i].undergroundReason + ": underground, neither drawn nor analysed");
+      continue;
+    }
     if (features[i].kind == FeatureKind::Building) {
       if (partsOf[i].empty()) {
-        model.buildings.push_back(makeSimpleBuilding(features[i], prepared[i]));
+        model.buildings.push_back(makeSimpleBuilding(features[i], prepared[i], warnings));
       } else {
         stats.partsAttached += partsOf[i].size();
-        model.buildings.push_back(makeBuildingWithParts(features[i], prepared[i], partsOf[i], features, prepared));
+        model.buildings.push_back(
+            makeBuildingWithParts(features[i], prepared[i], partsOf[i], features, prepared, warnings));
       }
     } else if (owner[i] == kNone) {
       ++stats.partsStandalone;
-      model.buildings.push_back(makeSimpleBuilding(features[i], prepared[i]));
+      model.buildings.push_back(makeSimpleBuilding(features[i], prepared[i], warnings));
     }
   }
   model.warnings = std::move(warnings.messages);

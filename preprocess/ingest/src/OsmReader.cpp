@@ -69,6 +69,10 @@ void keepTags(const osmium::TagList& tags, RawTags& out) {
       case 'h':
         if (key == "height") slot = &out.height;
         break;
+      case 'l':
+        if (key == "location") slot = &out.location;
+        if (key == "layer") slot = &out.layer;
+        break;
       case 'm':
         if (key == "min_height") slot = &out.minHeight;
         break;

@@ -39,6 +39,8 @@ struct RawTags {
   std::string street;
   std::string postcode;
   std::string city;
+  std::string location;  ///< location=* ("underground")
+  std::string layer;     ///< layer=* (negative: below ground)
 };
 
 enum class FeatureKind : std::uint8_t { Building, Part };

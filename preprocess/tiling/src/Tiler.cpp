@@ -536,6 +536,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   // An older response's city-wide summary follows the old index's order: not this one's.
   if (t.response) t.response->summaryIndex.reset();
   t.sources = model.sources;
+  t.excluded = model.excluded;
   t.bounds = nodes[0].bounds;
   t.maxHeightM = nodes[0].maxHeight;
   t.nodes.resize(nodes.size());

@@ -63,6 +63,19 @@ enum ImportanceReason : std::uint8_t {
   kReasonShelter = 64,  ///< emergency shelters, civic centres
 };
 
+/// Why a height, storey count or structural type was inferred against what the data says, or what
+/// a plausibility rule changed (bit flags; docs/attributes.md "Plausibility rules"). Stored in
+/// tiles: never renumber, only add bits.
+enum AttributeNote : std::uint8_t {
+  kNoteNone = 0,
+  kNoteZeroHeight = 1,           ///< height=0 tagged on a building above ground: the height is inferred
+  kNoteStoreysFromNave = 2,      ///< storeys from the nave or main body, not the towers or spire
+  kNoteLevelsConflict = 4,       ///< tagged height and levels imply storeys under 2.2 m or over 7 m
+  kNoteOldStoreyHeight = 8,      ///< built before 1890: storeys inferred at 19th-century floor heights
+  kNotePreFrameMasonry = 16,     ///< built before 1890, before steel and concrete frames: masonry
+  kNoteTraditionalMasonry = 32,  ///< a religious building, tower or chimney before 1950 (or undated): masonry
+};
+
 struct BuildingAttributes {
   std::string id;             ///< stable id: w<osm way>, r<osm relation>, s<n>, cj:<id>, g:<id or index>
   std::string name;           ///< may be empty
@@ -81,10 +94,11 @@ struct BuildingAttributes {
   CodeEra codeEra = CodeEra::Unknown;
   Importance importance = Importance::General;
   std::uint8_t importanceReasons = kReasonNone;
-  std::uint8_t lod = 1;          ///< 1: extruded footprint, 2: detailed model
-  float footprintAreaM2 = 0.0f;  ///< area of the ground footprint
-  double centroidX = 0.0;        ///< metres east of the city origin
-  double centroidY = 0.0;        ///< metres north of the city origin
+  std::uint8_t lod = 1;            ///< 1: extruded footprint, 2: detailed model
+  std::uint8_t notes = kNoteNone;  ///< AttributeNote bits: why values were inferred or changed
+  float footprintAreaM2 = 0.0f;    ///< area of the ground footprint
+  double centroidX = 0.0;          ///< metres east of the city origin
+  double centroidY = 0.0;          ///< metres north of the city origin
 
   bool operator==(const BuildingAttributes&) const = default;
 
@@ -108,5 +122,11 @@ std::string_view importanceName(Importance importance);  ///< "general" / "criti
 /// "fire_station", "police", "school", "tall", "complex", "shelter".
 std::vector<std::string_view> importanceReasonNames(unsigned reasons);
 std::string_view valueSourceName(ValueSource source);  ///< "tagged" / "inferred"
+/// The codes of the notes set in `notes` (AttributeNote bits), in bit order: "zero-height",
+/// "storeys-from-nave", "levels-conflict", "old-storey-height", "pre-frame-masonry",
+/// "traditional-masonry".
+std::vector<std::string_view> attributeNoteNames(unsigned notes);
+/// The sentence a user sees for one AttributeNote bit (docs/attributes.md); empty for others.
+std::string_view attributeNoteText(unsigned note);
 
 }  // namespace qv

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -84,8 +85,11 @@ struct Tileset {
   std::uint64_t buildings = 0;
   std::uint64_t buildingsRevision = 1;  ///< bumped by every tool that adds or changes buildings
   std::vector<std::string> sources;     ///< input files the city came from
-  std::optional<CityFile> search;       ///< the search index (search.qvi): the city-wide building table
-  std::vector<TileNode> nodes;          ///< nodes[0] is the root
+  /// Buildings read from the sources but neither drawn nor analysed, by reason ("underground" -> 3);
+  /// written as "excluded" only when not empty.
+  std::map<std::string, std::uint64_t> excluded;
+  std::optional<CityFile> search;  ///< the search index (search.qvi): the city-wide building table
+  std::vector<TileNode> nodes;     ///< nodes[0] is the root
   std::optional<ResponseInfo> response;
 
   /// True when a response exists but was computed for an older revision of the buildings.

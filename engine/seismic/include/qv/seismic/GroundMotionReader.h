@@ -13,8 +13,9 @@
 //   - no header, one value a line (or several): the step must come from the caller.
 //   - no header, two values on every line, the first strictly increasing: time and acceleration;
 //     the step is the time difference, checked uniform.
-// Units come from the header ("UNITS OF G", "(g)", "cm/s/s", "gal", "m/s2") or from the caller; a
-// header and a caller that disagree is an error, as is neither giving units.
+// Units come from the header ("UNITS OF G.", "(g)", "in g", "cm/s/s", "CM/SEC**2", "gal", "m/s2";
+// punctuation and case do not matter, docs/seismic.md) or from the caller; a header and a caller
+// that disagree is an error, as is neither giving units.
 #pragma once
 
 #include <optional>

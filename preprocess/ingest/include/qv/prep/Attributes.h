@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "qv/format/BuildingAttributes.h"
 
@@ -82,6 +83,44 @@ struct ResolvedHeights {
 /// min_level × storey height, else 0; a min height at or above the height is ignored (0).
 ResolvedHeights resolveHeights(const HeightTags& tags, std::string_view use,
                                std::optional<double> fallbackHeightM = std::nullopt);
+
+/// Storey heights a building can have, metres: tagged height and levels that give storeys outside
+/// [kMinPlausibleStoreyM, kMaxPlausibleStoreyM] are in conflict (docs/attributes.md
+/// "Plausibility rules").
+inline constexpr double kMinPlausibleStoreyM = 2.2;
+inline constexpr double kMaxPlausibleStoreyM = 7.0;
+/// Tagged storeys from which a building is a high-rise (HAZUS H class) whose floor count a mapper
+/// knew: in a conflict over 7 m it keeps as many storeys as the range allows.
+inline constexpr int kHighRiseStoreys = 8;
+/// Buildings begun before this year predate steel and concrete frames in New York (the Tower
+/// Building, 1889, was the city's first skeleton frame): masonry bearing walls.
+inline constexpr int kFrameEraYear = 1890;
+/// Floor-to-floor height of buildings begun before kFrameEraYear, metres (12-15 ft upper floors).
+inline constexpr double kOldStoreyHeightM = 4.5;
+
+/// Why a building is underground (not drawn above ground, not analysed), or empty when it is not:
+/// "location=underground", or "layer=-2 with no height above ground" (a negative layer with
+/// neither a height above 0 nor building:levels above 0). `heightM` and `levels` are the parsed
+/// tags (nullopt when absent or garbage).
+std::string undergroundReason(std::string_view location, std::string_view layer, std::optional<double> heightM,
+                              std::optional<double> levels);
+
+/// What the storey rules know beyond the attributes.
+struct StoreyEvidence {
+  /// The height of the nave or main body when it differs from the top: the outline's own height
+  /// under taller parts, else the height of the largest part, or height − roof:height.
+  std::optional<double> mainBodyHeightM;
+};
+
+/// The storey rules of docs/attributes.md "Plausibility rules", in order, on attributes whose use,
+/// heights, storeys (with sources) and startYear are set; sets `notes` bits and returns one
+/// message per rule that overrode a tag (for the ingest warnings, without the building id):
+///  1. a religious building or tower whose storeys are not tagged: storeys from its main body;
+///  2. tagged height and storeys giving storeys under 2.2 m or over 7 m (not for religious
+///     buildings and towers): storeys from the height at the use's storey height, or for a
+///     high-rise (8+ tagged storeys) over 7 m, ceil(height / 7 m) (inferred);
+///  3. storeys inferred and built before 1890: storeys at max(use storey height, 4.5 m).
+std::vector<std::string> applyStoreyRules(BuildingAttributes& attributes, const StoreyEvidence& evidence);
 
 /// HAZUS model building type (docs/attributes.md "Structural type"), first matching rule wins:
 /// building:structure, then building:material (masonry of 8+ storeys is taken as cladding of a

@@ -80,6 +80,9 @@ struct CityModel {
   std::vector<std::string> warnings;                   ///< what was inferred instead of a garbage tag, etc.
   std::map<std::string, std::uint64_t> warningCounts;  ///< "building:levels not a number" -> 1
   std::vector<std::string> sources;                    ///< input files, for the manifest
+  /// Buildings read but neither drawn nor analysed, by reason ("underground" -> 1); they are not in
+  /// `buildings`. Written to the manifest (Tileset::excluded) and shown by `info`.
+  std::map<std::string, std::uint64_t> excluded;
 };
 
 }  // namespace qv::prep
