@@ -215,7 +215,7 @@ TEST_CASE("The batched solver's default steps keep a yielding frame within 0.5 %
   }
 }
 
-TEST_CASE("Unconverged steps are split first; steps still accepted are recorded per building", "[seismic][batch]") {
+TEST_CASE("Unconverged steps are split first, and steps still accepted are recorded per building", "[seismic][batch]") {
   const auto buildings = cityBlock();
   const auto shaking = shakingFor(buildings.size());
   const GroundMotion x = record("tabasFN.txt");
