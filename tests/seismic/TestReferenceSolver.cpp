@@ -207,3 +207,44 @@ TEST_CASE("Free vibration after the record decays, residual drift after yielding
   CHECK(std::fabs(yielded->residualDriftM[0]) > 1e-4);  // permanent set after yielding
   CHECK(yielded->stats.splitSteps == 0);
 }
+
+TEST_CASE("Automatic sub-steps keep a yielding frame's peaks within 0.5 % of converged", "[seismic][reference]") {
+  // Issue 21: a 3-storey Bouc–Wen shear building under El Centro × 1.5 with 10 s of free vibration.
+  // Two sub-steps from the periods alone gave a peak base shear 1.7 % low; OpenSees extrapolated to
+  // Δt → 0 gives 1 157 636 N.
+  ShearBuilding b;
+  b.floorMassKg.assign(3, 60000.0);
+  b.storeyStiffnessNPerM.assign(3, 4.0e7);
+  b.storeyHeightM.assign(3, 3.0);
+  b.damping = Damping::rayleigh(0.8468543453, 0.002288968202);
+  const auto law = BoucWenStorey::fromOpenSees(0.1, 1.0, 14.28571429, 14.28571429);
+  REQUIRE(law.ok());
+  b.hysteresis.assign(3, *law);
+  ReferenceOptions options;
+  options.scale = 1.5;
+  options.freeVibrationSeconds = 10.0;
+  options.keepHistory = false;
+  const auto motion = elCentro();
+  const auto automatic = solveReference(b, motion, options);
+  REQUIRE(automatic.ok());
+  options.substeps = 256;
+  const auto converged = solveReference(b, motion, options);
+  REQUIRE(converged.ok());
+  CHECK(converged->peakBaseShearN == Approx(1157636.0).epsilon(5e-4));
+  INFO("automatic: base shear " << automatic->peakBaseShearN << " N, roof " << automatic->peakRoofDisplacementM
+                                << " m, drift " << automatic->peakDriftRatio[0] << "; converged "
+                                << converged->peakBaseShearN << " N, " << converged->peakRoofDisplacementM << " m, "
+                                << converged->peakDriftRatio[0] << "; refined steps " << automatic->stats.refinedSteps);
+  CHECK(automatic->peakBaseShearN == Approx(1157636.0).epsilon(0.005));
+  CHECK(automatic->peakRoofDisplacementM == Approx(converged->peakRoofDisplacementM).epsilon(0.005));
+  for (std::size_t i = 0; i < 3; ++i) {
+    CHECK(automatic->peakDriftRatio[i] == Approx(converged->peakDriftRatio[i]).epsilon(0.005));
+  }
+  // Equal steps stay equal (the OpenSees comparison): no refinement with fixed sub-steps.
+  options.substeps = 2;
+  const auto fixed = solveReference(b, motion, options);
+  REQUIRE(fixed.ok());
+  CHECK(fixed->stats.refinedSteps == 0);
+  CHECK(fixed->peakBaseShearN == Approx(1137848.0).epsilon(1e-5));
+  CHECK(automatic->stats.refinedSteps > 0);
+}

@@ -661,3 +661,26 @@ TEST_CASE("A city on an origin the site does not allow is refused before any req
   CHECK(allowed.viewer.errors().empty());
   CHECK(allowed.viewer.dataSource() == "https://data.city.gov (allowed by this site's config.json)");
 }
+
+TEST_CASE("building(id) says why a building has no result and when a result is approximate", "[scene][info]") {
+  BuildingInfo info;
+  info.attributes.id = "w3";
+  info.hasResponse = true;
+  info.response.noResultReason = NoResultReason::BaseAboveGround;
+  const std::string none = buildingInfoJson(info);
+  CHECK(none.find("\"damageState\":\"no_result\"") != std::string::npos);
+  CHECK(none.find("\"noResultReason\":\"base_above_ground\"") != std::string::npos);
+  CHECK(none.find("\"approximate\":false") != std::string::npos);
+
+  info.response.source = ResponseSource::Model;
+  info.response.damage = DamageState::Slight;
+  info.response.noResultReason = NoResultReason::None;
+  info.response.approximate = true;
+  info.response.unconvergedSteps = 12;
+  info.response.worstResidualRatio = 0.25f;
+  const std::string approximate = buildingInfoJson(info);
+  CHECK(approximate.find("\"noResultReason\":null") != std::string::npos);
+  CHECK(approximate.find("\"approximate\":true") != std::string::npos);
+  CHECK(approximate.find("\"unconvergedSteps\":12") != std::string::npos);
+  CHECK(approximate.find("\"worstResidualRatio\":0.25") != std::string::npos);
+}

@@ -14,7 +14,9 @@ namespace qv {
 namespace {
 
 constexpr std::size_t kHeaderSize = 28;
-constexpr std::size_t kSummaryRecordSize = 28;
+constexpr std::size_t kSummaryRecordSizeV1 = 28;
+constexpr std::size_t kSummaryRecordSize = 36;
+constexpr std::uint8_t kFlagApproximate = 1;
 constexpr std::uint32_t kMaxBuildings = 1u << 20;
 constexpr std::uint32_t kMaxFloors = 500;
 constexpr std::uint8_t kMaxModes = 8;
@@ -31,11 +33,11 @@ struct Section {
 };
 
 // Header + section table + sections; CRC over [16, end).
-std::vector<std::uint8_t> assemble(const char (&magic)[5], std::uint32_t count, std::uint32_t extra,
-                                   std::span<const Section> sections) {
+std::vector<std::uint8_t> assemble(const char (&magic)[5], std::uint16_t version, std::uint32_t count,
+                                   std::uint32_t extra, std::span<const Section> sections) {
   ByteWriter out;
   out.fourcc(magic);
-  out.u16(kResponseTileVersion);
+  out.u16(version);
   out.u16(0);
   out.u32(0);
   out.u32(0);
@@ -60,14 +62,16 @@ std::vector<std::uint8_t> assemble(const char (&magic)[5], std::uint32_t count, 
 }
 
 struct Parsed {
+  std::uint16_t version = 0;
   std::uint32_t count = 0;
   std::uint32_t extra = 0;
   std::vector<std::pair<std::uint32_t, std::pair<std::size_t, std::size_t>>> sections;  // id -> offset, size
 };
 
 // Checks magic, version, size and CRC and reads the section table.
-Result<Parsed> parseHeader(std::span<const std::uint8_t> bytes, const char (&magic)[5], const char* kind,
-                           const std::string& prefix) {
+// Reads versions 1 .. `newest`.
+Result<Parsed> parseHeader(std::span<const std::uint8_t> bytes, const char (&magic)[5], std::uint16_t newest,
+                           const char* kind, const std::string& prefix) {
   if (bytes.size() < kHeaderSize) {
     return Error{prefix + "not a " + kind + ": " + std::to_string(bytes.size()) + " bytes is shorter than the header"};
   }
@@ -76,14 +80,15 @@ Result<Parsed> parseHeader(std::span<const std::uint8_t> bytes, const char (&mag
   }
   ByteReader h(bytes.subspan(4, kHeaderSize - 4), 4);
   const std::uint16_t version = h.u16("version");
-  if (version != kResponseTileVersion) {
-    return Error{prefix + "unsupported " + kind + " version " + std::to_string(version) +
-                 " (this build reads version " + std::to_string(kResponseTileVersion) + ")"};
+  if (version < 1 || version > newest) {
+    return Error{prefix + "unsupported " + kind + " version " + std::to_string(version) + " (this build reads " +
+                 (newest == 1 ? "version 1" : "versions 1 to " + std::to_string(newest)) + ")"};
   }
   h.u16("flags");
   const std::uint32_t size = h.u32("file size");
   const std::uint32_t stored = h.u32("checksum");
   Parsed p;
+  p.version = version;
   p.count = h.u32("count");
   p.extra = h.u32("extra");
   const std::uint16_t sections = h.u16("section count");
@@ -139,6 +144,44 @@ std::string_view damageStateName(DamageState s) {
   }
 }
 
+std::string_view noResultReasonName(NoResultReason r) {
+  switch (r) {
+    case NoResultReason::None:
+      return "none";
+    case NoResultReason::ModelInvalid:
+      return "model_invalid";
+    case NoResultReason::OutsideField:
+      return "outside_field";
+    case NoResultReason::SkippedByOption:
+      return "skipped_by_option";
+    case NoResultReason::BaseAboveGround:
+      return "base_above_ground";
+    case NoResultReason::NotInImport:
+      return "not_in_import";
+    default:
+      return "unknown";
+  }
+}
+
+std::string_view noResultReasonDescription(NoResultReason r) {
+  switch (r) {
+    case NoResultReason::None:
+      return "has a result";
+    case NoResultReason::ModelInvalid:
+      return "no structural model could be made from its attributes";
+    case NoResultReason::OutsideField:
+      return "outside the area where the shaking is defined";
+    case NoResultReason::SkippedByOption:
+      return "skipped by an option of the response command";
+    case NoResultReason::BaseAboveGround:
+      return "base above ground (rooftop structure resting on another building; not analysed)";
+    case NoResultReason::NotInImport:
+      return "not included in the imported results";
+    default:
+      return "no reason recorded";
+  }
+}
+
 std::string_view responseSourceName(ResponseSource s) {
   switch (s) {
     case ResponseSource::Model:
@@ -163,7 +206,13 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
     rsum.f32(b.pgaG);
     rsum.f32(b.peakFloorAccelerationMs2);
     rsum.f32(b.residualDriftRatio);
-    rsum.u32(0);
+    const bool hasResult = b.source != ResponseSource::None;
+    rsum.u8(static_cast<std::uint8_t>(hasResult ? NoResultReason::None : b.noResultReason));
+    rsum.u8(hasResult && b.approximate ? kFlagApproximate : 0);
+    rsum.u16(0);
+    rsum.u32(hasResult ? b.unconvergedSteps : 0);
+    rsum.f32(hasResult && std::isfinite(b.worstResidualRatio) && b.worstResidualRatio > 0.0f ? b.worstResidualRatio
+                                                                                             : 0.0f);
     for (std::uint16_t s = 0; s < storeys; ++s) {
       const std::size_t i = b.firstStorey + s;
       sdrf.f32(i < tile.storeyPeakDrift.size() ? tile.storeyPeakDrift[i] : 0.0f);
@@ -171,19 +220,22 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
     storeyValues += storeys;
   }
   const std::array<Section, 2> sections = {{{tag("RSUM"), &rsum}, {tag("SDRF"), &sdrf}}};
-  return assemble("QVRS", static_cast<std::uint32_t>(tile.buildings.size()), storeyValues, sections);
+  return assemble("QVRS", kResponseSummaryVersion, static_cast<std::uint32_t>(tile.buildings.size()), storeyValues,
+                  sections);
 }
 
 Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> bytes, std::string_view name) {
   const std::string prefix = std::string(name) + ": ";
-  auto header = parseHeader(bytes, "QVRS", "response summary tile", prefix);
+  auto header = parseHeader(bytes, "QVRS", kResponseSummaryVersion, "response summary tile", prefix);
   if (!header.ok()) return Error{header.error()};
   const auto rsum = findSection(*header, tag("RSUM"));
   const auto sdrf = findSection(*header, tag("SDRF"));
   if (!rsum || !sdrf) return Error{prefix + "required section RSUM or SDRF is missing"};
-  if (rsum->second != static_cast<std::size_t>(header->count) * kSummaryRecordSize) {
+  const std::size_t recordSize = header->version == 1 ? kSummaryRecordSizeV1 : kSummaryRecordSize;
+  if (rsum->second != static_cast<std::size_t>(header->count) * recordSize) {
     return Error{prefix + "section RSUM at byte " + std::to_string(rsum->first) + " holds " +
-                 std::to_string(rsum->second) + " bytes, expected " + std::to_string(header->count) + " records of 28"};
+                 std::to_string(rsum->second) + " bytes, expected " + std::to_string(header->count) + " records of " +
+                 std::to_string(recordSize)};
   }
   if (sdrf->second != static_cast<std::size_t>(header->extra) * 4) {
     return Error{prefix + "section SDRF at byte " + std::to_string(sdrf->first) + " holds " +
@@ -203,7 +255,18 @@ Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> 
     b.pgaG = r.f32("pga");
     b.peakFloorAccelerationMs2 = r.f32("peak floor acceleration");
     b.residualDriftRatio = r.f32("residual drift");
-    r.skip(4, "reserved");
+    std::uint8_t reason = 255, flags = 0;
+    if (header->version == 1) {
+      r.skip(4, "reserved");
+    } else {
+      reason = r.u8("no-result reason");
+      flags = r.u8("flags");
+      r.skip(2, "reserved");
+      b.unconvergedSteps = r.u32("unconverged steps");
+      b.worstResidualRatio = r.f32("worst residual");
+      if (!std::isfinite(b.worstResidualRatio) || b.worstResidualRatio < 0.0f)
+        return Error{prefix + "section RSUM near byte " + std::to_string(r.offset()) + ": invalid residual"};
+    }
     if (damage > 4 && damage != 255)
       return Error{prefix + "section RSUM near byte " + std::to_string(r.offset()) + ": damage state " +
                    std::to_string(damage)};
@@ -212,6 +275,12 @@ Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> 
                    std::to_string(source)};
     b.damage = static_cast<DamageState>(damage);
     b.source = static_cast<ResponseSource>(source);
+    b.approximate = (flags & kFlagApproximate) != 0;
+    if (b.source != ResponseSource::None) {
+      b.noResultReason = NoResultReason::None;
+    } else {
+      b.noResultReason = reason >= 1 && reason <= 5 ? static_cast<NoResultReason>(reason) : NoResultReason::Unknown;
+    }
     for (float v :
          {b.peakDriftRatio, b.peakRoofDisplacementM, b.pgaG, b.peakFloorAccelerationMs2, b.residualDriftRatio}) {
       if (!std::isfinite(v) || v < 0.0f)
@@ -269,12 +338,12 @@ std::vector<std::uint8_t> encodeResponseHistory(const ResponseHistoryTile& tile)
   ByteWriter meta;
   meta.f32(tile.durationSeconds);
   const std::array<Section, 2> sections = {{{tag("HMET"), &meta}, {tag("HIST"), &hist}}};
-  return assemble("QVRH", static_cast<std::uint32_t>(tile.buildings.size()), 0, sections);
+  return assemble("QVRH", kResponseHistoryVersion, static_cast<std::uint32_t>(tile.buildings.size()), 0, sections);
 }
 
 Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> bytes, std::string_view name) {
   const std::string prefix = std::string(name) + ": ";
-  auto header = parseHeader(bytes, "QVRH", "response history tile", prefix);
+  auto header = parseHeader(bytes, "QVRH", kResponseHistoryVersion, "response history tile", prefix);
   if (!header.ok()) return Error{header.error()};
   const auto meta = findSection(*header, tag("HMET"));
   const auto hist = findSection(*header, tag("HIST"));

@@ -260,6 +260,7 @@ std::string tilesetToJson(const Tileset& t) {
       w.endArray();
     }
     if (r.summaryIndex) writeCityFile(w, "summaryIndex", *r.summaryIndex);
+    if (r.notes) writeCityFile(w, "notes", *r.notes);
     w.endObject();
   }
   if (t.search) writeCityFile(w, "search", *t.search);
@@ -380,6 +381,12 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
       CityFile f;
       if (!p.cityFile(summaryIndex, f, "response summaryIndex")) return Error{p.error};
       r.summaryIndex = f;
+    }
+    object notes;
+    if (response["notes"].get(notes) == simdjson::SUCCESS) {
+      CityFile f;
+      if (!p.cityFile(notes, f, "response notes")) return Error{p.error};
+      r.notes = f;
     }
     t.response = r;
   }

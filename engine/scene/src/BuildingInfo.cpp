@@ -36,6 +36,18 @@ std::string buildingInfoJson(const BuildingInfo& info) {
   w.endArray();
   w.field("startYear", static_cast<int>(a.startYear));
   w.field("responseSource", info.hasResponse ? responseSourceName(info.response.source) : std::string_view("none"));
+  // Why there is no result (null with a result; "unknown" for responses that did not record it or
+  // before the summary loaded), and whether the result is approximate.
+  const bool hasResult = info.hasResponse && info.response.source != ResponseSource::None;
+  if (hasResult) {
+    w.key("noResultReason").null();
+  } else {
+    w.field("noResultReason",
+            noResultReasonName(info.hasResponse ? info.response.noResultReason : NoResultReason::Unknown));
+  }
+  w.field("approximate", hasResult && info.response.approximate);
+  w.field("unconvergedSteps", hasResult ? info.response.unconvergedSteps : 0u);
+  w.field("worstResidualRatio", hasResult ? info.response.worstResidualRatio : 0.0f);
   if (!info.modelSource.empty()) {
     w.field("modelSource", info.modelSource);
     w.field("modelTriangles", info.modelTriangles);

@@ -24,6 +24,11 @@ double EnergyBalance::relativeImbalance() const {
 
 namespace {
 
+enum class StepOutcome { Accepted, NotConverged, TooCoarse };
+
+// Accuracy splits go at most 2^6 = 64 times finer than the automatic sub-step.
+constexpr int kMaxAccuracySplits = 6;
+
 std::string formatDouble(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", v);
@@ -43,6 +48,17 @@ struct StoreyLaw {
   bool closedForm = true;
   bool linear = true;
 };
+
+// The backward-Euler Bouc–Wen update's local error per unit change of ẑ over a step of x = Δδ/dy:
+// its leading term is ½ x² |d²ẑ/dx²|, and d²ẑ/dx² = −n |ẑ|^(n−1) ψ dẑ/dx with ψ = γ̂ + β̂ sgn(x ẑ),
+// so per unit of Δẑ ≈ x dẑ/dx it is ½ |x| ψ n |ẑ|^(n−1). Bounding it bounds the error accumulated
+// over a yield excursion relative to that excursion's change of ẑ (the update is first order: the
+// error of a fixed step halves with the step). Zero while unloading with γ̂ = β̂ (straight branch).
+inline double hystereticErrorEstimate(const StoreyLaw& law, double x, double z) {
+  const double psi = law.gammaShare + (1.0 - law.gammaShare) * (x * z >= 0.0 ? 1.0 : -1.0);
+  const double power = law.exponent == 1.0 ? 1.0 : law.exponent * std::pow(std::fabs(z), law.exponent - 1.0);
+  return 0.5 * std::fabs(x) * std::fabs(psi) * power;
+}
 
 class Integrator {
  public:
@@ -103,8 +119,10 @@ class Integrator {
 
   double ground(double t) const { return options_.scale * motion_.accelerationAt(t - options_.delaySeconds); }
 
-  // Advances the state from t0 by h. On failure (Newton did not converge) the state is unchanged.
-  bool step(double t0, double h, SolverStats& stats, EnergyBalance* energy) {
+  // Advances the state from t0 by h. On failure (Newton did not converge, or some storey's Bouc–Wen
+  // update's estimated error exceeds `maxHystereticError`, see hystereticErrorEstimate) the state is
+  // unchanged.
+  StepOutcome step(double t0, double h, double maxHystereticError, SolverStats& stats, EnergyBalance* energy) {
     const double c0 = 4.0 / (h * h);
     const double c1 = 2.0 / h;
     const double c2 = 4.0 / h;
@@ -115,7 +133,7 @@ class Integrator {
     bool converged = false;
     bool stagnated = false;
     for (int iteration = 0; iteration <= options_.maxNewtonIterations; ++iteration) {
-      if (!evaluate(c0, c1, c2, ag)) return false;
+      if (!evaluate(c0, c1, c2, ag)) return StepOutcome::NotConverged;
       // Convergence: residual small against the size of the terms, or no progress left to make.
       double residualMax = 0.0;
       double scaleMax = 1e-300;
@@ -129,7 +147,7 @@ class Integrator {
         break;
       }
       if (iteration == options_.maxNewtonIterations) break;
-      if (!solveCorrection(c0, c1)) return false;
+      if (!solveCorrection(c0, c1)) return StepOutcome::NotConverged;
       ++stats.newtonIterations;
       double correctionMax = 0.0;
       double sizeMax = 1e-300;
@@ -140,7 +158,15 @@ class Integrator {
       }
       stagnated = correctionMax <= 1e-15 * sizeMax;
     }
-    if (!converged) return false;
+    if (!converged) return StepOutcome::NotConverged;
+    if (maxHystereticError < 1.0) {
+      for (std::size_t i = 0; i < n_; ++i) {
+        const StoreyLaw& law = laws_[i];
+        if (law.linear) continue;
+        const double x = (du_[i] - (i > 0 ? du_[i - 1] : 0.0)) * law.inverseYield;
+        if (hystereticErrorEstimate(law, x, zTrial_[i]) > maxHystereticError) return StepOutcome::TooCoarse;
+      }
+    }
     if (energy != nullptr) accumulateEnergy(*energy, agOld, ag);
     for (std::size_t i = 0; i < n_; ++i) {
       u_[i] += du_[i];
@@ -152,7 +178,7 @@ class Integrator {
     }
     lastGround_ = ag;
     ++stats.steps;
-    return true;
+    return StepOutcome::Accepted;
   }
 
   const std::vector<double>& displacement() const { return u_; }
@@ -333,14 +359,23 @@ class Integrator {
   double lastGround_ = 0.0;
 };
 
-// Advances by h, splitting the step in two (recursively, 8 levels) when Newton does not converge.
-// A failed step leaves the integrator unchanged (it commits only converged states).
-bool advance(Integrator& integrator, double t0, double h, int depth, SolverStats& stats, EnergyBalance* energy) {
-  if (integrator.step(t0, h, stats, energy)) return true;
+// Advances by h, splitting the step in two (recursively) when Newton does not converge (8 levels)
+// or when the hysteretic update is too coarse (kMaxAccuracySplits levels; at that depth the step is
+// accepted as it is). `onStep` runs after every accepted step. A failed step leaves the integrator
+// unchanged (it commits only converged states).
+template <typename OnStep>
+bool advance(Integrator& integrator, double t0, double h, int depth, double maxHystereticError, SolverStats& stats,
+             EnergyBalance* energy, const OnStep& onStep) {
+  const double limit = depth >= kMaxAccuracySplits ? 2.0 : maxHystereticError;
+  const StepOutcome outcome = integrator.step(t0, h, limit, stats, energy);
+  if (outcome == StepOutcome::Accepted) {
+    onStep();
+    return true;
+  }
   if (depth >= 8) return false;
-  ++stats.splitSteps;
-  return advance(integrator, t0, 0.5 * h, depth + 1, stats, energy) &&
-         advance(integrator, t0 + 0.5 * h, 0.5 * h, depth + 1, stats, energy);
+  ++(outcome == StepOutcome::TooCoarse ? stats.refinedSteps : stats.splitSteps);
+  return advance(integrator, t0, 0.5 * h, depth + 1, maxHystereticError, stats, energy, onStep) &&
+         advance(integrator, t0 + 0.5 * h, 0.5 * h, depth + 1, maxHystereticError, stats, energy, onStep);
 }
 
 }  // namespace
@@ -391,29 +426,34 @@ Result<ReferenceResponse> solveReference(const ShearBuilding& building, const Gr
   Integrator integrator(building, motion, options, *modes);
   EnergyBalance* energy = options.computeEnergy ? &out.energy : nullptr;
   const double h = dt / substeps;
+  // Peaks at every accepted step.
+  const auto updatePeaks = [&] {
+    const auto& u = integrator.displacement();
+    const auto& acc = integrator.acceleration();
+    const auto& drift = integrator.drift();
+    const auto& force = integrator.force();
+    const double ag = integrator.lastGround();
+    out.peakRoofDisplacementM = std::fmax(out.peakRoofDisplacementM, std::fabs(u[n - 1]));
+    out.peakBaseShearN = std::fmax(out.peakBaseShearN, std::fabs(force[0]));
+    double moment = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+      out.peakStoreyShearN[i] = std::fmax(out.peakStoreyShearN[i], std::fabs(force[i]));
+      out.peakDriftM[i] = std::fmax(out.peakDriftM[i], std::fabs(drift[i]));
+      out.peakFloorAccelerationMps2 = std::fmax(out.peakFloorAccelerationMps2, std::fabs(acc[i] + ag));
+      if (heights) moment += force[i] * building.storeyHeightM[i];
+    }
+    out.peakBaseMomentNm = std::fmax(out.peakBaseMomentNm, std::fabs(moment));
+  };
+  // Equal steps when the caller fixes the sub-steps; automatic sub-steps also bound the hysteretic
+  // update's change per step.
+  const double maxHystereticError = options.substeps > 0 ? 2.0 : options.maxHystereticError;
   for (std::size_t f = 1; f < frames; ++f) {
     for (int s = 0; s < substeps; ++s) {
       const double t0 = static_cast<double>(f - 1) * dt + static_cast<double>(s) * h;
-      if (!advance(integrator, t0, h, 0, out.stats, energy)) {
+      if (!advance(integrator, t0, h, 0, maxHystereticError, out.stats, energy, updatePeaks)) {
         return fail("reference solver: Newton iterations did not converge at t = " + formatDouble(t0) +
                     " s even after splitting the step 256 times");
       }
-      // Peaks at every step.
-      const auto& u = integrator.displacement();
-      const auto& acc = integrator.acceleration();
-      const auto& drift = integrator.drift();
-      const auto& force = integrator.force();
-      const double ag = integrator.lastGround();
-      out.peakRoofDisplacementM = std::fmax(out.peakRoofDisplacementM, std::fabs(u[n - 1]));
-      out.peakBaseShearN = std::fmax(out.peakBaseShearN, std::fabs(force[0]));
-      double moment = 0.0;
-      for (std::size_t i = 0; i < n; ++i) {
-        out.peakStoreyShearN[i] = std::fmax(out.peakStoreyShearN[i], std::fabs(force[i]));
-        out.peakDriftM[i] = std::fmax(out.peakDriftM[i], std::fabs(drift[i]));
-        out.peakFloorAccelerationMps2 = std::fmax(out.peakFloorAccelerationMps2, std::fabs(acc[i] + ag));
-        if (heights) moment += force[i] * building.storeyHeightM[i];
-      }
-      out.peakBaseMomentNm = std::fmax(out.peakBaseMomentNm, std::fabs(moment));
     }
     if (options.keepHistory) {
       for (std::size_t i = 0; i < n; ++i) {

@@ -149,6 +149,7 @@ class BatchKernel {
     const SystemRef* system = nullptr;
     DirectionResponse* out = nullptr;
     std::uint32_t* nonConverged = nullptr;
+    float* worstResidual = nullptr;  // largest relative residual of the lane's unconverged steps
   };
   struct Settings {
     double dt = 0.01;
@@ -157,6 +158,8 @@ class BatchKernel {
     bool keepDisplacements = true;
     bool keepDrifts = false;
     int maxIterations = 10;
+    int maxSplits = 4;                // levels of halving a step (Newton failure or accuracy)
+    double maxHystereticError = 1.0;  // >= 1: off (see ResponseOptions)
   };
 
   void run(const std::array<Lane, W>& lanes, std::size_t storeys, const Settings& settings, SolverStats& stats) {
@@ -168,44 +171,111 @@ class BatchKernel {
       squareRoot_ = squareRoot_ || (lanes[l].system != nullptr && lanes[l].system->squareRootUpdate);
 
     const double h = settings.dt / settings.substeps;
-    const T halfStep = static_cast<T>(0.5 * h);
-    const T quarterStepSquared = static_cast<T>(0.25 * h * h);
-    const T step = static_cast<T>(h);
-    prepareMatrix(n, halfStep);
+    preparedStep_ = 0.0;
 
     double earliest = 1e300;
-    std::size_t active = 0;
+    active_ = 0;
     for (std::size_t l = 0; l < W; ++l) {
+      unconverged_[l] = 0;
+      worstResidual_[l] = 0.0f;
       if (lanes[l].system == nullptr) continue;
       earliest = std::fmin(earliest, lanes[l].system->delay);
-      ++active;
+      ++active_;
     }
-    std::array<std::uint32_t, W> unconverged{};
     for (std::size_t f = 1; f < settings.frames; ++f) {
       // Before the earliest arrival every lane is at rest: the outputs stay zero.
       if (static_cast<double>(f) * settings.dt <= earliest) continue;
       for (int s = 0; s < settings.substeps; ++s) {
-        const double t = static_cast<double>(f - 1) * settings.dt + static_cast<double>(s + 1) * h;
-        for (std::size_t l = 0; l < W; ++l) {
-          ground_[l / kVectorLanes][l % kVectorLanes] = static_cast<T>(groundAcceleration(lanes[l].system, t));
-        }
-        const int solves = solveStep(n, step, halfStep, quarterStepSquared, settings.maxIterations, unconverged);
-        stats.newtonIterations += static_cast<std::size_t>(solves) * active;
-        commit(n);
+        const double t0 = static_cast<double>(f - 1) * settings.dt + static_cast<double>(s) * h;
+        advance(lanes, n, t0, h, 0, settings, stats);
       }
-      stats.steps += static_cast<std::size_t>(settings.substeps) * active;
       writeFrame(lanes, f, settings);
     }
     finish(lanes);
     for (std::size_t l = 0; l < W; ++l) {
       if (lanes[l].system == nullptr) continue;
-      *lanes[l].nonConverged += unconverged[l];
-      stats.nonConvergedSteps += unconverged[l];
+      *lanes[l].nonConverged += unconverged_[l];
+      *lanes[l].worstResidual = std::max(*lanes[l].worstResidual, worstResidual_[l]);
+      stats.nonConvergedSteps += unconverged_[l];
     }
   }
 
  private:
   Row<T>& row(std::size_t i, std::size_t k) { return rows_[i * K + k]; }
+
+  // Advances every lane from t0 by h. When some lane's Newton iterations do not converge, or its
+  // hysteretic update's estimated error exceeds the bound (hystereticErrorWithin), the step is not
+  // committed and is taken as two halves instead, recursively up to settings.maxSplits levels; at
+  // that depth it is accepted and each unconverged lane's step and relative residual are recorded.
+  void advance(const std::array<Lane, W>& lanes, std::size_t n, double t0, double h, int depth,
+               const Settings& settings, SolverStats& stats) {
+    if (h != preparedStep_) {
+      prepareMatrix(n, static_cast<T>(0.5 * h));
+      preparedStep_ = h;
+    }
+    const T step = static_cast<T>(h);
+    const T halfStep = static_cast<T>(0.5 * h);
+    const T quarterStepSquared = static_cast<T>(0.25 * h * h);
+    const double t = t0 + h;
+    for (std::size_t l = 0; l < W; ++l) {
+      ground_[l / kVectorLanes][l % kVectorLanes] = static_cast<T>(groundAcceleration(lanes[l].system, t));
+    }
+    std::array<M, K> ok;
+    std::array<V, K> residualRatio;
+    const int solves = solveStep(n, step, halfStep, quarterStepSquared, settings.maxIterations, ok, residualRatio);
+    stats.newtonIterations += static_cast<std::size_t>(solves) * active_;
+    bool converged = true;
+    for (std::size_t k = 0; k < K; ++k) converged = converged && allSet(ok[k]);
+    const bool lastLevel = depth >= settings.maxSplits;
+    if (lastLevel || (converged && (settings.maxHystereticError >= 1.0 ||
+                                    hystereticErrorWithin(n, static_cast<T>(settings.maxHystereticError))))) {
+      if (!converged) {
+        for (std::size_t l = 0; l < W; ++l) {
+          if (lanes[l].system == nullptr || ok[l / kVectorLanes][l % kVectorLanes] != 0) continue;
+          ++unconverged_[l];
+          worstResidual_[l] =
+              std::max(worstResidual_[l], static_cast<float>(residualRatio[l / kVectorLanes][l % kVectorLanes]));
+        }
+      }
+      commit(n);
+      stats.steps += active_;
+      return;
+    }
+    restoreForces(n);
+    ++(converged ? stats.refinedSteps : stats.splitSteps);
+    advance(lanes, n, t0, 0.5 * h, depth + 1, settings, stats);
+    advance(lanes, n, t0 + 0.5 * h, 0.5 * h, depth + 1, settings, stats);
+  }
+
+  // Whether every storey's estimated local error of the backward-Euler Bouc–Wen update, per unit
+  // change of ẑ, is within `bound`: ½ |x| ψ n |ẑ|^(n−1) with x = Δδ/dy and ψ = 1 when loading, γ̂ − β̂
+  // when unloading (the estimate of ReferenceSolver.cpp; linear and padding rows have 1/dy = 0).
+  bool hystereticErrorWithin(std::size_t n, T bound) {
+    const V one = Math::splat(T(1));
+    for (std::size_t k = 0; k < K; ++k) {
+      V worst = Math::splat(T(0));
+      for (std::size_t i = 0; i < n; ++i) {
+        const Row<T>& r = row(i, k);
+        const V x = r.dDrift * r.inverseYield;
+        const V psi = x * r.zTrial >= T(0) ? one : Math::abs(r.cUnload);
+        const V power = r.oneMinusN + r.nIsTwo * (T(2) * Math::abs(r.zTrial));
+        worst = Math::max(worst, Math::abs(x) * psi * power);
+      }
+      if (!allSet(T(0.5) * worst <= bound)) return false;
+    }
+    return true;
+  }
+
+  // After a rejected attempt: the storey forces of the committed state (the next attempt's first
+  // iteration linearises about them; the trial tangents are kept as its estimate).
+  void restoreForces(std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < K; ++k) {
+        Row<T>& r = row(i, k);
+        r.force = r.elastic * r.drift + r.hysteretic * r.z;
+      }
+    }
+  }
 
   static bool allSet(M m) {
     typedef std::uint64_t Words __attribute__((vector_size(kVectorBytes)));
@@ -309,14 +379,15 @@ class BatchKernel {
   // The first iteration is linearised about the end of the previous step (its storey forces and
   // tangents) from the constant-acceleration predictor, so a step that stays nearly linear costs
   // one solve and one evaluation of the storeys; later iterations use the consistent tangent.
-  int solveStep(std::size_t n, T step, T halfStep, T quarterStepSquared, int maxIterations,
-                std::array<std::uint32_t, W>& unconverged) {
+  // `ok` flags the converged lanes; `residualRatio` holds each lane's residual over the size of its
+  // force terms at the last evaluation.
+  int solveStep(std::size_t n, T step, T halfStep, T quarterStepSquared, int maxIterations, std::array<M, K>& ok,
+                std::array<V, K>& residualRatio) {
     linearizedForwardSweep(n, step, quarterStepSquared);
     std::array<M, K> stagnated;
     backSubstitute(n, stagnated);
     int solves = 1;
     for (int iteration = 1;; ++iteration) {
-      std::array<M, K> ok;
       bool all = true;
       for (std::size_t k = 0; k < K; ++k) {
         V residualMax;
@@ -324,14 +395,9 @@ class BatchKernel {
         evaluateWithResidual(n, k, step, halfStep, quarterStepSquared, residualMax, scaleMax);
         ok[k] = (residualMax <= Simd<T>::kResidual * scaleMax) | stagnated[k];
         all = all && allSet(ok[k]);
+        if (iteration >= maxIterations) residualRatio[k] = residualMax / (scaleMax + T(1e-30));
       }
-      if (all) break;
-      if (iteration >= maxIterations) {
-        for (std::size_t l = 0; l < W; ++l) {
-          if (ok[l / kVectorLanes][l % kVectorLanes] == 0) ++unconverged[l];
-        }
-        break;
-      }
+      if (all || iteration >= maxIterations) break;
       forwardSweep(n, quarterStepSquared);
       backSubstitute(n, stagnated);
       ++solves;
@@ -571,7 +637,11 @@ class BatchKernel {
   std::array<V, K> peakBase_{};
   std::size_t roofIndex_[W] = {};
   bool sharedRoof_ = true;
-  bool squareRoot_ = true;  // some lane has n = 2 storeys
+  bool squareRoot_ = true;     // some lane has n = 2 storeys
+  double preparedStep_ = 0.0;  // the step prepareMatrix last used
+  std::size_t active_ = 0;     // lanes with a system
+  std::array<std::uint32_t, W> unconverged_{};
+  std::array<float, W> worstResidual_{};
 };
 
 constexpr std::size_t kFloatLanes = BatchKernel<float>::W;
@@ -596,6 +666,7 @@ template <typename Kernel, std::size_t W>
 void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double dt, const ResponseSink& sink) {
   responses.resize(W);
   std::array<std::uint32_t, W> nonConverged{};
+  std::array<float, W> worstResidual{};
   for (std::size_t start = 0; start < systems.size(); start += W) {
     const std::size_t end = std::min(systems.size(), start + W);
     std::array<typename Kernel::Lane, W> lanes{};
@@ -618,6 +689,7 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
         r.maxDriftRatio = 0.0f;
         r.damage = DamageState::None;
         nonConverged[slot] = 0;
+        worstResidual[slot] = 0.0f;
       }
       BuildingResponse& r = responses[slot];
       if (sys.direction == 1) r.hasY = true;
@@ -625,6 +697,7 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
       lane.system = &sys;
       lane.out = sys.direction == 0 ? &r.x : &r.y;
       lane.nonConverged = &nonConverged[slot];
+      lane.worstResidual = &worstResidual[slot];
       storeys = std::max(storeys, sys.storeys);
       substeps = std::max(substeps, sys.substeps);
     }
@@ -635,6 +708,8 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
     settings.keepDisplacements = options.floorDisplacements;
     settings.keepDrifts = options.driftRatios;
     settings.maxIterations = options.maxNewtonIterations;
+    settings.maxSplits = options.maxSplits;
+    settings.maxHystereticError = options.fixedSubsteps > 0 ? 1.0 : options.maxHystereticError;
     kernel.run(lanes, storeys, settings, stats);
     for (std::size_t slot = 0; slot < slots; ++slot) {
       BuildingResponse& r = responses[slot];
@@ -651,6 +726,7 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
       }
       r.damage = first != nullptr ? classifyDamage(maxDrift, first->model->damageDriftThresholds) : DamageState::None;
       r.nonConvergedSteps = nonConverged[slot];
+      r.worstResidualRatio = worstResidual[slot];
       sink(b, r);
     }
   }
@@ -687,10 +763,11 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
     if (!(m->timeStepS > 0.0) || m->size() == 0) return fail("response solver: motion '" + m->name + "' is empty");
   }
   if (o.maxNewtonIterations < 1 || o.maxNewtonIterations > 100 || o.maxSubsteps < 1 || o.maxSubsteps > 1000 ||
-      o.fixedSubsteps < 0 || o.fixedSubsteps > 1000 || !(o.outputStepS >= 0.0 && o.outputStepS <= 10.0)) {
+      o.fixedSubsteps < 0 || o.fixedSubsteps > 1000 || !(o.outputStepS >= 0.0 && o.outputStepS <= 10.0) ||
+      o.maxSplits < 0 || o.maxSplits > 10 || !(o.maxHystereticError > 0.0)) {
     return fail(
         "response solver: options out of range (Newton iterations 1..100, sub-steps 1..1000, output "
-        "step 0..10 s)");
+        "step 0..10 s, splits 0..10, hysteretic error > 0)");
   }
   if (!sink) return fail("response solver: no sink for the results");
   const double dt = o.outputStepS > 0.0 ? o.outputStepS : motionX.timeStepS;

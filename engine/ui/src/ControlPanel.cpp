@@ -17,6 +17,25 @@ constexpr double kFeetPerMetre = 3.280839895;
 constexpr float kPanelWidth = 350.0f;
 constexpr float kInspectionWidth = 370.0f;
 
+// The record as the panel shows it: file names only. Responses written before the files stored
+// only the name carried the path of the machine that ran `response`; its directories are dropped
+// (each " + "-separated component, before any " (header title)", which may contain slashes).
+std::string recordText(const std::string& motion) {
+  std::string out;
+  std::size_t at = 0;
+  while (at <= motion.size()) {
+    std::size_t end = motion.find(" + ", at);
+    if (end == std::string::npos) end = motion.size();
+    std::string part = motion.substr(at, end - at);
+    const std::size_t title = part.find(" (");
+    const std::size_t slash = part.rfind('/', title == std::string::npos ? std::string::npos : title);
+    if (slash != std::string::npos && (title == std::string::npos || slash < title)) part.erase(0, slash + 1);
+    out += (at > 0 ? " + " : "") + part;
+    at = end + 3;
+  }
+  return out;
+}
+
 const char* const kDamageLabels[6] = {"None", "Slight", "Moderate", "Extensive", "Complete", "No result"};
 const char* const kColorModes[] = {"Current inter-storey drift", "Peak inter-storey drift", "Damage state", "Neutral"};
 const char* const kUses[] = {"any",         "hospital",   "school",    "fire_station", "police",
@@ -161,7 +180,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
                              : "Shaking: SCENARIO (computed, not a recorded event)");
       w.textWrapped("Earthquake: " + (tileset->response->scenario.empty() ? std::string("one record for every building")
                                                                           : tileset->response->scenario));
-      w.textWrapped("Record: " + tileset->response->motion);
+      w.textWrapped("Record: " + recordText(tileset->response->motion));
       if (tileset->responseOutOfDate()) {
         w.textColored(0.75f, 0.1f, 0.05f, "Results are older than the buildings: run quakeview-prep response again.");
       }
@@ -433,6 +452,11 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
       w.field("Residual drift", percent(r.residualDriftRatio));
       w.field("Results from",
               r.source == ResponseSource::Imported ? "imported analysis" : "MDOF shear-building model (simplified)");
+      if (r.approximate) {
+        w.textColored(0.6f, 0.35f, 0.0f,
+                      ui::format("Approximate (solver did not converge at %u steps, residual %.2g of the forces)",
+                                 r.unconvergedSteps, static_cast<double>(r.worstResidualRatio)));
+      }
       if (CityScene* city = viewer.city()) {
         if (const auto series = city->selectionSeries(240)) {
           const float cursor = static_cast<float>(viewer.time() / std::max(series->durationSeconds, 1e-3));
@@ -466,6 +490,9 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
       }
     } else {
       w.swatch(kNoResultColor.r, kNoResultColor.g, kNoResultColor.b, "No earthquake result for this building", true);
+      if (info->hasResponse) {
+        w.textWrapped("Reason: " + std::string(noResultReasonDescription(info->response.noResultReason)));
+      }
     }
     if (w.button("Fly to (F)")) viewer.flyToSelection();
     w.sameLine();

@@ -1,4 +1,5 @@
 // quakeview-prep info DIR [--json] [--building ID] [--verify]
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <map>
@@ -11,6 +12,7 @@
 #include "qv/format/ResponseTile.h"
 #include "qv/prep/Cli.h"
 #include "qv/prep/Files.h"
+#include "qv/prep/ResponseWriter.h"
 
 namespace qv::prep {
 namespace {
@@ -20,10 +22,12 @@ const char* const kUsage =
     "  Summarizes a city directory: buildings, storeys, tagged and inferred heights, structural\n"
     "  types, tiles and bytes; after `response` or `import-response`, the motion used, buildings per\n"
     "  damage state (none, slight, moderate, extensive, complete, no_result) and whether the response\n"
-    "  is older than the buildings (run `response` again after adding buildings).\n"
+    "  is older than the buildings (run `response` again after adding buildings), buildings without\n"
+    "  a result counted by reason, and the buildings whose result is approximate with their residuals.\n"
     "  --json          print the same as one JSON object\n"
     "  --building ID   print one building (w123, r45, s7, g:12, cj:abc), with its response: damage\n"
-    "                  state, peak drift ratio per storey, peak roof displacement, PGA\n"
+    "                  state, peak drift ratio per storey, peak roof displacement, PGA; without a\n"
+    "                  result, why; an approximate result (solver steps accepted unconverged), how far\n"
     "  --verify        decode and check every tile; exit 1 naming each bad one\n";
 
 // Upper bounds (exclusive) of the storey histogram's buckets: 1, 2, 3, 4-5, 6-9, 10-19, 20-39, 40+.
@@ -190,6 +194,21 @@ int runInfo(const CommandArgs& argv) {
         }
         const std::optional<BuildingResponseView>& r = *response;
         const bool hasResult = r && r->summary.source != ResponseSource::None;
+        auto notes = loadResponseNotes(dir, t);
+        if (!notes.ok()) {
+          std::fprintf(stderr, "info: %s\n", notes.error().c_str());
+          return kExitDataError;
+        }
+        // Why there is no result: the summary's reason, the notes' details.
+        NoResultReason reason = r ? r->summary.noResultReason : NoResultReason::Unknown;
+        std::string detail;
+        for (const ResponseNotes::NoResult& n : notes->noResult) {
+          if (n.id != a.id) continue;
+          if (reason == NoResultReason::Unknown || reason == NoResultReason::None) reason = n.reason;
+          detail = n.detail;
+        }
+        if (!t.response) detail = "no response yet";
+        const bool approximate = hasResult && r->summary.approximate;
         const std::string damage(damageStateName(hasResult ? r->summary.damage : DamageState::NoResult));
         if (json) {
           JsonWriter w;
@@ -212,6 +231,16 @@ int runInfo(const CommandArgs& argv) {
             w.key("peak_roof_displacement_m").null();
             w.key("pga_g").null();
           }
+          if (hasResult) {
+            w.key("no_result_reason").null();
+            w.key("no_result_detail").null();
+          } else {
+            w.field("no_result_reason", noResultReasonName(reason));
+            w.field("no_result_detail", detail.empty() ? std::string(noResultReasonDescription(reason)) : detail);
+          }
+          w.field("approximate", approximate);
+          w.field("unconverged_steps", std::uint64_t{hasResult ? r->summary.unconvergedSteps : 0u});
+          w.field("worst_residual_ratio", hasResult ? r->summary.worstResidualRatio : 0.0f);
           w.field("response_out_of_date", t.responseOutOfDate());
           w.endObject();
           std::printf("%s\n", w.str().c_str());
@@ -237,8 +266,18 @@ int runInfo(const CommandArgs& argv) {
             std::printf("  peak drift per storey (ground up):");
             for (float v : r->storeyPeakDrift) std::printf(" %.4f", static_cast<double>(v));
             std::printf("\n");
+            if (approximate) {
+              std::printf(
+                  "  approximate: the solver did not converge at %u steps (accepted after splitting them), largest "
+                  "relative residual %.2g\n",
+                  r->summary.unconvergedSteps, static_cast<double>(r->summary.worstResidualRatio));
+            }
+          } else if (!t.response) {
+            std::printf("  damage no_result (no response yet)\n");
           } else {
-            std::printf("  damage no_result (%s)\n", t.response ? "no result for this building" : "no response yet");
+            std::printf("  damage no_result, reason %s: %s%s%s\n", std::string(noResultReasonName(reason)).c_str(),
+                        std::string(noResultReasonDescription(reason)).c_str(), detail.empty() ? "" : "; ",
+                        detail.c_str());
           }
           if (t.responseOutOfDate()) std::printf("  note: the response is older than the buildings\n");
         }
@@ -280,6 +319,19 @@ int runInfo(const CommandArgs& argv) {
   }
   const double meanStoreys = s.buildings > 0 ? s.totalStoreys / static_cast<double>(s.buildings) : 0.0;
   const std::array<std::uint64_t, 6> damage = damageCounts(t, s.buildings);
+  auto notesResult = loadResponseNotes(dir, t);
+  if (!notesResult.ok()) {
+    std::fprintf(stderr, "info: %s\n", notesResult.error().c_str());
+    return kExitDataError;
+  }
+  const ResponseNotes& notes = *notesResult;
+  // Buildings without a result by reason; those the notes do not explain (responses written before
+  // the notes existed, buildings added since) count as unknown.
+  std::map<std::string, std::uint64_t> reasons;
+  for (const ResponseNotes::NoResult& n : notes.noResult) ++reasons[std::string(noResultReasonName(n.reason))];
+  if (notes.noResult.size() < damage[5]) reasons["unknown"] += damage[5] - notes.noResult.size();
+  std::uint64_t unconvergedSteps = 0;
+  for (const ResponseNotes::Approximate& n : notes.approximate) unconvergedSteps += n.unconvergedSteps;
 
   if (json) {
     JsonWriter w;
@@ -345,6 +397,17 @@ int runInfo(const CommandArgs& argv) {
       w.key("motion").null();
       w.key("response").null();
     }
+    w.key("no_result_reasons").beginObject();
+    for (const auto& [k, v] : reasons) w.field(k, v);
+    w.endObject();
+    w.field("approximate_buildings", static_cast<std::uint64_t>(notes.approximate.size()));
+    w.field("unconverged_steps", unconvergedSteps);
+    w.key("approximate").beginArray();  // worst residual first
+    for (const ResponseNotes::Approximate& n : notes.approximate) {
+      w.beginObject().field("id", n.id).field("unconverged_steps", std::uint64_t{n.unconvergedSteps});
+      w.field("worst_residual_ratio", n.worstResidualRatio).endObject();
+    }
+    w.endArray();
     w.field("response_out_of_date", t.responseOutOfDate());
     w.endObject();
     std::printf("%s\n", w.str().c_str());
@@ -386,6 +449,22 @@ int runInfo(const CommandArgs& argv) {
       std::printf(" %s: %llu;", kDamageKeys[k], static_cast<unsigned long long>(damage[k]));
     }
     std::printf("\n");
+    if (!reasons.empty()) {
+      std::printf("no result  ");
+      for (const auto& [k, v] : reasons) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(v));
+      std::printf("\n");
+    }
+    if (!notes.approximate.empty()) {
+      std::printf("approximate %zu buildings (%llu solver steps accepted without convergence); worst residuals:\n",
+                  notes.approximate.size(), static_cast<unsigned long long>(unconvergedSteps));
+      constexpr std::size_t kListed = 20;
+      for (std::size_t i = 0; i < std::min(kListed, notes.approximate.size()); ++i) {
+        const ResponseNotes::Approximate& n = notes.approximate[i];
+        std::printf("            %s: %u steps, residual %.2g\n", n.id.c_str(), n.unconvergedSteps,
+                    static_cast<double>(n.worstResidualRatio));
+      }
+      if (notes.approximate.size() > kListed) std::printf("            ... (`--json` lists every one)\n");
+    }
     if (t.responseOutOfDate()) {
       std::printf(
           "note        the response is out of date: it was computed for buildings revision %llu, the city "

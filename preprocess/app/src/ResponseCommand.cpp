@@ -139,6 +139,14 @@ int runResponse(const CommandArgs& argv) {
       static_cast<unsigned long long>(r.damage[1]), static_cast<unsigned long long>(r.damage[2]),
       static_cast<unsigned long long>(r.damage[3]), static_cast<unsigned long long>(r.damage[4]),
       static_cast<unsigned long long>(r.damage[5]));
+  if (!r.noResultReasons.empty()) {
+    std::printf("no result  ");
+    for (const auto& [reason, count] : r.noResultReasons) {
+      std::printf(" %s: %llu;", std::string(noResultReasonName(reason)).c_str(),
+                  static_cast<unsigned long long>(count));
+    }
+    std::printf(" (`info --building ID` gives the details)\n");
+  }
   std::printf("frames      %zu at %.3f s (%.1f s)\n", r.frames, r.timeStepS,
               static_cast<double>(r.frames - 1) * r.timeStepS);
   std::printf("bytes       %s summaries, %s histories (%.0f B per building), mean rate %.1f Hz\n",
@@ -155,8 +163,10 @@ int runResponse(const CommandArgs& argv) {
       r.seconds > 0.0 ? static_cast<double>(r.storeySteps) / r.seconds / 1e6 : 0.0,
       static_cast<unsigned long long>(r.storeySteps), r.solveSeconds, r.encodeSeconds);
   if (r.nonConvergedSteps > 0) {
-    std::printf("note        %llu solver steps were accepted without Newton convergence\n",
-                static_cast<unsigned long long>(r.nonConvergedSteps));
+    std::printf(
+        "note        %llu buildings are approximate: %llu solver steps were accepted without Newton convergence "
+        "even after splitting them (`info --json` lists the buildings and their residuals)\n",
+        static_cast<unsigned long long>(r.approximateBuildings), static_cast<unsigned long long>(r.nonConvergedSteps));
   }
   std::printf("time        %.2f s\n", r.seconds);
   return kExitOk;

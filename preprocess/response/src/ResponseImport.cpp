@@ -560,6 +560,7 @@ Result<ImportReport> runImportResponse(const std::string& dir, const ImportOptio
       const auto it = byId.find(a.id);
       if (it == byId.end()) {
         if (report.missing.size() < options.listMissing) report.missing.push_back(a.id);
+        leafResults[b].summary.noResultReason = NoResultReason::NotInImport;
         continue;
       }
       ImportedBuilding& in = results.buildings[it->second];

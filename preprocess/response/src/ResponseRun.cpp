@@ -39,6 +39,9 @@ double threadCpuSeconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+// A base higher than this above ground (minHeightM) is a part resting on another building.
+constexpr float kMaxGroundBaseM = 0.5f;
+
 // Free vibration kept after the last building's record ends, so the motion visibly dies down.
 constexpr double kTailSeconds = 4.0;
 // The Y model is 10 % more flexible than the X model: buildings are rarely equally stiff in both
@@ -50,6 +53,35 @@ std::string describeScenario(const seismic::Scenario& s) {
   std::snprintf(buffer, sizeof buffer, "M%.1f at %.4f, %.4f, depth %.0f km (BSSA14 PGA, S waves %.1f km/s)",
                 s.magnitude, s.epicentreLongitudeDeg, s.epicentreLatitudeDeg, s.depthKm, s.shearWaveSpeedKmPerS);
   return buffer;
+}
+
+// What the response files say about a record: its file name (never the directory: the files travel
+// to every viewer) and, for a PEER file, the title its header gives (e.g. "KOBE, 01/16/1995,
+// Takatori, 000").
+std::string describeRecord(const std::string& path) {
+  const std::size_t slash = path.find_last_of('/');
+  std::string text = slash == std::string::npos ? path : path.substr(slash + 1);
+  auto lines = readTextFile(path, 64ull << 20);
+  if (!lines.ok()) return text;
+  std::vector<std::string> header;
+  std::size_t at = 0;
+  while (header.size() < 4 && at < lines->size()) {
+    const std::size_t end = std::min(lines->find('\n', at), lines->size());
+    std::string line = lines->substr(at, end - at);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.pop_back();
+    const std::size_t first = line.find_first_not_of(" \t");
+    header.push_back(first == std::string::npos ? std::string() : line.substr(first));
+    at = end + 1;
+  }
+  // PEER AT2: four header lines, the fourth "NPTS= ..., DT= ..."; the title is the second line of
+  // NGA files (the first says "PEER NGA STRONG MOTION DATABASE RECORD"), else the first.
+  if (header.size() == 4 && header[3].rfind("NPTS", 0) == 0) {
+    const bool nga = header[0].find("PEER") != std::string::npos;
+    std::string title = nga ? header[1] : header[0];
+    if (title.size() > 120) title.resize(120);
+    if (!title.empty()) text += " (" + title + ")";
+  }
+  return text;
 }
 
 DamageState toFormat(seismic::DamageState d) {
@@ -90,7 +122,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     auto x = seismic::readGroundMotionFile(options.motionX, read);
     if (!x.ok()) return Error{x.error()};
     motionX = std::move(x).value();
-    report.motion = options.motionX;
+    report.motion = describeRecord(options.motionX);
     if (!options.motionY.empty()) {
       auto y = seismic::readGroundMotionFile(options.motionY, read);
       if (!y.ok()) return Error{y.error()};
@@ -100,7 +132,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
                      options.motionX + "'s " + std::to_string(motionX.timeStepS) + " s"};
       }
       hasY = true;
-      report.motion += " + " + options.motionY;
+      report.motion += " + " + describeRecord(options.motionY);
     }
     if (options.pgaG) {
       // Both components scaled by the same factor, so their ratio is kept.
@@ -201,18 +233,37 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
       std::vector<std::size_t> indexOf;  // solver index -> building index
       for (std::size_t b = 0; b < tile->buildings.size(); ++b) {
         const BuildingAttributes& a = tile->buildings[b].attributes;
+        BuildingResult& result = results[b];
+        auto noResult = [&](NoResultReason reason, std::string detail) {
+          result.summary.noResultReason = reason;
+          result.noResultDetail = std::move(detail);
+        };
+        // A part whose base is above ground (a rooftop structure on another building) would be
+        // shaken by that building's roof motion, not by the ground's: not analysed.
+        if (a.minHeightM > kMaxGroundBaseM) {
+          char detail[96];
+          std::snprintf(detail, sizeof detail, "base %.1f m above ground", static_cast<double>(a.minHeightM));
+          noResult(NoResultReason::BaseAboveGround, detail);
+          continue;
+        }
         seismic::BuildingModelOptions modelOptions;
         auto mx = seismic::buildingModelFromAttributes(a, modelOptions);
         modelOptions.periodFactor = kYPeriodFactor;
         auto my = seismic::buildingModelFromAttributes(a, modelOptions);
-        if (!mx.ok() || !my.ok()) continue;  // stays "no result"
+        if (!mx.ok() || !my.ok()) {
+          noResult(NoResultReason::ModelInvalid, !mx.ok() ? mx.error() : my.error());
+          continue;
+        }
         seismic::BuildingShaking s;
         double pga = recordPeakG;
         if (options.scenario) {
           const double km =
               std::hypot(a.centroidX + tile->originX - epicentre.x, a.centroidY + tile->originY - epicentre.y) / 1000.0;
           auto site = seismic::shakingAtSite(*options.scenario, km, recordPeakG);
-          if (!site.ok()) continue;
+          if (!site.ok()) {
+            noResult(NoResultReason::OutsideField, site.error());
+            continue;
+          }
           s.scale = site->scale;
           s.delaySeconds = site->delaySeconds;
           pga = site->pgaG;
@@ -254,6 +305,10 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
               residual = std::max(residual, res);
             }
             out.summary.residualDriftRatio = residual;
+            out.summary.noResultReason = NoResultReason::None;
+            out.summary.approximate = r.nonConvergedSteps > 0;
+            out.summary.unconvergedSteps = r.nonConvergedSteps;
+            out.summary.worstResidualRatio = r.worstResidualRatio;
             localErrors.push_back(h.relativeError());
             localAttempts += static_cast<std::uint64_t>(h.attempts);
             localRate += out.history.sampleRateHz;
@@ -314,6 +369,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   if (!written.ok()) return Error{written.error()};
   report.buildings = totalBuildings;
   for (int k = 0; k < 6; ++k) report.damage[k] = written->damage[k];
+  report.noResultReasons = written->noResultReasons;
+  report.approximateBuildings = written->approximate;
   report.summaryBytes = written->summaryBytes;
   report.historyBytes = written->historyBytes;
   report.folder = written->folder;

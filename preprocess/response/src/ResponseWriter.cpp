@@ -1,10 +1,13 @@
 #include "qv/prep/ResponseWriter.h"
 
 #include <dirent.h>
+#include <simdjson.h>
 
+#include <algorithm>
 #include <cstdlib>
 
 #include "qv/core/Crc32.h"
+#include "qv/core/JsonWriter.h"
 #include "qv/format/SearchIndex.h"
 #include "qv/prep/Files.h"
 
@@ -35,7 +38,84 @@ std::size_t damageIndex(DamageState s) {
   return s == DamageState::NoResult ? 5 : static_cast<std::size_t>(s);
 }
 
+NoResultReason reasonFromName(std::string_view name) {
+  for (const NoResultReason r :
+       {NoResultReason::ModelInvalid, NoResultReason::OutsideField, NoResultReason::SkippedByOption,
+        NoResultReason::BaseAboveGround, NoResultReason::NotInImport}) {
+    if (noResultReasonName(r) == name) return r;
+  }
+  return NoResultReason::Unknown;
+}
+
 }  // namespace
+
+std::string responseNotesToJson(const ResponseNotes& notes) {
+  JsonWriter w;
+  w.beginObject();
+  w.key("no_result").beginArray();
+  for (const ResponseNotes::NoResult& n : notes.noResult) {
+    w.beginObject().field("id", n.id).field("reason", noResultReasonName(n.reason)).field("detail", n.detail);
+    w.endObject();
+  }
+  w.endArray();
+  w.key("approximate").beginArray();
+  for (const ResponseNotes::Approximate& a : notes.approximate) {
+    w.beginObject().field("id", a.id).field("unconverged_steps", std::uint64_t{a.unconvergedSteps});
+    w.field("worst_residual_ratio", a.worstResidualRatio).endObject();
+  }
+  w.endArray();
+  w.endObject();
+  return w.str() + "\n";
+}
+
+Result<ResponseNotes> parseResponseNotes(std::string_view json, const std::string& name) {
+  simdjson::dom::parser parser;
+  simdjson::dom::element root;
+  if (parser.parse(json.data(), json.size()).get(root) != simdjson::SUCCESS) {
+    return Error{name + ": not valid JSON"};
+  }
+  ResponseNotes notes;
+  simdjson::dom::array list;
+  if (root["no_result"].get(list) == simdjson::SUCCESS) {
+    for (simdjson::dom::element e : list) {
+      ResponseNotes::NoResult n;
+      std::string_view id, reason, detail;
+      if (e["id"].get(id) != simdjson::SUCCESS || e["reason"].get(reason) != simdjson::SUCCESS) {
+        return Error{name + ": a no_result entry lacks \"id\" or \"reason\""};
+      }
+      if (e["detail"].get(detail) != simdjson::SUCCESS) detail = {};
+      n.id = std::string(id);
+      n.reason = reasonFromName(reason);
+      n.detail = std::string(detail);
+      notes.noResult.push_back(std::move(n));
+    }
+  }
+  if (root["approximate"].get(list) == simdjson::SUCCESS) {
+    for (simdjson::dom::element e : list) {
+      ResponseNotes::Approximate a;
+      std::string_view id;
+      std::uint64_t steps = 0;
+      double residual = 0.0;
+      if (e["id"].get(id) != simdjson::SUCCESS || e["unconverged_steps"].get(steps) != simdjson::SUCCESS ||
+          e["worst_residual_ratio"].get(residual) != simdjson::SUCCESS) {
+        return Error{name + ": an approximate entry lacks \"id\", \"unconverged_steps\" or \"worst_residual_ratio\""};
+      }
+      a.id = std::string(id);
+      a.unconvergedSteps = static_cast<std::uint32_t>(std::min<std::uint64_t>(steps, 0xFFFFFFFFu));
+      a.worstResidualRatio = static_cast<float>(residual);
+      notes.approximate.push_back(std::move(a));
+    }
+  }
+  return notes;
+}
+
+Result<ResponseNotes> loadResponseNotes(const std::string& cityDir, const Tileset& tileset) {
+  if (!tileset.response || !tileset.response->notes) return ResponseNotes{};
+  const std::string path = cityDir + "/" + tileset.response->notes->file;
+  auto text = readTextFile(path, 256ull << 20);
+  if (!text.ok()) return Error{text.error()};
+  return parseResponseNotes(*text, path);
+}
 
 ResponseWriter::ResponseWriter(std::string cityDir, Tileset tileset, std::string folder)
     : cityDir_(std::move(cityDir)), tileset_(std::move(tileset)), folder_(std::move(folder)) {}
@@ -104,6 +184,16 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
   for (std::size_t b = 0; b < tile.buildings.size(); ++b) {
     const BuildingResponse& s = summary.buildings[b];
     ++report_.damage[damageIndex(s.damage)];
+    const std::string& id = tile.buildings[b].attributes.id;
+    if (s.source == ResponseSource::None) {
+      const NoResultReason reason =
+          s.noResultReason == NoResultReason::None ? NoResultReason::Unknown : s.noResultReason;
+      ++report_.noResultReasons[reason];
+      notes_.noResult.push_back({id, reason, results[b].noResultDetail});
+    } else if (s.approximate) {
+      ++report_.approximate;
+      notes_.approximate.push_back({id, s.unconvergedSteps, s.worstResidualRatio});
+    }
     const auto first = summary.storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(s.firstStorey);
     std::vector<float> storeys(first, first + static_cast<std::ptrdiff_t>(s.storeys));
     byId_[tile.buildings[b].attributes.id] = {s, std::move(storeys)};
@@ -168,6 +258,17 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
     if (Status s = writeFileAtomic(cityDir_ + "/" + f.file, encoded); !s.ok()) return Error{s.error()};
     info.summaryIndex = f;
     report_.summaryBytes += encoded.size();
+  }
+  {
+    std::sort(notes_.noResult.begin(), notes_.noResult.end(), [](const auto& a, const auto& b) { return a.id < b.id; });
+    std::sort(notes_.approximate.begin(), notes_.approximate.end(), [](const auto& a, const auto& b) {
+      return a.worstResidualRatio != b.worstResidualRatio ? a.worstResidualRatio > b.worstResidualRatio : a.id < b.id;
+    });
+    const std::string json = responseNotesToJson(notes_);
+    const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(json.data()), json.size());
+    CityFile f{folder_ + "/notes.json", bytes.size(), crc32(bytes)};
+    if (Status s = writeFileAtomic(cityDir_ + "/" + f.file, json); !s.ok()) return Error{s.error()};
+    info.notes = f;
   }
   info.buildingsRevision = tileset_.buildingsRevision;
   for (int k = 0; k < 6; ++k) info.damageStates[k] = report_.damage[k];

@@ -22,7 +22,10 @@
 
 namespace qv {
 
-inline constexpr std::uint16_t kResponseTileVersion = 1;
+/// The summary (.qvs) is written as version 2 (per-building status); version 1 is still read. The
+/// history (.qvh) is version 1.
+inline constexpr std::uint16_t kResponseSummaryVersion = 2;
+inline constexpr std::uint16_t kResponseHistoryVersion = 1;
 
 enum class DamageState : std::uint8_t {
   None = 0,
@@ -37,6 +40,24 @@ std::string_view damageStateName(DamageState state);  ///< "none" … "complete"
 enum class ResponseSource : std::uint8_t { None = 0, Model = 1, Imported = 2 };
 std::string_view responseSourceName(ResponseSource source);  ///< "none", "model", "imported"
 
+/// Why a building has no result (stored as a number: values are only ever added; a reader maps
+/// values it does not know to Unknown).
+enum class NoResultReason : std::uint8_t {
+  None = 0,             ///< the building has a result
+  ModelInvalid = 1,     ///< no structural model could be made from its attributes
+  OutsideField = 2,     ///< outside the area where the shaking is defined
+  SkippedByOption = 3,  ///< left out by an option of the command that made the response
+  BaseAboveGround = 4,  ///< a part resting on another building (base above ground): not analysed
+  NotInImport = 5,      ///< imported results did not include it
+  Unknown = 255         ///< no reason recorded (summary version 1, or a value this build does not know)
+};
+/// "none", "model_invalid", "outside_field", "skipped_by_option", "base_above_ground",
+/// "not_in_import", "unknown".
+std::string_view noResultReasonName(NoResultReason reason);
+/// A sentence for people, e.g. "base above ground (rooftop structure resting on another building;
+/// not analysed)".
+std::string_view noResultReasonDescription(NoResultReason reason);
+
 struct BuildingResponse {
   DamageState damage = DamageState::NoResult;
   ResponseSource source = ResponseSource::None;
@@ -46,7 +67,15 @@ struct BuildingResponse {
   float pgaG = 0.0f;                      ///< peak ground acceleration applied to this building
   float peakFloorAccelerationMs2 = 0.0f;  ///< absolute, max over floors
   float residualDriftRatio = 0.0f;        ///< max over storeys, after the motion
-  std::uint32_t firstStorey = 0;          ///< into ResponseSummaryTile::storeyPeakDrift
+  /// Without a result: why (None when the building has one). Version 1 files: Unknown.
+  NoResultReason noResultReason = NoResultReason::None;
+  /// The solver accepted some steps without converging (after splitting them): the result is
+  /// approximate. `unconvergedSteps` counts them (X + Y) and `worstResidualRatio` is their largest
+  /// residual relative to the size of the force terms.
+  bool approximate = false;
+  std::uint32_t unconvergedSteps = 0;
+  float worstResidualRatio = 0.0f;
+  std::uint32_t firstStorey = 0;  ///< into ResponseSummaryTile::storeyPeakDrift
 };
 
 struct ResponseSummaryTile {

@@ -69,6 +69,9 @@ struct ResponseInfo {
   /// Every building's summary in the search index's order (the city-wide list, filters and
   /// exports); absent in cities without a search index.
   std::optional<CityFile> summaryIndex;
+  /// The response's notes (JSON, docs/formats.md "Response notes"): why each building without a
+  /// result has none, in detail, and the buildings whose result is approximate.
+  std::optional<CityFile> notes;
 };
 
 struct Tileset {

@@ -29,8 +29,9 @@ struct BuildingInfo {
 /// `quakeview.building(id)` JSON: {id, name, use, address, x, y, heightM, heightSource, storeys,
 /// storeysSource, structuralType, codeEra, importance, lod, damageState, peakDriftRatio: [...],
 /// peakRoofDisplacementM, pgaG} plus informative extras (minHeightM, footprintAreaM2,
-/// structuralTypeDescription, importanceReasons, startYear, responseSource, detailed, and for
-/// LOD2 models modelSource and modelTriangles).
+/// structuralTypeDescription, importanceReasons, startYear, responseSource, noResultReason (null
+/// with a result), approximate, unconvergedSteps, worstResidualRatio, detailed, and for LOD2 models
+/// modelSource and modelTriangles).
 std::string buildingInfoJson(const BuildingInfo& info);
 
 /// Picking: where a ray first meets a building (an extruded polygon with holes between two

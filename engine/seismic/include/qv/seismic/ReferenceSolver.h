@@ -23,6 +23,10 @@ namespace qv::seismic {
 /// below 0.2 % and 0.8 %), capped at `maxSubsteps`. T2 <= 0 means a single mode.
 int automaticSubsteps(double recordStepS, double period1S, double period2S, int maxSubsteps = 64);
 
+/// The default bound on the estimated local error of the hysteretic update (see
+/// ReferenceOptions::maxHystereticError).
+inline constexpr double kDefaultMaxHystereticError = 0.005;
+
 struct ReferenceOptions {
   double scale = 1.0;                 ///< multiplies the record
   double delaySeconds = 0.0;          ///< >= 0: the record starts this late
@@ -30,6 +34,12 @@ struct ReferenceOptions {
   std::size_t frameCount = 0;         ///< 0: cover delay + record + free vibration; else exactly this
   int substeps = 0;                   ///< per record step: 0 = automaticSubsteps(), else 1..1000
   int maxNewtonIterations = 25;
+  /// With automatic sub-steps (substeps = 0): a step whose backward-Euler Bouc–Wen update has an
+  /// estimated local error above this, per unit change of the normalised variable ẑ, in some storey
+  /// is split in two, recursively, up to 64 times finer (docs/seismic.md, "Sub-stepping"). The
+  /// accumulated error of a yield excursion then stays about this fraction of its change of ẑ.
+  /// >= 1: off (equal steps).
+  double maxHystereticError = kDefaultMaxHystereticError;
   bool keepHistory = true;     ///< fill the per-frame vectors
   bool computeEnergy = false;  ///< fill `energy`
 };
@@ -52,7 +62,8 @@ struct SolverStats {
   std::size_t steps = 0;              ///< time steps taken (after sub-stepping and splitting)
   std::size_t newtonIterations = 0;   ///< linear solves
   std::size_t nonConvergedSteps = 0;  ///< steps accepted without converging (batched solver only)
-  std::size_t splitSteps = 0;         ///< steps split because Newton did not converge (reference)
+  std::size_t splitSteps = 0;         ///< steps split because Newton did not converge
+  std::size_t refinedSteps = 0;       ///< steps split because the hysteretic update changed too much
   int substeps = 1;                   ///< sub-steps per record step
 };
 

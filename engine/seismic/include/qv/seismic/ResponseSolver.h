@@ -8,8 +8,9 @@
 // Newton iterations (the first linearised about the previous step, then the consistent tangent of the
 // closed-form implicit Bouc–Wen update, n in {1, 2}), each a Thomas solve of the tridiagonal
 // effective matrix across all lanes. Sub-steps per output step follow automaticSubsteps() (the
-// largest need of the batch). Float batches converge to a residual of 1e-3 of the force terms
-// (histories within ~1e-3 of the double reference), double batches to 1e-10.
+// largest need of the batch); a step is halved, recursively, when a lane does not converge or when
+// the hysteretic update's error estimate exceeds ResponseOptions::maxHystereticError. Float batches converge to a
+// residual of 1e-3 of the force terms (histories within ~1e-3 of the double reference), double batches to 1e-10.
 //
 // Contract: single-threaded; one ResponseSolver per thread (it owns its workspaces, which grow to the
 // largest batch and are reused, so memory is bounded by one batch of histories). Results stream to a
@@ -51,9 +52,18 @@ struct ResponseOptions {
   bool floorDisplacements = true;  ///< keep the per-frame floor displacements
   bool driftRatios = false;        ///< keep the per-frame storey drift ratios (needs storey heights)
   Precision precision = Precision::Float;
-  int maxNewtonIterations = 10;  ///< per step; a step still unconverged is counted and accepted
+  int maxNewtonIterations = 10;  ///< per attempt of a step
   int maxSubsteps = 16;
-  int fixedSubsteps = 0;  ///< 0: automaticSubsteps(); else this many per output step
+  int fixedSubsteps = 0;  ///< 0: automaticSubsteps() and the hysteretic bound; else equal steps
+  /// A step some lane does not converge in is split in two, recursively, this many levels (0 .. 10);
+  /// a step still unconverged at the last level is accepted, counted and its residual recorded.
+  int maxSplits = 4;
+  /// With automatic sub-steps: a step whose Bouc–Wen update's estimated local error per unit change
+  /// of ẑ exceeds this in some storey of the batch is split the same way (ReferenceOptions::
+  /// maxHystereticError; >= 1: off). Off by default in the city path: splitting the whole batch's
+  /// step at kDefaultMaxHystereticError made the 100 000-building demo's solve 13 times slower
+  /// (446 s instead of 34 s of CPU); a per-lane or a priori choice is still to be done.
+  double maxHystereticError = 1.0;
 };
 
 struct DirectionResponse {
@@ -78,6 +88,7 @@ struct BuildingResponse {
   float maxDriftRatio = 0.0f;              ///< over storeys and directions (0 without heights)
   DamageState damage = DamageState::None;  ///< from maxDriftRatio and the X model's thresholds
   std::uint32_t nonConvergedSteps = 0;     ///< steps accepted without Newton convergence (X + Y)
+  float worstResidualRatio = 0.0f;         ///< of those steps: the largest residual / size of the force terms
 };
 
 /// Called once per building, in batch order (not index order), from the solving thread.

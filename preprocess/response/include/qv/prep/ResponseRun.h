@@ -5,10 +5,12 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 
 #include "qv/core/Result.h"
+#include "qv/format/ResponseTile.h"
 #include "qv/seismic/GroundMotion.h"
 #include "qv/seismic/GroundMotionModel.h"
 
@@ -28,9 +30,11 @@ struct ResponseRunOptions {
 
 struct ResponseRunReport {
   std::uint64_t buildings = 0;
-  std::uint64_t damage[6] = {0, 0, 0, 0, 0, 0};  ///< none … complete, no_result
-  std::uint64_t storeySteps = 0;                 ///< storeys × solver steps × directions
-  std::uint64_t nonConvergedSteps = 0;
+  std::uint64_t damage[6] = {0, 0, 0, 0, 0, 0};             ///< none … complete, no_result
+  std::uint64_t storeySteps = 0;                            ///< storeys × solver steps × directions
+  std::uint64_t nonConvergedSteps = 0;                      ///< steps accepted without convergence after splitting
+  std::uint64_t approximateBuildings = 0;                   ///< buildings with such steps (listed in the notes)
+  std::map<NoResultReason, std::uint64_t> noResultReasons;  ///< buildings without a result, by reason
   double seconds = 0.0;
   double solveSeconds = 0.0;   ///< CPU time in the solver (the encoder excluded), all threads
   double encodeSeconds = 0.0;  ///< CPU time of the history encoder, all threads

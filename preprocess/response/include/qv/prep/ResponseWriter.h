@@ -24,13 +24,39 @@ struct BuildingResult {
   BuildingResponse summary;            ///< firstStorey is ignored (the writer lays storeys out)
   std::vector<float> storeyPeakDrift;  ///< summary.storeys values, ground up
   BuildingHistory history;             ///< floors == 0 when there is no history
+  /// Without a result: the details of summary.noResultReason (e.g. why the model is invalid),
+  /// kept in the response notes for `info --building`.
+  std::string noResultDetail;
 };
+
+/// The response notes (`response-<n>/notes.json`, docs/formats.md): per building without a result
+/// its reason and details, per approximate building its unconverged steps and largest residual.
+struct ResponseNotes {
+  struct NoResult {
+    std::string id;
+    NoResultReason reason = NoResultReason::Unknown;
+    std::string detail;
+  };
+  struct Approximate {
+    std::string id;
+    std::uint32_t unconvergedSteps = 0;
+    float worstResidualRatio = 0.0f;
+  };
+  std::vector<NoResult> noResult;        ///< sorted by id
+  std::vector<Approximate> approximate;  ///< sorted by largest residual, then id
+};
+std::string responseNotesToJson(const ResponseNotes& notes);
+Result<ResponseNotes> parseResponseNotes(std::string_view json, const std::string& name);
+/// The notes of a city's response (empty notes when the manifest names none: older responses).
+Result<ResponseNotes> loadResponseNotes(const std::string& cityDir, const Tileset& tileset);
 
 struct ResponseWriteReport {
   std::uint64_t summaryBytes = 0;
   std::uint64_t historyBytes = 0;
-  std::uint64_t damage[6] = {0, 0, 0, 0, 0, 0};  ///< none … complete, no_result
-  std::string folder;                            ///< response-<n>
+  std::uint64_t damage[6] = {0, 0, 0, 0, 0, 0};             ///< none … complete, no_result
+  std::map<NoResultReason, std::uint64_t> noResultReasons;  ///< buildings without a result, by reason
+  std::uint64_t approximate = 0;                            ///< buildings with an approximate result
+  std::string folder;                                       ///< response-<n>
 };
 
 class ResponseWriter {
@@ -62,6 +88,7 @@ class ResponseWriter {
   std::mutex mutex_;
   std::map<std::string, std::pair<BuildingResponse, std::vector<float>>> byId_;
   ResponseWriteReport report_;
+  ResponseNotes notes_;
   bool committed_ = false;
 };
 

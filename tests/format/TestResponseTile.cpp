@@ -1,0 +1,111 @@
+#include <catch2/catch.hpp>
+
+#include <cstdint>
+#include <vector>
+
+#include "qv/format/ResponseTile.h"
+
+using namespace qv;
+
+namespace {
+
+// Two buildings: a 2-storey result that the solver could not converge everywhere, and a rooftop
+// part without a result.
+ResponseSummaryTile tinySummary() {
+  ResponseSummaryTile t;
+  BuildingResponse a;
+  a.damage = DamageState::Moderate;
+  a.source = ResponseSource::Model;
+  a.storeys = 2;
+  a.peakDriftRatio = 0.0125f;
+  a.peakRoofDisplacementM = 0.25f;
+  a.pgaG = 0.5f;
+  a.peakFloorAccelerationMs2 = 4.0f;
+  a.residualDriftRatio = 0.001953125f;
+  a.approximate = true;
+  a.unconvergedSteps = 3;
+  a.worstResidualRatio = 0.0625f;
+  t.buildings.push_back(a);
+  BuildingResponse none;
+  none.noResultReason = NoResultReason::BaseAboveGround;
+  t.buildings.push_back(none);
+  t.storeyPeakDrift = {0.0125f, 0.0078125f};
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("Response summary version 2 is pinned by golden bytes", "[format][response]") {
+  const std::vector<std::uint8_t> golden = {
+      0x51, 0x56, 0x52, 0x53, 0x02, 0x00, 0x00, 0x00, 0x84, 0x00, 0x00, 0x00, 0xba, 0x33, 0xb1, 0xee,  //
+      0x02, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x52, 0x53, 0x55, 0x4d,  //
+      0x34, 0x00, 0x00, 0x00, 0x48, 0x00, 0x00, 0x00, 0x53, 0x44, 0x52, 0x46, 0x7c, 0x00, 0x00, 0x00,  //
+      0x08, 0x00, 0x00, 0x00, 0x02, 0x01, 0x02, 0x00, 0xcd, 0xcc, 0x4c, 0x3c, 0x00, 0x00, 0x80, 0x3e,  //
+      0x00, 0x00, 0x00, 0x3f, 0x00, 0x00, 0x80, 0x40, 0x00, 0x00, 0x00, 0x3b, 0x00, 0x01, 0x00, 0x00,  //
+      0x03, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x3d, 0xff, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  //
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  //
+      0x04, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xcd, 0xcc, 0x4c, 0x3c,  //
+      0x00, 0x00, 0x00, 0x3c};
+  CHECK(encodeResponseSummary(tinySummary()) == golden);
+  const auto decoded = decodeResponseSummary(golden, "golden.qvs");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->buildings.size() == 2);
+  const BuildingResponse& a = decoded->buildings[0];
+  CHECK(a.damage == DamageState::Moderate);
+  CHECK(a.noResultReason == NoResultReason::None);
+  CHECK(a.approximate);
+  CHECK(a.unconvergedSteps == 3);
+  CHECK(a.worstResidualRatio == 0.0625f);
+  const BuildingResponse& b = decoded->buildings[1];
+  CHECK(b.damage == DamageState::NoResult);
+  CHECK(b.noResultReason == NoResultReason::BaseAboveGround);
+  CHECK_FALSE(b.approximate);
+  CHECK(decoded->storeyPeakDrift == std::vector<float>{0.0125f, 0.0078125f});
+}
+
+TEST_CASE("Response summary version 1 files are still read, without status", "[format][response]") {
+  // Written by the version 1 encoder: the same two buildings (28-byte records, reserved bytes).
+  const std::vector<std::uint8_t> version1 = {
+      0x51, 0x56, 0x52, 0x53, 0x01, 0x00, 0x00, 0x00, 0x74, 0x00, 0x00, 0x00, 0xdc, 0xa2, 0x4e, 0xbb,  //
+      0x02, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x02, 0x00, 0x00, 0x00, 0x52, 0x53, 0x55, 0x4d,  //
+      0x34, 0x00, 0x00, 0x00, 0x38, 0x00, 0x00, 0x00, 0x53, 0x44, 0x52, 0x46, 0x6c, 0x00, 0x00, 0x00,  //
+      0x08, 0x00, 0x00, 0x00, 0x02, 0x01, 0x02, 0x00, 0xcd, 0xcc, 0x4c, 0x3c, 0x00, 0x00, 0x80, 0x3e,  //
+      0x00, 0x00, 0x00, 0x3f, 0x00, 0x00, 0x80, 0x40, 0x00, 0x00, 0x00, 0x3b, 0x00, 0x00, 0x00, 0x00,  //
+      0xff, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,  //
+      0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xcd, 0xcc, 0x4c, 0x3c,  //
+      0x00, 0x00, 0x00, 0x3c};
+  const auto decoded = decodeResponseSummary(version1, "old.qvs");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->buildings.size() == 2);
+  CHECK(decoded->buildings[0].damage == DamageState::Moderate);
+  CHECK(decoded->buildings[0].peakRoofDisplacementM == 0.25f);
+  CHECK(decoded->buildings[0].noResultReason == NoResultReason::None);
+  CHECK_FALSE(decoded->buildings[0].approximate);
+  CHECK(decoded->buildings[1].noResultReason == NoResultReason::Unknown);
+  CHECK(decoded->storeyPeakDrift.size() == 2);
+}
+
+TEST_CASE("No-result reasons have stable names; unknown values read as unknown", "[format][response]") {
+  CHECK(noResultReasonName(NoResultReason::None) == "none");
+  CHECK(noResultReasonName(NoResultReason::ModelInvalid) == "model_invalid");
+  CHECK(noResultReasonName(NoResultReason::OutsideField) == "outside_field");
+  CHECK(noResultReasonName(NoResultReason::SkippedByOption) == "skipped_by_option");
+  CHECK(noResultReasonName(NoResultReason::BaseAboveGround) == "base_above_ground");
+  CHECK(noResultReasonName(NoResultReason::NotInImport) == "not_in_import");
+  CHECK(noResultReasonName(NoResultReason::Unknown) == "unknown");
+  CHECK(noResultReasonDescription(NoResultReason::BaseAboveGround).find("rooftop") != std::string_view::npos);
+  ResponseSummaryTile t = tinySummary();
+  t.buildings[1].noResultReason = static_cast<NoResultReason>(77);  // a reason of a later version
+  const auto decoded = decodeResponseSummary(encodeResponseSummary(t), "later.qvs");
+  REQUIRE(decoded.ok());
+  CHECK(decoded->buildings[1].noResultReason == NoResultReason::Unknown);
+}
+
+TEST_CASE("A summary of an unknown version is refused with both versions named", "[format][response]") {
+  std::vector<std::uint8_t> bytes = encodeResponseSummary(tinySummary());
+  bytes[4] = 3;
+  const auto decoded = decodeResponseSummary(bytes, "new.qvs");
+  REQUIRE_FALSE(decoded.ok());
+  CHECK(decoded.error().find("version 3") != std::string::npos);
+  CHECK(decoded.error().find("versions 1 to 2") != std::string::npos);
+}

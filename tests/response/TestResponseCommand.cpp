@@ -1,0 +1,105 @@
+// Runs the built quakeview-prep: `response` on a small OSM city, then what `info` and the response
+// files say about buildings without a result and about the record (native only).
+#include <unistd.h>
+
+#include <simdjson.h>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+
+#include "ToolRun.h"
+
+namespace {
+
+const std::string kTool = QUAKEVIEW_PREP_EXE;
+const std::string kRecords = std::string(QUAKEVIEW_SHARED_DATA_DIR) + "/ground-motions/";
+
+qv::test::ToolRun run(const std::string& arguments, bool withStderr = false) {
+  return qv::test::runTool(kTool, arguments, withStderr);
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A square footprint of side ~20 m at (lon, lat) as an OSM way with `tags`.
+std::string square(int id, double lon, double lat, const std::string& tags) {
+  const double d = 0.0002;
+  std::string s;
+  const double corners[4][2] = {{lon, lat}, {lon + d, lat}, {lon + d, lat + d}, {lon, lat + d}};
+  for (int k = 0; k < 4; ++k) {
+    s += "<node id=\"" + std::to_string(id * 10 + k) + "\" lat=\"" + std::to_string(corners[k][1]) + "\" lon=\"" +
+         std::to_string(corners[k][0]) + "\"/>\n";
+  }
+  s += "<way id=\"" + std::to_string(id) + "\">";
+  for (int k = 0; k <= 4; ++k) s += "<nd ref=\"" + std::to_string(id * 10 + k % 4) + "\"/>";
+  return s + tags + "</way>\n";
+}
+
+std::string tag(const std::string& k, const std::string& v) {
+  return "<tag k=\"" + k + "\" v=\"" + v + "\"/>";
+}
+
+}  // namespace
+
+TEST_CASE("response gives rooftop parts no result with a reason, and publishes only the record's name",
+          "[response][cli]") {
+  const std::string dir = "/tmp/qv-response-test-" + std::to_string(getpid());
+  std::filesystem::create_directories(dir);
+  // Two buildings on the ground and one structure whose base is 51 m up (on another building).
+  const std::string osm =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<osm version=\"0.6\">\n" +
+      square(1, -74.0100, 40.7100, tag("building", "yes") + tag("height", "12")) +
+      square(2, -74.0090, 40.7100, tag("building", "office") + tag("height", "30")) +
+      square(3, -74.0080, 40.7100, tag("building", "yes") + tag("height", "60") + tag("min_height", "51")) + "</osm>\n";
+  std::ofstream(dir + "/in.osm") << osm;
+  const auto city = run("city --input '" + dir + "/in.osm' --out '" + dir + "/city'", true);
+  INFO(city.output);
+  REQUIRE(city.exitCode == 0);
+  const auto response = run("response --city '" + dir + "/city' --motion '" + kRecords + "TAK000.AT2'", true);
+  INFO(response.output);
+  REQUIRE(response.exitCode == 0);
+  CHECK(response.output.find("base_above_ground: 1") != std::string::npos);
+
+  SECTION("info --building gives the reason and its details") {
+    const auto info = run("info '" + dir + "/city' --building w3 --json");
+    REQUIRE(info.exitCode == 0);
+    simdjson::dom::parser parser;
+    simdjson::dom::element doc;
+    REQUIRE(parser.parse(info.output).get(doc) == simdjson::SUCCESS);
+    CHECK(std::string(doc["damage_state"].get_string().value()) == "no_result");
+    CHECK(std::string(doc["no_result_reason"].get_string().value()) == "base_above_ground");
+    CHECK(std::string(doc["no_result_detail"].get_string().value()) == "base 51.0 m above ground");
+    CHECK_FALSE(doc["approximate"].get_bool().value());
+    const auto text = run("info '" + dir + "/city' --building w3");
+    CHECK(text.output.find("rooftop structure resting on another building; not analysed") != std::string::npos);
+    // A building on the ground has a result and no reason.
+    const auto ground = run("info '" + dir + "/city' --building w1 --json");
+    REQUIRE(parser.parse(ground.output).get(doc) == simdjson::SUCCESS);
+    CHECK(std::string(doc["damage_state"].get_string().value()) != "no_result");
+    CHECK(doc["no_result_reason"].is_null());
+  }
+
+  SECTION("info --json counts buildings without a result by reason") {
+    const auto info = run("info '" + dir + "/city' --json");
+    REQUIRE(info.exitCode == 0);
+    simdjson::dom::parser parser;
+    simdjson::dom::element doc;
+    REQUIRE(parser.parse(info.output).get(doc) == simdjson::SUCCESS);
+    CHECK(doc["damage_states"]["no_result"].get_uint64().value() == 1);
+    CHECK(doc["no_result_reasons"]["base_above_ground"].get_uint64().value() == 1);
+    CHECK(doc["approximate_buildings"].get_uint64().value() == 0);
+    CHECK(doc["approximate"].get_array().value().size() == 0);
+    // The record by its file name and header title, never the path of the machine that ran it.
+    CHECK(std::string(doc["motion"].get_string().value()) == "TAK000.AT2 (KOBE, 01/16/1995, Takatori, 000)");
+  }
+
+  SECTION("no response file carries the record's directory") {
+    CHECK(readText(dir + "/city/tileset.json").find(kRecords) == std::string::npos);
+    CHECK(readText(dir + "/city/tileset.json").find("TAK000.AT2") != std::string::npos);
+  }
+  std::filesystem::remove_all(dir);
+}
