@@ -85,7 +85,7 @@ TEST_CASE("Response summary version 1 files are still read, without status", "[f
   CHECK(decoded->storeyPeakDrift.size() == 2);
 }
 
-TEST_CASE("No-result reasons have stable names; unknown values read as unknown", "[format][response]") {
+TEST_CASE("No-result reasons have stable names, and unknown values read as unknown", "[format][response]") {
   CHECK(noResultReasonName(NoResultReason::None) == "none");
   CHECK(noResultReasonName(NoResultReason::ModelInvalid) == "model_invalid");
   CHECK(noResultReasonName(NoResultReason::OutsideField) == "outside_field");
