@@ -2,6 +2,7 @@
 // (reading the Manhattan PBF under AddressSanitizer takes a few seconds).
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,12 @@
 #include "qv/prep/Ingest.h"
 
 namespace qv::prep::test {
+
+/// True when some warning of `model` contains `text`.
+inline bool hasWarning(const CityModel& model, const std::string& text) {
+  return std::any_of(model.warnings.begin(), model.warnings.end(),
+                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
+}
 
 inline std::string sharedData(const std::string& relative) {
   return std::string(QUAKEVIEW_SHARED_DATA_DIR) + "/" + relative;

@@ -16,11 +16,6 @@ using namespace qv::prep::test;
 
 namespace {
 
-bool hasWarning(const CityModel& model, const std::string& text) {
-  return std::any_of(model.warnings.begin(), model.warnings.end(),
-                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
-}
-
 std::uint64_t dropCount(const CityModel& model, const std::string& reason) {
   const auto it = model.drops.byReason.find(reason);
   return it == model.drops.byReason.end() ? 0 : it->second;

@@ -17,11 +17,6 @@ using namespace qv::prep::test;
 
 namespace {
 
-bool hasWarning(const CityModel& model, const std::string& text) {
-  return std::any_of(model.warnings.begin(), model.warnings.end(),
-                     [&](const std::string& w) { return w.find(text) != std::string::npos; });
-}
-
 const BuildingAttributes& attributesOf(const CityModel& model, const std::string& id) {
   const Building* b = findBuilding(model, id);
   INFO(id);

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <string>
 
+#include "Issue21Frame.h"
 #include "qv/seismic/GroundMotionReader.h"
 #include "qv/seismic/ReferenceSolver.h"
 
@@ -212,14 +213,7 @@ TEST_CASE("Automatic sub-steps keep a yielding frame's peaks within 0.5 % of con
   // Issue 21: a 3-storey Bouc–Wen shear building under El Centro × 1.5 with 10 s of free vibration.
   // Two sub-steps from the periods alone gave a peak base shear 1.7 % low; OpenSees extrapolated to
   // Δt → 0 gives 1 157 636 N.
-  ShearBuilding b;
-  b.floorMassKg.assign(3, 60000.0);
-  b.storeyStiffnessNPerM.assign(3, 4.0e7);
-  b.storeyHeightM.assign(3, 3.0);
-  b.damping = Damping::rayleigh(0.8468543453, 0.002288968202);
-  const auto law = BoucWenStorey::fromOpenSees(0.1, 1.0, 14.28571429, 14.28571429);
-  REQUIRE(law.ok());
-  b.hysteresis.assign(3, *law);
+  const ShearBuilding b = test::issue21Frame();
   ReferenceOptions options;
   options.scale = 1.5;
   options.freeVibrationSeconds = 10.0;

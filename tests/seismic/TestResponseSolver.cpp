@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "Issue21Frame.h"
 #include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/GroundMotionReader.h"
 #include "qv/seismic/ResponseSolver.h"
@@ -168,26 +169,9 @@ TEST_CASE("The batched solver rejects what it cannot solve", "[seismic][batch]")
   CHECK_FALSE(solveResponses(cityBlock(), shaking, x, nullptr).ok());
 }
 
-namespace {
-
-// Issue 21's 3-storey Bouc–Wen frame (OpenSees parameters; converged peak base shear 1 157 636 N).
-ShearBuilding issue21Frame() {
-  ShearBuilding b;
-  b.floorMassKg.assign(3, 60000.0);
-  b.storeyStiffnessNPerM.assign(3, 4.0e7);
-  b.storeyHeightM.assign(3, 3.0);
-  b.damping = Damping::rayleigh(0.8468543453, 0.002288968202);
-  const auto law = BoucWenStorey::fromOpenSees(0.1, 1.0, 14.28571429, 14.28571429);
-  REQUIRE(law.ok());
-  b.hysteresis.assign(3, *law);
-  return b;
-}
-
-}  // namespace
-
 TEST_CASE("The batched solver's hysteretic bound keeps a yielding frame within 0.5 % of converged",
           "[seismic][batch]") {
-  const std::vector<ShearBuilding> buildings = {issue21Frame()};
+  const std::vector<ShearBuilding> buildings = {test::issue21Frame()};
   const std::vector<BuildingShaking> shaking = {{1.5, 0.0}};
   const GroundMotion x = record("elCentro.AT2");
   ReferenceOptions ro;
