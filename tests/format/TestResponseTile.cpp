@@ -109,3 +109,70 @@ TEST_CASE("A summary of an unknown version is refused with both versions named",
   CHECK(decoded.error().find("version 3") != std::string::npos);
   CHECK(decoded.error().find("versions 1 to 2") != std::string::npos);
 }
+
+TEST_CASE("The optional summary sections (scaling, suite spread, losses) round-trip and are checked",
+          "[format][response]") {
+  ResponseSummaryTile t = tinySummary();
+  BuildingScaling scaled;
+  scaled.periodS[0] = 0.5f;
+  scaled.periodS[1] = 0.55f;
+  scaled.targetSaG[0] = 0.75f;
+  scaled.targetSaG[1] = 0.7f;
+  scaled.recordSaG[0] = 1.5f;
+  scaled.recordSaG[1] = 1.25f;
+  scaled.scale[0] = 0.5f;
+  scaled.scale[1] = 0.56f;
+  t.scaling = {scaled, BuildingScaling{}};
+  t.spread = {BuildingSpread{7, 3, 0.375f, 0.25f}, BuildingSpread{}};
+  t.storeySpread = {StoreySpread{0.375f, 5.5f, 0.25f}, StoreySpread{0.3f, 6.5f, 0.2f}};
+  BuildingLoss loss;
+  const float p[5] = {0.25f, 0.25f, 0.25f, 0.125f, 0.125f};
+  for (int k = 0; k < 5; ++k)
+    loss.structural[k] = loss.nonStructuralDrift[k] = loss.nonStructuralAcceleration[k] = p[k];
+  loss.collapse = 0.01f;
+  loss.occupants = 12.5f;
+  loss.injuries[0] = 0.5f;
+  loss.injuries[3] = 0.01f;
+  loss.replacementValueUsd = 2.5e6f;
+  loss.repairCostUsd = 3.0e5f;
+  loss.repairTimeDays = 40.0f;
+  loss.tag[0] = 0.5f;
+  loss.tag[1] = 0.25f;
+  loss.tag[2] = 0.25f;
+  loss.flags = kLossOccupantsInferred | kLossValueInferred;
+  t.losses = {loss, BuildingLoss{}};
+  const auto bytes = encodeResponseSummary(t);
+  // Four more section table entries and the documented record sizes.
+  CHECK(bytes.size() == encodeResponseSummary(tinySummary()).size() + 4 * 12 + 2 * 32 + 2 * 12 + 2 * 12 + 2 * 112);
+  const auto decoded = decodeResponseSummary(bytes, "optional.qvs");
+  REQUIRE(decoded.ok());
+  CHECK(decoded->scaling == t.scaling);
+  CHECK(decoded->spread == t.spread);
+  CHECK(decoded->storeySpread == t.storeySpread);
+  CHECK(decoded->losses == t.losses);
+  CHECK(decoded->losses[0].expectedState() == Approx(0.25 + 0.5 + 0.375 + 0.5));
+  // A summary without them still reads, with the optional vectors empty.
+  const auto plain = decodeResponseSummary(encodeResponseSummary(tinySummary()), "plain.qvs");
+  REQUIRE(plain.ok());
+  CHECK(plain->losses.empty());
+  CHECK(plain->scaling.empty());
+
+  SECTION("a probability above 1 is refused, naming the section") {
+    t.losses[0].structural[4] = 1.5f;
+    const auto bad = decodeResponseSummary(encodeResponseSummary(t), "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("bad.qvs") && Catch::Contains("LOSS"));
+  }
+  SECTION("a shown record beyond the suite is refused") {
+    t.spread[0].shownRecord = 7;
+    const auto bad = decodeResponseSummary(encodeResponseSummary(t), "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("SUIT"));
+  }
+  SECTION("a negative scale is refused") {
+    t.scaling[0].scale[1] = -1.0f;
+    const auto bad = decodeResponseSummary(encodeResponseSummary(t), "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("SPEC"));
+  }
+}

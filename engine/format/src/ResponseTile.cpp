@@ -125,6 +125,109 @@ std::optional<std::pair<std::size_t, std::size_t>> findSection(const Parsed& p, 
   return std::nullopt;
 }
 
+constexpr std::size_t kScalingRecordSize = 32;
+constexpr std::size_t kSpreadRecordSize = 12;
+constexpr std::size_t kStoreySpreadRecordSize = 12;
+constexpr std::size_t kLossRecordSize = 112;
+
+// The optional summary sections (SPEC, SUIT, SSPR, LOSS): sizes match the counts, values are finite,
+// non-negative, and probabilities lie in [0, 1].
+Status decodeOptionalSections(std::span<const std::uint8_t> bytes, const Parsed& header, const std::string& prefix,
+                              ResponseSummaryTile& tile) {
+  auto sized = [&](const char(&id)[5], std::size_t count, std::size_t recordSize) -> Result<std::optional<ByteReader>> {
+    const auto range = findSection(header, tag(id));
+    if (!range) return std::optional<ByteReader>();
+    if (range->second != count * recordSize) {
+      return Error{prefix + "section " + id + " at byte " + std::to_string(range->first) + " holds " +
+                   std::to_string(range->second) + " bytes, expected " + std::to_string(count) + " records of " +
+                   std::to_string(recordSize)};
+    }
+    return std::optional<ByteReader>(ByteReader(bytes.subspan(range->first, range->second), range->first));
+  };
+  auto bad = [&](const char* id, const ByteReader& r, const char* what) {
+    return Error{prefix + "section " + id + " near byte " + std::to_string(r.offset()) + ": " + what};
+  };
+  auto value = [](float v) { return std::isfinite(v) && v >= 0.0f; };
+  auto probability = [](float v) { return std::isfinite(v) && v >= 0.0f && v <= 1.0001f; };
+  const std::size_t n = tile.buildings.size();
+  auto spec = sized("SPEC", n, kScalingRecordSize);
+  if (!spec.ok()) return Error{spec.error()};
+  if (*spec) {
+    ByteReader& r = **spec;
+    tile.scaling.resize(n);
+    for (BuildingScaling& b : tile.scaling) {
+      for (int d = 0; d < 2; ++d) {
+        b.periodS[d] = r.f32("period");
+        b.targetSaG[d] = r.f32("target Sa");
+        b.recordSaG[d] = r.f32("record Sa");
+        b.scale[d] = r.f32("scale");
+        if (!value(b.periodS[d]) || !value(b.targetSaG[d]) || !value(b.recordSaG[d]) || !value(b.scale[d]))
+          return bad("SPEC", r, "invalid period, Sa or scale");
+      }
+    }
+  }
+  auto suit = sized("SUIT", n, kSpreadRecordSize);
+  if (!suit.ok()) return Error{suit.error()};
+  if (*suit) {
+    ByteReader& r = **suit;
+    tile.spread.resize(n);
+    for (BuildingSpread& b : tile.spread) {
+      b.records = r.u16("records");
+      b.shownRecord = r.u16("shown record");
+      b.driftBeta = r.f32("drift beta");
+      b.accelerationBeta = r.f32("acceleration beta");
+      if (!value(b.driftBeta) || !value(b.accelerationBeta)) return bad("SUIT", r, "invalid dispersion");
+      if (b.records > 0 && b.shownRecord >= b.records) return bad("SUIT", r, "shown record beyond the records");
+    }
+  }
+  auto sspr = sized("SSPR", tile.storeyPeakDrift.size(), kStoreySpreadRecordSize);
+  if (!sspr.ok()) return Error{sspr.error()};
+  if (*sspr) {
+    ByteReader& r = **sspr;
+    tile.storeySpread.resize(tile.storeyPeakDrift.size());
+    for (StoreySpread& s : tile.storeySpread) {
+      s.driftBeta = r.f32("drift beta");
+      s.accelerationMedianMs2 = r.f32("acceleration median");
+      s.accelerationBeta = r.f32("acceleration beta");
+      if (!value(s.driftBeta) || !value(s.accelerationMedianMs2) || !value(s.accelerationBeta))
+        return bad("SSPR", r, "invalid storey spread");
+    }
+  }
+  auto loss = sized("LOSS", n, kLossRecordSize);
+  if (!loss.ok()) return Error{loss.error()};
+  if (*loss) {
+    ByteReader& r = **loss;
+    tile.losses.resize(n);
+    for (BuildingLoss& b : tile.losses) {
+      for (float* set : {b.structural, b.nonStructuralDrift, b.nonStructuralAcceleration}) {
+        float sum = 0.0f;
+        for (int k = 0; k < 5; ++k) {
+          set[k] = r.f32("damage state probability");
+          if (!probability(set[k])) return bad("LOSS", r, "invalid probability");
+          sum += set[k];
+        }
+        if (sum > 0.0f && std::abs(sum - 1.0f) > 1e-3f) return bad("LOSS", r, "probabilities do not sum to 1");
+      }
+      b.collapse = r.f32("collapse probability");
+      b.occupants = r.f32("occupants");
+      for (float& v : b.injuries) v = r.f32("injuries");
+      b.replacementValueUsd = r.f32("replacement value");
+      b.repairCostUsd = r.f32("repair cost");
+      b.repairTimeDays = r.f32("repair time");
+      for (float& v : b.tag) v = r.f32("tag probability");
+      b.flags = r.u8("flags");
+      r.skip(3, "reserved");
+      if (!probability(b.collapse) || !probability(b.tag[0]) || !probability(b.tag[1]) || !probability(b.tag[2]))
+        return bad("LOSS", r, "invalid probability");
+      for (const float v : {b.occupants, b.injuries[0], b.injuries[1], b.injuries[2], b.injuries[3],
+                            b.replacementValueUsd, b.repairCostUsd, b.repairTimeDays}) {
+        if (!value(v)) return bad("LOSS", r, "invalid consequence value");
+      }
+    }
+  }
+  return Status{};
+}
+
 }  // namespace
 
 std::string_view damageStateName(DamageState s) {
@@ -219,9 +322,62 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
     }
     storeyValues += storeys;
   }
-  const std::array<Section, 2> sections = {{{tag("RSUM"), &rsum}, {tag("SDRF"), &sdrf}}};
+  std::vector<Section> sections = {{tag("RSUM"), &rsum}, {tag("SDRF"), &sdrf}};
+  ByteWriter spec, suit, sspr, loss;
+  if (!tile.scaling.empty() && tile.scaling.size() == tile.buildings.size()) {
+    for (const BuildingScaling& b : tile.scaling) {
+      for (int d = 0; d < 2; ++d) {
+        spec.f32(b.periodS[d]);
+        spec.f32(b.targetSaG[d]);
+        spec.f32(b.recordSaG[d]);
+        spec.f32(b.scale[d]);
+      }
+    }
+    sections.push_back({tag("SPEC"), &spec});
+  }
+  if (!tile.spread.empty() && tile.spread.size() == tile.buildings.size()) {
+    for (const BuildingSpread& b : tile.spread) {
+      suit.u16(b.records);
+      suit.u16(b.shownRecord);
+      suit.f32(b.driftBeta);
+      suit.f32(b.accelerationBeta);
+    }
+    sections.push_back({tag("SUIT"), &suit});
+  }
+  if (!tile.storeySpread.empty() && tile.storeySpread.size() == storeyValues) {
+    for (const StoreySpread& s : tile.storeySpread) {
+      sspr.f32(s.driftBeta);
+      sspr.f32(s.accelerationMedianMs2);
+      sspr.f32(s.accelerationBeta);
+    }
+    sections.push_back({tag("SSPR"), &sspr});
+  }
+  if (!tile.losses.empty() && tile.losses.size() == tile.buildings.size()) {
+    for (const BuildingLoss& b : tile.losses) {
+      for (const float v : b.structural) loss.f32(v);
+      for (const float v : b.nonStructuralDrift) loss.f32(v);
+      for (const float v : b.nonStructuralAcceleration) loss.f32(v);
+      loss.f32(b.collapse);
+      loss.f32(b.occupants);
+      for (const float v : b.injuries) loss.f32(v);
+      loss.f32(b.replacementValueUsd);
+      loss.f32(b.repairCostUsd);
+      loss.f32(b.repairTimeDays);
+      for (const float v : b.tag) loss.f32(v);
+      loss.u8(b.flags);
+      loss.u8(0);
+      loss.u16(0);
+    }
+    sections.push_back({tag("LOSS"), &loss});
+  }
   return assemble("QVRS", kResponseSummaryVersion, static_cast<std::uint32_t>(tile.buildings.size()), storeyValues,
                   sections);
+}
+
+float BuildingLoss::expectedState() const {
+  float sum = 0.0f;
+  for (int k = 1; k < 5; ++k) sum += static_cast<float>(k) * structural[k];
+  return sum;
 }
 
 Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> bytes, std::string_view name) {
@@ -302,6 +458,8 @@ Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> 
     if (!std::isfinite(v) || v < 0.0f)
       return Error{prefix + "section SDRF near byte " + std::to_string(s.offset()) + ": invalid drift"};
   }
+  if (Status optional = decodeOptionalSections(bytes, *header, prefix, tile); !optional.ok())
+    return Error{optional.error()};
   return tile;
 }
 

@@ -130,6 +130,7 @@ struct alignas(kVectorBytes) Row {
   V rhs, inversePivot, offDiagonal;
   // Peaks.
   V peakDrift;
+  V peakAcceleration;  // absolute acceleration of the floor above the storey
 };
 
 // The batch: K groups of vector lanes solved together. The recurrences of the Thomas algorithm are
@@ -308,7 +309,7 @@ class BatchKernel {
       r.cUnload = r.inverseHeight = r.massDamping = r.stiffnessDamping = r.isFloor = zero;
       r.u = r.v = r.a = r.z = r.drift = zero;
       r.aNew = r.vNew = r.du = r.dDrift = r.zTrial = r.force = r.tangent = r.storeyForce = zero;
-      r.rhs = r.inversePivot = r.offDiagonal = r.peakDrift = zero;
+      r.rhs = r.inversePivot = r.offDiagonal = r.peakDrift = r.peakAcceleration = zero;
     }
     for (std::size_t k = 0; k < K; ++k) peakRoof_[k] = peakAcceleration_[k] = peakBase_[k] = ground_[k] = zero;
     sharedRoof_ = true;
@@ -564,7 +565,8 @@ class BatchKernel {
         r.drift += r.dDrift;
         r.z = r.zTrial;
         r.peakDrift = Math::max(r.peakDrift, Math::abs(r.drift));
-        peakAcceleration_[k] = Math::max(peakAcceleration_[k], r.isFloor * Math::abs(r.a + ground_[k]));
+        r.peakAcceleration = Math::max(r.peakAcceleration, r.isFloor * Math::abs(r.a + ground_[k]));
+        peakAcceleration_[k] = Math::max(peakAcceleration_[k], r.peakAcceleration);
       }
     }
     for (std::size_t k = 0; k < K; ++k) {
@@ -613,11 +615,13 @@ class BatchKernel {
       const bool heights = !lane.system->model->storeyHeightM.empty();
       DirectionResponse& out = *lane.out;
       out.peakDriftM.resize(storeys);
+      out.peakFloorAccelerationPerFloorMps2.resize(storeys);
       out.peakDriftRatio.resize(heights ? storeys : 0);
       out.residualDriftRatio.resize(heights ? storeys : 0);
       for (std::size_t i = 0; i < storeys; ++i) {
         const Row<T>& r = row(i, k);
         out.peakDriftM[i] = static_cast<float>(r.peakDrift[v]);
+        out.peakFloorAccelerationPerFloorMps2[i] = static_cast<float>(r.peakAcceleration[v]);
         if (heights) {
           out.peakDriftRatio[i] = static_cast<float>(r.peakDrift[v] * r.inverseHeight[v]);
           out.residualDriftRatio[i] = static_cast<float>(r.drift[v] * r.inverseHeight[v]);
@@ -796,7 +800,7 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       }
     }
     const BuildingShaking& sh = shaking[b];
-    if (!std::isfinite(sh.scale) || !(sh.delaySeconds >= 0.0 && sh.delaySeconds <= 1e4)) {
+    if (!std::isfinite(sh.scale) || !std::isfinite(sh.scaleY) || !(sh.delaySeconds >= 0.0 && sh.delaySeconds <= 1e4)) {
       return fail("building " + std::to_string(b) + ": scale must be finite and delay in [0, 1e4] s, not " +
                   formatDouble(sh.scale) + ", " + formatDouble(sh.delaySeconds));
     }
@@ -836,7 +840,7 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       sys.direction = direction;
       sys.model = &model;
       sys.motion = direction == 0 ? &motionX : motionY;
-      sys.scale = shaking[b].scale;
+      sys.scale = direction == 1 && shaking[b].scaleY > 0.0 ? shaking[b].scaleY : shaking[b].scale;
       sys.delay = shaking[b].delaySeconds;
       sys.inverseRecordStep = 1.0 / sys.motion->timeStepS;
       sys.padded = impl_->padded[static_cast<std::size_t>(direction)].data();

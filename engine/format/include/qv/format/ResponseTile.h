@@ -78,9 +78,71 @@ struct BuildingResponse {
   std::uint32_t firstStorey = 0;  ///< into ResponseSummaryTile::storeyPeakDrift
 };
 
+/// How a building's record was scaled (optional section SPEC; quakeview-prep response). Index 0 is
+/// X, 1 is Y. Spectral scaling: the record is scaled so that its 5 %-damped pseudo-spectral
+/// acceleration at the model's first-mode period equals the target there; PGA scaling leaves the
+/// period and Sa values 0.
+struct BuildingScaling {
+  float periodS[2] = {0.0f, 0.0f};    ///< first-mode period T1 of the X and Y models (s)
+  float targetSaG[2] = {0.0f, 0.0f};  ///< target Sa(T1) (g), from the shaking field
+  float recordSaG[2] = {0.0f, 0.0f};  ///< the animated record's own Sa(T1) before scaling (g)
+  float scale[2] = {0.0f, 0.0f};      ///< factor applied to that record (> 0 with a result)
+  bool operator==(const BuildingScaling&) const = default;
+};
+
+/// Record-to-record spread across a suite (optional section SUIT). Medians are geometric means
+/// over the records; betas are the standard deviations of the natural logarithms (0 for one record).
+struct BuildingSpread {
+  std::uint16_t records = 0;      ///< records the building was analysed under (0 without a result)
+  std::uint16_t shownRecord = 0;  ///< the record whose history is stored (roof peak nearest the median)
+  float driftBeta = 0.0f;         ///< of the building's peak drift ratio (max over storeys)
+  float accelerationBeta = 0.0f;  ///< of its peak floor acceleration (max over floors)
+  bool operator==(const BuildingSpread&) const = default;
+};
+
+/// Per storey, aligned with ResponseSummaryTile::storeyPeakDrift (optional section SSPR).
+struct StoreySpread {
+  float driftBeta = 0.0f;              ///< of the storey's peak drift ratio
+  float accelerationMedianMs2 = 0.0f;  ///< median peak absolute acceleration of the floor above
+  float accelerationBeta = 0.0f;
+  bool operator==(const StoreySpread&) const = default;
+};
+
+/// Bits of BuildingLoss::flags.
+enum LossFlag : std::uint8_t {
+  kLossOccupantsInferred = 1,  ///< occupants from floor area and use (no occupant count given)
+  kLossValueInferred = 2,      ///< replacement value from floor area and use (no value given)
+};
+
+/// Probabilistic damage and its consequences (HAZUS 5.1; optional section LOSS). Probabilities are
+/// of each damage state, none .. complete (each set sums to 1); people and money are expected values
+/// for the scenario's time of day.
+struct BuildingLoss {
+  float structural[5] = {0, 0, 0, 0, 0};
+  float nonStructuralDrift[5] = {0, 0, 0, 0, 0};
+  float nonStructuralAcceleration[5] = {0, 0, 0, 0, 0};
+  float collapse = 0.0f;             ///< probability of collapse
+  float occupants = 0.0f;            ///< present at the time of day
+  float injuries[4] = {0, 0, 0, 0};  ///< expected people, severity 1 .. 4 (4: deaths)
+  float replacementValueUsd = 0.0f;
+  float repairCostUsd = 0.0f;
+  float repairTimeDays = 0.0f;
+  float tag[3] = {0, 0, 0};  ///< probability of a green, yellow, red inspection tag
+  std::uint8_t flags = 0;    ///< LossFlag bits
+  bool operator==(const BuildingLoss&) const = default;
+  /// Σ k · P(DS = k) of the structural states, 0 .. 4.
+  [[nodiscard]] float expectedState() const;
+};
+
 struct ResponseSummaryTile {
   std::vector<BuildingResponse> buildings;
   std::vector<float> storeyPeakDrift;  ///< per building with a result, `storeys` values, ground up
+  // Optional sections: each empty (not stored) or holding one value per building (storeySpread: one
+  // per storey value). Readers that do not know a section ignore it.
+  std::vector<BuildingScaling> scaling;    ///< SPEC
+  std::vector<BuildingSpread> spread;      ///< SUIT
+  std::vector<StoreySpread> storeySpread;  ///< SSPR
+  std::vector<BuildingLoss> losses;        ///< LOSS
 };
 
 std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile);

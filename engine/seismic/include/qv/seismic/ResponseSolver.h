@@ -19,7 +19,8 @@
 //
 // Time axis: frames at t = f·dt (dt = the output step, by default the X record's step), f = 0 ..
 // frames-1, frame 0 at rest. Building b sees scale_b · a(t - delay_b) in each direction (the same
-// scale and delay for X and Y), so shaking before its arrival is zero.
+// delay for X and Y; the Y scale may differ, BuildingShaking::scaleY), so shaking before its arrival is
+// zero.
 #pragma once
 
 #include <cstddef>
@@ -42,8 +43,10 @@ enum class Precision { Float, Double };
 /// Per-building excitation: the record times `scale`, starting `delaySeconds` late (see
 /// shakingAtSite in GroundMotionModel.h).
 struct BuildingShaking {
-  double scale = 1.0;
+  double scale = 1.0;         ///< X (and Y unless scaleY is set)
   double delaySeconds = 0.0;  ///< >= 0
+  /// The Y record's scale when > 0 (spectral scaling at the Y model's own period); 0: `scale`.
+  double scaleY = 0.0;
 };
 
 struct ResponseOptions {
@@ -73,9 +76,10 @@ struct DirectionResponse {
   std::vector<float> peakDriftRatio;      ///< per storey; empty without storey heights
   std::vector<float> residualDriftRatio;  ///< per storey at the last frame; empty without heights
   float peakRoofDisplacementM = 0.0f;
-  float residualRoofDisplacementM = 0.0f;  ///< signed, at the last frame
-  float peakFloorAccelerationMps2 = 0.0f;  ///< absolute acceleration, all floors
-  float peakBaseShearN = 0.0f;             ///< restoring force of storey 1 (damping excluded)
+  float residualRoofDisplacementM = 0.0f;                ///< signed, at the last frame
+  float peakFloorAccelerationMps2 = 0.0f;                ///< absolute acceleration, all floors
+  std::vector<float> peakFloorAccelerationPerFloorMps2;  ///< absolute, per floor (floor 1 first)
+  float peakBaseShearN = 0.0f;                           ///< restoring force of storey 1 (damping excluded)
 };
 
 struct BuildingResponse {
