@@ -165,3 +165,40 @@ TEST_CASE("The city's name is optional in a manifest and must be text when prese
   CHECK(refused.error().find("\"name\"") != std::string::npos);
   CHECK(refused.error().find("bad/tileset.json") != std::string::npos);
 }
+
+TEST_CASE("The manifest keeps the shaking's provenance: event type, ShakeMap, records, consequences",
+          "[format][tileset]") {
+  Tileset t = sample();
+  ResponseInfo& r = *t.response;
+  r.eventType = "ACTUAL";
+  r.shakingField = "shakemap";
+  r.scaling = "sa";
+  r.shakemap = ResponseInfo::ShakeMap{
+      "us7000abcd", "3",   "2026-11-25T10:00:00Z", "2026-11-25T09:41:07Z", "10 km SE of Somewhere", "us", 5.8, 5.0,
+      40.55,        -74.03};
+  r.records = {"elCentro.AT2", "TAK000.AT2 (KOBE 01/16/95 2046, TAKATORI, 000)"};
+  r.timeOfDay = "day";
+  r.consequences = CityFile{"response-1/consequences.json", 1234, 0x01020304u};
+  const std::string json = tilesetToJson(t);
+  const auto parsed = parseTileset(json, "tileset.json");
+  REQUIRE(parsed.ok());
+  const ResponseInfo& p = *parsed->response;
+  CHECK(p.eventType == "ACTUAL");
+  CHECK(p.shakingField == "shakemap");
+  CHECK(p.scaling == "sa");
+  REQUIRE(p.shakemap.has_value());
+  CHECK(*p.shakemap == *r.shakemap);
+  CHECK(p.records == r.records);
+  CHECK(p.timeOfDay == "day");
+  REQUIRE(p.consequences.has_value());
+  CHECK(p.consequences->file == "response-1/consequences.json");
+  CHECK(tilesetToJson(*parsed) == json);
+
+  SECTION("an event type other than SCENARIO or ACTUAL is refused") {
+    std::string bad = json;
+    bad.replace(bad.find("\"ACTUAL\""), 8, "\"MAYBE\"");
+    const auto refused = parseTileset(bad, "tileset.json");
+    REQUIRE_FALSE(refused.ok());
+    CHECK_THAT(refused.error(), Catch::Contains("eventType"));
+  }
+}

@@ -261,6 +261,25 @@ std::string tilesetToJson(const Tileset& t) {
     }
     if (r.summaryIndex) writeCityFile(w, "summaryIndex", *r.summaryIndex);
     if (r.notes) writeCityFile(w, "notes", *r.notes);
+    if (!r.eventType.empty()) w.field("eventType", r.eventType);
+    if (!r.shakingField.empty()) w.field("shakingField", r.shakingField);
+    if (!r.scaling.empty()) w.field("scaling", r.scaling);
+    if (r.shakemap) {
+      const ResponseInfo::ShakeMap& m = *r.shakemap;
+      w.key("shakemap").beginObject();
+      w.field("eventId", m.eventId).field("version", m.version).field("processTimestamp", m.processTimestamp);
+      w.field("eventTimestamp", m.eventTimestamp).field("description", m.description).field("source", m.source);
+      w.field("magnitude", m.magnitude).field("depthKm", m.depthKm);
+      w.field("latitude", m.latitudeDeg).field("longitude", m.longitudeDeg);
+      w.endObject();
+    }
+    if (!r.records.empty()) {
+      w.key("records").beginArray();
+      for (const std::string& s : r.records) w.value(s);
+      w.endArray();
+    }
+    if (!r.timeOfDay.empty()) w.field("timeOfDay", r.timeOfDay);
+    if (r.consequences) writeCityFile(w, "consequences", *r.consequences);
     w.endObject();
   }
   if (t.search) writeCityFile(w, "search", *t.search);
@@ -387,6 +406,45 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
       CityFile f;
       if (!p.cityFile(notes, f, "response notes")) return Error{p.error};
       r.notes = f;
+    }
+    if (!p.text(response, "eventType", r.eventType, "response", false) ||
+        !p.text(response, "shakingField", r.shakingField, "response", false) ||
+        !p.text(response, "scaling", r.scaling, "response", false) ||
+        !p.text(response, "timeOfDay", r.timeOfDay, "response", false)) {
+      return Error{p.error};
+    }
+    if (!r.eventType.empty() && r.eventType != "SCENARIO" && r.eventType != "ACTUAL") {
+      return Error{p.prefix + "response: eventType must be \"SCENARIO\" or \"ACTUAL\", not \"" + r.eventType + "\""};
+    }
+    object shakemap;
+    if (response["shakemap"].get(shakemap) == simdjson::SUCCESS) {
+      ResponseInfo::ShakeMap m;
+      const std::string where = "response shakemap";
+      if (!p.text(shakemap, "eventId", m.eventId, where) || !p.text(shakemap, "version", m.version, where, false) ||
+          !p.text(shakemap, "processTimestamp", m.processTimestamp, where, false) ||
+          !p.text(shakemap, "eventTimestamp", m.eventTimestamp, where, false) ||
+          !p.text(shakemap, "description", m.description, where, false) ||
+          !p.text(shakemap, "source", m.source, where, false) || !p.number(shakemap, "magnitude", m.magnitude, where) ||
+          !p.number(shakemap, "depthKm", m.depthKm, where) || !p.number(shakemap, "latitude", m.latitudeDeg, where) ||
+          !p.number(shakemap, "longitude", m.longitudeDeg, where)) {
+        return Error{p.error};
+      }
+      r.shakemap = m;
+    }
+    simdjson::dom::array records;
+    if (response["records"].get(records) == simdjson::SUCCESS) {
+      if (records.size() > 1000) return Error{p.prefix + "response: more than 1000 records"};
+      for (element e : records) {
+        std::string_view v;
+        if (e.get_string().get(v) != simdjson::SUCCESS) return Error{p.prefix + "response: records holds a non-string"};
+        r.records.emplace_back(v);
+      }
+    }
+    object consequences;
+    if (response["consequences"].get(consequences) == simdjson::SUCCESS) {
+      CityFile f;
+      if (!p.cityFile(consequences, f, "response consequences")) return Error{p.error};
+      r.consequences = f;
     }
     t.response = r;
   }

@@ -72,6 +72,29 @@ struct ResponseInfo {
   /// The response's notes (JSON, docs/formats.md "Response notes"): why each building without a
   /// result has none, in detail, and the buildings whose result is approximate.
   std::optional<CityFile> notes;
+  /// Whether the shaking is a SCENARIO (computed, or a ShakeMap of a scenario) or an ACTUAL event (a
+  /// ShakeMap of a recorded earthquake): "SCENARIO", "ACTUAL", or empty when not stated (imported
+  /// results, responses written before this field).
+  std::string eventType;
+  /// Where each building's shaking came from: "record" (the record(s) for every building),
+  /// "scenario" (--epicentre: BSSA14 at each building), "shakemap" (a ShakeMap grid); empty: older.
+  std::string shakingField;
+  /// "sa" (each record scaled to the target Sa at the building's first-mode period, per direction),
+  /// "pga" (to the target PGA), or empty (records used as given / older responses).
+  std::string scaling;
+  /// The ShakeMap the shaking came from (shakingField "shakemap").
+  struct ShakeMap {
+    std::string eventId, version, processTimestamp, eventTimestamp, description, source;
+    double magnitude = 0.0, depthKm = 0.0, latitudeDeg = 0.0, longitudeDeg = 0.0;
+    bool operator==(const ShakeMap&) const = default;
+  };
+  std::optional<ShakeMap> shakemap;
+  /// The record suite, one description per record (file name and header title, or synthetic seed).
+  std::vector<std::string> records;
+  /// The time of day the consequences assume ("night", "day", "commute"); empty without losses.
+  std::string timeOfDay;
+  /// Totals of the consequences (JSON, docs/losses.md): the city, and each district when given.
+  std::optional<CityFile> consequences;
 };
 
 struct Tileset {
