@@ -50,7 +50,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   qv::prep::ResponseRunOptions options;
-  options.motionX = motion;
+  options.motions = {motion};
   options.motionY = motion;
   options.threads = threads;
   const double cpuStart = processCpuSeconds();

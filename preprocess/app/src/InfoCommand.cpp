@@ -8,6 +8,7 @@
 #include "CityFiles.h"
 #include "Commands.h"
 #include "Summary.h"
+#include "qv/prep/Consequences.h"
 #include "qv/core/JsonWriter.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/prep/Cli.h"
@@ -111,7 +112,74 @@ std::array<std::uint64_t, 6> damageCounts(const Tileset& t, std::uint64_t buildi
 struct BuildingResponseView {
   BuildingResponse summary;
   std::vector<float> storeyPeakDrift;
+  std::vector<StoreySpread> storeySpread;  ///< empty when the summary has none
+  std::optional<BuildingScaling> scaling;
+  std::optional<BuildingSpread> spread;
+  std::optional<BuildingLoss> loss;
 };
+
+void printBuildingLoss(const BuildingResponseView& r);
+
+constexpr const char* kStateNames[5] = {"none", "slight", "moderate", "extensive", "complete"};
+
+void writeProbabilities(JsonWriter& w, std::string_view key, const float (&p)[5]) {
+  w.key(key).beginObject();
+  for (std::size_t k = 0; k < 5; ++k) w.field(kStateNames[k], p[k]);
+  w.endObject();
+}
+
+// The building's spectral scaling, suite spread, HAZUS probabilities and consequences (when the
+// response has them).
+void writeBuildingLossJson(JsonWriter& w, const BuildingResponseView& r) {
+  if (r.scaling) {
+    w.key("spectral_scaling").beginObject();
+    for (int d = 0; d < 2; ++d) {
+      w.key(d == 0 ? "x" : "y").beginObject();
+      w.field("period_s", r.scaling->periodS[d]).field("target_sa_g", r.scaling->targetSaG[d]);
+      w.field("record_sa_g", r.scaling->recordSaG[d]).field("scale", r.scaling->scale[d]);
+      w.endObject();
+    }
+    w.endObject();
+  }
+  if (r.spread) {
+    w.key("suite").beginObject();
+    w.field("records", static_cast<unsigned>(r.spread->records));
+    w.field("shown_record", static_cast<unsigned>(r.spread->shownRecord));
+    w.field("peak_drift_ratio_beta", r.spread->driftBeta);
+    w.field("peak_floor_acceleration_beta", r.spread->accelerationBeta);
+    w.endObject();
+  }
+  if (!r.storeySpread.empty()) {
+    w.key("peak_drift_ratio_beta").beginArray();
+    for (const StoreySpread& s : r.storeySpread) w.value(s.driftBeta);
+    w.endArray();
+    w.key("peak_floor_acceleration_per_floor_mps2").beginArray();
+    for (const StoreySpread& s : r.storeySpread) w.value(s.accelerationMedianMs2);
+    w.endArray();
+  }
+  if (!r.loss) return;
+  const BuildingLoss& l = *r.loss;
+  writeProbabilities(w, "damage_probabilities", l.structural);
+  w.field("collapse_probability", l.collapse);
+  w.field("expected_damage_state", l.expectedState());
+  std::size_t likely = 0;
+  for (std::size_t k = 1; k < 5; ++k) {
+    if (l.structural[k] > l.structural[likely]) likely = k;
+  }
+  w.field("most_likely_damage_state", kStateNames[likely]);
+  writeProbabilities(w, "non_structural_drift_probabilities", l.nonStructuralDrift);
+  writeProbabilities(w, "non_structural_acceleration_probabilities", l.nonStructuralAcceleration);
+  w.key("consequences").beginObject();
+  w.field("occupants", l.occupants).field("occupants_inferred", (l.flags & kLossOccupantsInferred) != 0);
+  w.key("injuries").beginObject();
+  for (std::size_t k = 0; k < 4; ++k) w.field("severity_" + std::to_string(k + 1), l.injuries[k]);
+  w.endObject();
+  w.field("deaths", l.injuries[3]);
+  w.field("replacement_value_usd", l.replacementValueUsd).field("value_inferred", (l.flags & kLossValueInferred) != 0);
+  w.field("repair_cost_usd", l.repairCostUsd).field("repair_time_days", l.repairTimeDays);
+  w.key("tags").beginObject().field("green", l.tag[0]).field("yellow", l.tag[1]).field("red", l.tag[2]).endObject();
+  w.endObject();
+}
 Result<std::optional<BuildingResponseView>> loadBuildingResponse(const std::string& dir, const TileNode& node,
                                                                  std::size_t index, std::size_t tileBuildings) {
   if (!node.response) return std::optional<BuildingResponseView>();
@@ -126,7 +194,46 @@ Result<std::optional<BuildingResponseView>> loadBuildingResponse(const std::stri
   v.summary = tile->buildings[index];
   const auto first = tile->storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(v.summary.firstStorey);
   v.storeyPeakDrift.assign(first, first + static_cast<std::ptrdiff_t>(v.summary.storeys));
+  if (!tile->storeySpread.empty()) {
+    const auto spread = tile->storeySpread.begin() + static_cast<std::ptrdiff_t>(v.summary.firstStorey);
+    v.storeySpread.assign(spread, spread + static_cast<std::ptrdiff_t>(v.summary.storeys));
+  }
+  if (!tile->scaling.empty()) v.scaling = tile->scaling[index];
+  if (!tile->spread.empty()) v.spread = tile->spread[index];
+  if (!tile->losses.empty()) v.loss = tile->losses[index];
   return std::optional<BuildingResponseView>(std::move(v));
+}
+
+void printBuildingLoss(const BuildingResponseView& r) {
+  if (r.scaling && r.scaling->periodS[0] > 0.0f) {
+    for (int d = 0; d < 2; ++d) {
+      const BuildingScaling& s = *r.scaling;
+      if (s.scale[d] <= 0.0f) continue;
+      std::printf("  %s: T1 %.2f s, target Sa(T1) %.3f g, record Sa(T1) %.3f g, scale %.3f\n", d == 0 ? "X" : "Y",
+                  static_cast<double>(s.periodS[d]), static_cast<double>(s.targetSaG[d]),
+                  static_cast<double>(s.recordSaG[d]), static_cast<double>(s.scale[d]));
+    }
+  }
+  if (r.spread && r.spread->records > 1) {
+    std::printf("  suite: %u records (history of record %u), peak drift beta %.2f, floor acceleration beta %.2f\n",
+                r.spread->records, r.spread->shownRecord + 1, static_cast<double>(r.spread->driftBeta),
+                static_cast<double>(r.spread->accelerationBeta));
+  }
+  if (!r.loss) return;
+  const BuildingLoss& l = *r.loss;
+  std::printf("  P(damage state): none %.3f, slight %.3f, moderate %.3f, extensive %.3f, complete %.3f; collapse %.4f\n",
+              static_cast<double>(l.structural[0]), static_cast<double>(l.structural[1]),
+              static_cast<double>(l.structural[2]), static_cast<double>(l.structural[3]),
+              static_cast<double>(l.structural[4]), static_cast<double>(l.collapse));
+  std::printf("  occupants %.1f%s, injuries %.3f / %.3f / %.3f, deaths %.4f\n", static_cast<double>(l.occupants),
+              (l.flags & kLossOccupantsInferred) != 0 ? " (inferred from floor area and use)" : "",
+              static_cast<double>(l.injuries[0]), static_cast<double>(l.injuries[1]),
+              static_cast<double>(l.injuries[2]), static_cast<double>(l.injuries[3]));
+  std::printf("  repair cost %.0f USD of %.0f USD%s, repair time %.0f days; tags green %.2f, yellow %.2f, red %.2f\n",
+              static_cast<double>(l.repairCostUsd), static_cast<double>(l.replacementValueUsd),
+              (l.flags & kLossValueInferred) != 0 ? " (value inferred from floor area and use)" : "",
+              static_cast<double>(l.repairTimeDays), static_cast<double>(l.tag[0]), static_cast<double>(l.tag[1]),
+              static_cast<double>(l.tag[2]));
 }
 
 }  // namespace
@@ -241,6 +348,7 @@ int runInfo(const CommandArgs& argv) {
           w.field("approximate", approximate);
           w.field("unconverged_steps", std::uint64_t{hasResult ? r->summary.unconvergedSteps : 0u});
           w.field("worst_residual_ratio", hasResult ? r->summary.worstResidualRatio : 0.0f);
+          if (hasResult) writeBuildingLossJson(w, *r);
           w.field("response_out_of_date", t.responseOutOfDate());
           w.endObject();
           std::printf("%s\n", w.str().c_str());
@@ -272,6 +380,7 @@ int runInfo(const CommandArgs& argv) {
                   "relative residual %.2g\n",
                   r->summary.unconvergedSteps, static_cast<double>(r->summary.worstResidualRatio));
             }
+            printBuildingLoss(*r);
           } else if (!t.response) {
             std::printf("  damage no_result (no response yet)\n");
           } else {
@@ -332,6 +441,22 @@ int runInfo(const CommandArgs& argv) {
   if (notes.noResult.size() < damage[5]) reasons["unknown"] += damage[5] - notes.noResult.size();
   std::uint64_t unconvergedSteps = 0;
   for (const ResponseNotes::Approximate& n : notes.approximate) unconvergedSteps += n.unconvergedSteps;
+  // The consequences' totals (responses with HAZUS losses).
+  std::optional<ConsequenceTotals> consequences;
+  if (t.response && t.response->consequences) {
+    const std::string path = dir + "/" + t.response->consequences->file;
+    auto text = readTextFile(path, 64ull << 20);
+    if (!text.ok()) {
+      std::fprintf(stderr, "info: %s\n", text.error().c_str());
+      return kExitDataError;
+    }
+    auto parsedTotals = parseConsequences(*text, path);
+    if (!parsedTotals.ok()) {
+      std::fprintf(stderr, "info: %s\n", parsedTotals.error().c_str());
+      return kExitDataError;
+    }
+    consequences = std::move(parsedTotals).value();
+  }
 
   if (json) {
     JsonWriter w;
@@ -386,6 +511,40 @@ int runInfo(const CommandArgs& argv) {
     w.endObject();
     if (t.response) {
       w.field("motion", t.response->motion).field("scenario", t.response->scenario);
+      const ResponseInfo& ri = *t.response;
+      if (!ri.eventType.empty()) {
+        w.field("event_type", ri.eventType);
+      } else {
+        w.key("event_type").null();
+      }
+      w.field("shaking_field", ri.shakingField).field("scaling", ri.scaling).field("time_of_day", ri.timeOfDay);
+      w.key("records").beginArray();
+      for (const std::string& rec : ri.records) w.value(rec);
+      w.endArray();
+      if (ri.shakemap) {
+        const ResponseInfo::ShakeMap& m = *ri.shakemap;
+        w.key("shakemap").beginObject();
+        w.field("event_id", m.eventId).field("version", m.version).field("process_timestamp", m.processTimestamp);
+        w.field("event_timestamp", m.eventTimestamp).field("description", m.description).field("source", m.source);
+        w.field("magnitude", m.magnitude).field("depth_km", m.depthKm).field("latitude", m.latitudeDeg);
+        w.field("longitude", m.longitudeDeg).endObject();
+      }
+      if (consequences) {
+        w.key("expected_damage_states").beginObject();
+        for (std::size_t k = 0; k < 5; ++k) w.field(kStateNames[k], consequences->city.damageStates[k].expected);
+        w.endObject();
+        w.key("consequences").beginObject();
+        w.field("time_of_day", consequences->timeOfDay);
+        writeLossTotals(w, consequences->city);
+        w.key("districts").beginArray();
+        for (const ConsequenceTotals::District& d : consequences->districts) {
+          w.beginObject().field("name", d.name);
+          writeLossTotals(w, d.totals);
+          w.endObject();
+        }
+        w.endArray();
+        w.endObject();
+      }
       w.key("response")
           .beginObject()
           .field("method", t.response->method)

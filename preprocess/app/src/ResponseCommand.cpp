@@ -1,5 +1,6 @@
-// quakeview-prep response --city DIR (--motion FILE [--dt S] [--units U] [--motion-y FILE] |
-//   --synthetic SEED) [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M]
+// quakeview-prep response --city DIR (--motion FILE|FOLDER... [--dt S] [--units U] [--motion-y FILE] |
+//   --synthetic SEED...) [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M | --shakemap grid.xml]
+//   [--scale-by sa|pga] [--outside-grid error|skip] [--time-of-day night|day|commute] [--districts F]
 #include <cstdio>
 
 #include "Commands.h"
@@ -12,18 +13,30 @@ namespace qv::prep {
 namespace {
 
 const char* const kUsage =
-    "usage: quakeview-prep response --city DIR (--motion FILE [--dt S] [--units g|m/s2|cm/s2] [--motion-y FILE]\n"
-    "                               | --synthetic SEED) [--pga G]\n"
-    "                               [--epicentre LON,LAT,DEPTH_KM --magnitude M [--vs30 M_PER_S]\n"
-    "                                [--site-factor F] [--wave-speed KM_PER_S]] [--threads N]\n"
+    "usage: quakeview-prep response --city DIR (--motion FILE|FOLDER... [--dt S] [--units g|m/s2|cm/s2]\n"
+    "                               [--motion-y FILE] | --synthetic SEED...) [--pga G]\n"
+    "                               [--shakemap GRID.xml [--outside-grid error|skip]\n"
+    "                                | --epicentre LON,LAT,DEPTH_KM --magnitude M [--vs30 M_PER_S]\n"
+    "                                  [--site-factor F]] [--wave-speed KM_PER_S] [--scale-by sa|pga]\n"
+    "                               [--time-of-day night|day|commute] [--districts FILE.geojson]\n"
+    "                               [--threads N]\n"
     "  Analyses every building of the city as an MDOF shear building with Bouc-Wen storeys (X and Y)\n"
-    "  and writes the response tiles into DIR (new files first, the manifest last).\n"
-    "  --motion FILE      a ground-motion record (PEER AT2, one value per line, or time,acceleration);\n"
-    "                     --dt and --units for files that do not say; --motion-y a second component\n"
-    "  --synthetic SEED   a synthetic Kanai-Tajimi motion (two components) instead of a record\n"
-    "  --pga G            scale the record(s) to this peak ground acceleration (g)\n"
-    "  --epicentre ...    a scenario: each building's record is scaled to the PGA the BSSA14 model\n"
-    "                     predicts at its distance and delayed by the S-wave travel time\n";
+    "  under every record of the suite, and writes the response tiles, HAZUS damage probabilities and\n"
+    "  consequences into DIR (new files first, the manifest last).\n"
+    "  --motion FILE...   ground-motion records (PEER AT2, one value per line, or time,acceleration), or\n"
+    "                     folders of them: the suite; --dt and --units for files that do not say;\n"
+    "                     --motion-y a second component (with one record)\n"
+    "  --synthetic SEED.. synthetic Kanai-Tajimi motions (two components each) instead of records\n"
+    "  --pga G            scale the record(s) to this peak ground acceleration (g), without a field\n"
+    "  --shakemap GRID    a USGS ShakeMap grid.xml (3.5 or 4): each building's shaking from the grid at\n"
+    "                     its footprint centre, delayed by the S-wave travel time from its epicentre;\n"
+    "                     --outside-grid skip leaves buildings outside the grid without a result\n"
+    "  --epicentre ...    a scenario: the BSSA14 model at each building's distance\n"
+    "  --scale-by sa|pga  with a ShakeMap or a scenario: each record scaled so its 5 %-damped Sa at the\n"
+    "                     building's first-mode period equals the target there (sa, the default), or\n"
+    "                     to the target PGA (pga)\n"
+    "  --time-of-day T    occupants present for the consequences (HAZUS; default day)\n"
+    "  --districts FILE   GeoJSON polygons with a \"name\": consequence totals per district\n";
 
 }  // namespace
 
@@ -31,11 +44,16 @@ int runResponse(const CommandArgs& argv) {
   std::string error;
   const auto args = Args::parse(argv,
                                 {{"city"},
-                                 {"motion"},
+                                 {"motion", true, true},
+                                 {"shakemap"},
+                                 {"scale-by"},
+                                 {"outside-grid"},
+                                 {"time-of-day"},
+                                 {"districts"},
                                  {"motion-y"},
                                  {"dt"},
                                  {"units"},
-                                 {"synthetic"},
+                                 {"synthetic", true, true},
                                  {"pga"},
                                  {"epicentre"},
                                  {"epicenter"},
@@ -62,16 +80,47 @@ int runResponse(const CommandArgs& argv) {
   const bool hasMotion = args->has("motion"), hasSynthetic = args->has("synthetic");
   if (hasMotion == hasSynthetic) return usage("give exactly one of --motion FILE and --synthetic SEED");
   if (hasSynthetic) {
-    const auto seed = parseInteger(*args->value("synthetic"));
-    if (!seed || *seed < 0) return usage("--synthetic SEED must be a whole number >= 0");
-    options.syntheticSeed = static_cast<std::uint64_t>(*seed);
+    for (const std::string& text : args->values("synthetic")) {
+      const auto seed = parseInteger(text);
+      if (!seed || *seed < 0) return usage("--synthetic SEED must be a whole number >= 0, not '" + text + "'");
+      options.syntheticSeeds.push_back(static_cast<std::uint64_t>(*seed));
+    }
+    if (options.syntheticSeeds.empty()) return usage("--synthetic needs at least one SEED");
+    if (options.syntheticSeeds.size() > 100) return usage("--synthetic: at most 100 seeds in a suite");
     if (args->has("motion-y") || args->has("dt") || args->has("units")) {
       return usage("--motion-y, --dt and --units go with --motion, not --synthetic");
     }
   } else {
-    options.motionX = *args->value("motion");
+    options.motions = args->values("motion");
+    if (options.motions.empty()) return usage("--motion needs at least one FILE or FOLDER");
     options.motionY = args->value("motion-y").value_or("");
   }
+  if (const auto shakemap = args->value("shakemap")) options.shakemap = *shakemap;
+  if (const auto v = args->value("scale-by")) {
+    if (*v == "sa") {
+      options.scaleBy = ScaleBy::SpectralAcceleration;
+    } else if (*v == "pga") {
+      options.scaleBy = ScaleBy::Pga;
+    } else {
+      return usage("--scale-by must be sa or pga, not '" + *v + "'");
+    }
+  }
+  if (const auto v = args->value("outside-grid")) {
+    if (options.shakemap.empty()) return usage("--outside-grid goes with --shakemap");
+    if (*v == "error") {
+      options.outsideGrid = OutsideGrid::Error;
+    } else if (*v == "skip") {
+      options.outsideGrid = OutsideGrid::Skip;
+    } else {
+      return usage("--outside-grid must be error or skip, not '" + *v + "'");
+    }
+  }
+  if (const auto v = args->value("time-of-day")) {
+    const auto t = seismic::parseTimeOfDay(*v);
+    if (!t.ok()) return usage("--time-of-day must be night, day or commute, not '" + *v + "'");
+    options.timeOfDay = *t;
+  }
+  if (const auto v = args->value("districts")) options.districts = *v;
   if (const auto dt = args->value("dt")) {
     const auto v = parseDouble(*dt);
     if (!v || !(*v > 0.0 && *v <= 1.0)) return usage("--dt must be a time step in seconds (0 < dt <= 1)");
@@ -89,6 +138,7 @@ int runResponse(const CommandArgs& argv) {
   const auto epicentre = args->has("epicentre") ? args->value("epicentre") : args->value("epicenter");
   if (epicentre || args->has("magnitude")) {
     if (!epicentre || !args->has("magnitude")) return usage("--epicentre and --magnitude go together");
+    if (!options.shakemap.empty()) return usage("give either --shakemap or --epicentre, not both");
     const auto e = parseNumberList(*epicentre, 3);
     if (!e || std::abs((*e)[0]) > 180.0 || std::abs((*e)[1]) > 85.0 || (*e)[2] < 0.0 || (*e)[2] > 700.0) {
       return usage("--epicentre must be LON,LAT,DEPTH_KM (|lon| <= 180, |lat| <= 85, depth 0..700 km)");
@@ -116,6 +166,20 @@ int runResponse(const CommandArgs& argv) {
       s.shearWaveSpeedKmPerS = *x;
     }
     options.scenario = s;
+  } else if (args->has("vs30") || args->has("site-factor")) {
+    return usage("--vs30 and --site-factor go with --epicentre");
+  }
+  if (const auto v = args->value("wave-speed"); v && !options.scenario) {
+    const auto x = parseDouble(*v);
+    if (!x || *x <= 0.1 || *x > 10.0) return usage("--wave-speed must be in km/s from 0.1 to 10");
+    options.shearWaveSpeedKmPerS = *x;
+  }
+  if (args->has("scale-by") && !options.scenario && options.shakemap.empty()) {
+    return usage("--scale-by goes with --shakemap or --epicentre (without them the records are used as given)");
+  }
+  if (options.pgaG && (options.scenario || !options.shakemap.empty())) {
+    return usage("--pga scales the records without a shaking field; with --shakemap or --epicentre the field "
+                 "sets each building's target");
   }
   if (const auto threads = args->value("threads")) {
     const auto v = parseInteger(*threads);
@@ -132,7 +196,14 @@ int runResponse(const CommandArgs& argv) {
   const ResponseRunReport& r = *report;
   std::printf("response written to %s/%s\n", city->c_str(), r.folder.c_str());
   std::printf("motion      %s\n", r.motion.c_str());
-  if (!r.scenario.empty()) std::printf("scenario    %s\n", r.scenario.c_str());
+  std::printf("shaking     %s%s%s\n",
+              r.eventType.empty() ? "NOT STATED whether a scenario or an actual event" : r.eventType.c_str(),
+              r.scenario.empty() ? "" : ": ", r.scenario.c_str());
+  std::printf("scaling     %s\n", r.scaling.c_str());
+  if (r.outsideGrid > 0) {
+    std::printf("outside     %llu buildings outside the ShakeMap grid have no result (--outside-grid skip)\n",
+                static_cast<unsigned long long>(r.outsideGrid));
+  }
   std::printf(
       "buildings   %llu: none %llu, slight %llu, moderate %llu, extensive %llu, complete %llu, no result %llu\n",
       static_cast<unsigned long long>(r.buildings), static_cast<unsigned long long>(r.damage[0]),
@@ -167,6 +238,28 @@ int runResponse(const CommandArgs& argv) {
         "note        %llu buildings are approximate: %llu solver steps were accepted without Newton convergence "
         "even after splitting them (`info --json` lists the buildings and their residuals)\n",
         static_cast<unsigned long long>(r.approximateBuildings), static_cast<unsigned long long>(r.nonConvergedSteps));
+  }
+  if (r.losses) {
+    const seismic::LossTotals& t = *r.losses;
+    auto line = [](const char* label, const seismic::Estimate& e, const char* unit) {
+      std::printf("  %-22s %14.1f  (90 %%: %.1f to %.1f)%s\n", label, e.expected, e.low, e.high, unit);
+    };
+    std::printf("consequences (HAZUS 5.1, %s occupancy; expected, 90 %% interval):\n",
+                std::string(seismic::timeOfDayName(options.timeOfDay)).c_str());
+    const char* states[5] = {"none", "slight", "moderate", "extensive", "complete"};
+    for (std::size_t k = 0; k < 5; ++k) line(states[k], t.damageStates[k], " buildings");
+    line("collapsed", t.collapsed, " buildings");
+    line("tag green", t.tags[0], " buildings");
+    line("tag yellow", t.tags[1], " buildings");
+    line("tag red", t.tags[2], " buildings");
+    line("occupants present", t.occupants, " people");
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::string label = "injuries severity " + std::to_string(k + 1);
+      line(label.c_str(), t.injuries[k], " people");
+    }
+    line("deaths", t.injuries[3], " people");
+    std::printf("  %-22s %14.3f  (90 %%: %.3f to %.3f) million USD\n", "repair cost", t.repairCostUsd.expected / 1e6,
+                t.repairCostUsd.low / 1e6, t.repairCostUsd.high / 1e6);
   }
   std::printf("time        %.2f s\n", r.seconds);
   return kExitOk;

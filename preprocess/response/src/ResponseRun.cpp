@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <mutex>
 #include <thread>
 
@@ -17,8 +18,11 @@
 #include "qv/prep/HistoryEncoder.h"
 #include "qv/prep/Projection.h"
 #include "qv/prep/ResponseWriter.h"
+#include "qv/prep/ShakeMap.h"
+#include "qv/prep/Consequences.h"
 #include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/GroundMotionReader.h"
+#include "qv/seismic/ResponseSpectrum.h"
 #include "qv/seismic/ResponseSolver.h"
 #include "qv/seismic/SyntheticMotion.h"
 
@@ -88,7 +92,249 @@ DamageState toFormat(seismic::DamageState d) {
   return static_cast<DamageState>(static_cast<std::uint8_t>(d));
 }
 
+// One record of the suite: one or two components, and their spectra when scaling by Sa.
+struct Record {
+  std::string description;
+  seismic::GroundMotion x, y;
+  bool hasY = false;
+  double peakG = 0.0;  // the larger component's peak
+  std::optional<seismic::ResponseSpectrum> spectrumX, spectrumY;
+};
+
+// The files of --motion: each file as given, each folder's regular files (not hidden) by name.
+Result<std::vector<std::string>> expandMotionPaths(const std::vector<std::string>& paths) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> out;
+  for (const std::string& path : paths) {
+    std::error_code ec;
+    if (!fs::is_directory(path, ec)) {
+      out.push_back(path);
+      continue;
+    }
+    std::vector<std::string> files;
+    for (const fs::directory_entry& e : fs::directory_iterator(path, ec)) {
+      const std::string name = e.path().filename().string();
+      if (!name.empty() && name[0] != '.' && e.is_regular_file(ec)) files.push_back(e.path().string());
+    }
+    if (ec) return Error{path + ": cannot list the folder (" + ec.message() + ")"};
+    if (files.empty()) return Error{path + ": the folder holds no record files"};
+    std::sort(files.begin(), files.end());
+    out.insert(out.end(), files.begin(), files.end());
+  }
+  if (out.size() > 100) return Error{"--motion: " + std::to_string(out.size()) + " records (at most 100 in a suite)"};
+  return out;
+}
+
+Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options) {
+  std::vector<Record> records;
+  for (const std::uint64_t seed : options.syntheticSeeds) {
+    seismic::SyntheticMotionParameters p;
+    p.seed = seed;
+    p.peakGroundAccelerationG = options.pgaG.value_or(0.35);
+    auto pair = seismic::generateSyntheticPair(p);
+    if (!pair.ok()) return Error{pair.error()};
+    Record r;
+    r.x = std::move(pair->first);
+    r.y = std::move(pair->second);
+    r.hasY = true;
+    char buffer[128];
+    std::snprintf(buffer, sizeof buffer, "synthetic Kanai-Tajimi, seed %llu, PGA %.2f g, %.0f s",
+                  static_cast<unsigned long long>(p.seed), p.peakGroundAccelerationG, p.durationS);
+    r.description = buffer;
+    records.push_back(std::move(r));
+  }
+  auto files = expandMotionPaths(options.motions);
+  if (!files.ok()) return Error{files.error()};
+  if (!options.motionY.empty() && files->size() != 1) {
+    return Error{"--motion-y goes with exactly one --motion record, not " + std::to_string(files->size())};
+  }
+  seismic::GroundMotionReadOptions read;
+  read.units = options.units;
+  read.timeStepS = options.timeStepS;
+  for (const std::string& file : *files) {
+    auto x = seismic::readGroundMotionFile(file, read);
+    if (!x.ok()) return Error{x.error()};
+    Record r;
+    r.x = std::move(x).value();
+    r.description = describeRecord(file);
+    if (!options.motionY.empty()) {
+      auto y = seismic::readGroundMotionFile(options.motionY, read);
+      if (!y.ok()) return Error{y.error()};
+      r.y = std::move(y).value();
+      if (std::abs(r.y.timeStepS - r.x.timeStepS) > 1e-9) {
+        return Error{options.motionY + ": time step " + std::to_string(r.y.timeStepS) + " s differs from " + file +
+                     "'s " + std::to_string(r.x.timeStepS) + " s"};
+      }
+      r.hasY = true;
+      r.description += " + " + describeRecord(options.motionY);
+    }
+    if (options.pgaG) {
+      // Both components scaled by the same factor, so their ratio is kept.
+      const double peak = std::max(r.x.peakAbsMps2(), r.hasY ? r.y.peakAbsMps2() : 0.0);
+      if (!(peak > 0.0)) return Error{file + ": the record is all zeros, it cannot be scaled to a PGA"};
+      const double factor = *options.pgaG * seismic::kGravityMps2 / peak;
+      for (double& a : r.x.accelerationMps2) a *= factor;
+      for (double& a : r.y.accelerationMps2) a *= factor;
+      char buffer[64];
+      std::snprintf(buffer, sizeof buffer, ", scaled to PGA %.3f g", *options.pgaG);
+      r.description += buffer;
+    }
+    records.push_back(std::move(r));
+  }
+  if (records.empty()) return Error{"no record: give --motion FILE... or --synthetic SEED..."};
+  // A suite mixes one- and two-component records only if every record has the same components.
+  for (Record& r : records) {
+    if (r.hasY != records.front().hasY) {
+      return Error{r.description + ": every record of a suite needs the same components (X only, or X and Y)"};
+    }
+    r.peakG = std::max(r.x.peakAbsMps2(), r.hasY ? r.y.peakAbsMps2() : 0.0) / seismic::kGravityMps2;
+    if (!(r.peakG > 0.0)) return Error{r.description + ": the record is all zeros"};
+  }
+  return records;
+}
+
+// Where each building's shaking comes from: the records as they are, a BSSA14 scenario or a ShakeMap.
+class ShakingField {
+ public:
+  struct Site {
+    double pgaG = 0.0;       // the field's median PGA at the site (0 without a field)
+    double delayS = 0.0;     // S-wave travel time from the hypocentre
+    seismic::SpectralOrdinates spectra{};  // ShakeMap values at the site (g)
+    double distanceKm = 0.0;               // epicentral (Joyner-Boore for the point source)
+  };
+
+  ShakingField(const ResponseRunOptions& options, const Tileset& tileset, std::optional<ShakeMapGrid> grid)
+      : options_(options), projection_(tileset.originLon, tileset.originLat), grid_(std::move(grid)) {
+    if (options.scenario) {
+      hasEpicentre_ = true;
+      epicentre_ = projection_.forward(options.scenario->epicentreLongitudeDeg, options.scenario->epicentreLatitudeDeg);
+      depthKm_ = options.scenario->depthKm;
+      waveSpeed_ = options.scenario->shearWaveSpeedKmPerS;
+    } else if (grid_ && std::isfinite(grid_->event.longitudeDeg) && std::isfinite(grid_->event.latitudeDeg)) {
+      // (A grid without an epicentre: every building shakes from t = 0.)
+      hasEpicentre_ = true;
+      epicentre_ = projection_.forward(grid_->event.longitudeDeg, grid_->event.latitudeDeg);
+      depthKm_ = std::isfinite(grid_->event.depthKm) ? grid_->event.depthKm : 0.0;
+      waveSpeed_ = options.shearWaveSpeedKmPerS;
+    }
+  }
+
+  [[nodiscard]] bool present() const { return options_.scenario.has_value() || grid_.has_value(); }
+  [[nodiscard]] bool spectral() const { return present() && options_.scaleBy == ScaleBy::SpectralAcceleration; }
+
+  /// The site at city coordinates (metres); nullopt outside the ShakeMap's grid.
+  [[nodiscard]] Result<std::optional<Site>> site(double x, double y) const {
+    Site s;
+    if (!present()) return std::optional<Site>(s);
+    s.distanceKm = std::hypot(x - epicentre_.x, y - epicentre_.y) / 1000.0;
+    s.delayS = hasEpicentre_ ? std::hypot(s.distanceKm, depthKm_) / waveSpeed_ : 0.0;
+    if (options_.scenario) {
+      auto site = seismic::shakingAtSite(*options_.scenario, s.distanceKm, 1.0);
+      if (!site.ok()) return Error{site.error()};
+      s.pgaG = site->pgaG;
+      return std::optional<Site>(s);
+    }
+    const auto lonLat = projection_.reverse({x, y});
+    const auto sample = sampleShakeMap(*grid_, lonLat[0], lonLat[1]);
+    if (!sample) return std::optional<Site>();
+    s.pgaG = sample->pgaG;
+    s.spectra = {sample->pgaG, sample->psa03G, sample->psa10G, sample->psa30G};
+    return std::optional<Site>(s);
+  }
+
+  /// The target 5 %-damped Sa (g) at `periodS` for a site.
+  [[nodiscard]] double targetSaG(const Site& site, double periodS) const {
+    if (options_.scenario) {
+      const seismic::Scenario& sc = *options_.scenario;
+      return seismic::bssa14MedianPsaG(periodS, sc.magnitude, site.distanceKm, sc.vs30MetresPerSecond, sc.mechanism) *
+             sc.siteFactor;
+    }
+    return seismic::shakeMapTargetSaG(site.spectra, periodS);
+  }
+
+  [[nodiscard]] double maxDelayS(const Tileset& tileset) const {
+    if (!hasEpicentre_) return 0.0;
+    double maxDelay = 0.0;
+    for (const auto& [cx, cy] :
+         {std::pair{tileset.bounds.minX, tileset.bounds.minY}, std::pair{tileset.bounds.maxX, tileset.bounds.minY},
+          std::pair{tileset.bounds.minX, tileset.bounds.maxY}, std::pair{tileset.bounds.maxX, tileset.bounds.maxY}}) {
+      const double km = std::hypot(cx - epicentre_.x, cy - epicentre_.y) / 1000.0;
+      maxDelay = std::max(maxDelay, std::hypot(km, depthKm_) / waveSpeed_);
+    }
+    return maxDelay;
+  }
+
+  [[nodiscard]] const CityProjection& projection() const { return projection_; }
+
+ private:
+  const ResponseRunOptions& options_;
+  CityProjection projection_;
+  std::optional<ShakeMapGrid> grid_;
+  bool hasEpicentre_ = false;
+  glm::dvec2 epicentre_{0.0};
+  double depthKm_ = 0.0;
+  double waveSpeed_ = 3.5;
+};
+
+// Geometric mean and standard deviation of the logarithms (values floored at `floor`).
+std::pair<double, double> logStats(std::span<const double> values, double floor) {
+  if (values.empty()) return {0.0, 0.0};
+  if (values.size() == 1) return {values[0], 0.0};  // one record: its own value, exactly
+  double sum = 0.0;
+  for (const double v : values) sum += std::log(std::max(v, floor));
+  const double mean = sum / static_cast<double>(values.size());
+  double squares = 0.0;
+  for (const double v : values) squares += (std::log(std::max(v, floor)) - mean) * (std::log(std::max(v, floor)) - mean);
+  const double beta = values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
+  return {std::exp(mean), beta};
+}
+
+// What pass one keeps of a building under one record: peaks only.
+struct Peaks {
+  std::vector<double> storeyDrift;  // per storey, max over directions
+  std::vector<double> floorAcceleration;  // per floor, m/s², max over directions
+  double maxDrift = 0.0, maxAcceleration = 0.0, roof = 0.0;
+};
+
+Peaks peaksOf(const seismic::BuildingResponse& r) {
+  Peaks p;
+  p.storeyDrift.assign(r.storeys, 0.0);
+  p.floorAcceleration.assign(r.storeys, 0.0);
+  for (std::size_t s = 0; s < r.storeys; ++s) {
+    double drift = s < r.x.peakDriftRatio.size() ? r.x.peakDriftRatio[s] : 0.0;
+    double acceleration = s < r.x.peakFloorAccelerationPerFloorMps2.size() ? r.x.peakFloorAccelerationPerFloorMps2[s] : 0.0;
+    if (r.hasY) {
+      if (s < r.y.peakDriftRatio.size()) drift = std::max(drift, static_cast<double>(r.y.peakDriftRatio[s]));
+      if (s < r.y.peakFloorAccelerationPerFloorMps2.size())
+        acceleration = std::max(acceleration, static_cast<double>(r.y.peakFloorAccelerationPerFloorMps2[s]));
+    }
+    p.storeyDrift[s] = drift;
+    p.floorAcceleration[s] = acceleration;
+    p.maxDrift = std::max(p.maxDrift, drift);
+    p.maxAcceleration = std::max(p.maxAcceleration, acceleration);
+  }
+  p.roof = std::max(r.x.peakRoofDisplacementM, r.hasY ? r.y.peakRoofDisplacementM : 0.0f);
+  return p;
+}
+
+// A building of a tile that is analysed: its models, site and per-record shaking.
+struct Analysed {
+  std::size_t index = 0;  // in the tile
+  seismic::ShearBuilding x, y;
+  double periodS[2] = {0.0, 0.0};
+  double targetSaG[2] = {0.0, 0.0};
+  std::vector<seismic::BuildingShaking> shaking;  // per record
+  std::vector<std::array<double, 2>> recordSaG;   // per record, X and Y
+  std::vector<Peaks> peaks;                       // per record (pass one)
+  std::size_t shown = 0;                          // the record whose history is stored
+  ShakingField::Site site;
+};
+
+constexpr double kDriftFloor = 1e-7;         // log statistics: drift ratios below are taken as this
+constexpr double kAccelerationFloor = 1e-4;  // m/s²
+
 }  // namespace
+
 
 Result<ResponseRunReport> runCityResponse(const std::string& dir, const ResponseRunOptions& options) {
   const auto start = Clock::now();
@@ -99,81 +345,70 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   if (!parsed.ok()) return Error{parsed.error()};
   const Tileset tileset = std::move(parsed).value();
 
-  // The ground motion (two components when available).
-  seismic::GroundMotion motionX, motionY;
-  bool hasY = false;
-  if (options.syntheticSeed) {
-    seismic::SyntheticMotionParameters p;
-    p.seed = *options.syntheticSeed;
-    p.peakGroundAccelerationG = options.pgaG.value_or(0.35);
-    auto pair = seismic::generateSyntheticPair(p);
-    if (!pair.ok()) return Error{pair.error()};
-    motionX = std::move(pair->first);
-    motionY = std::move(pair->second);
-    hasY = true;
-    char buffer[128];
-    std::snprintf(buffer, sizeof buffer, "synthetic Kanai-Tajimi, seed %llu, PGA %.2f g, %.0f s",
-                  static_cast<unsigned long long>(p.seed), p.peakGroundAccelerationG, p.durationS);
-    report.motion = buffer;
-  } else {
-    seismic::GroundMotionReadOptions read;
-    read.units = options.units;
-    read.timeStepS = options.timeStepS;
-    auto x = seismic::readGroundMotionFile(options.motionX, read);
-    if (!x.ok()) return Error{x.error()};
-    motionX = std::move(x).value();
-    report.motion = describeRecord(options.motionX);
-    if (!options.motionY.empty()) {
-      auto y = seismic::readGroundMotionFile(options.motionY, read);
-      if (!y.ok()) return Error{y.error()};
-      motionY = std::move(y).value();
-      if (std::abs(motionY.timeStepS - motionX.timeStepS) > 1e-9) {
-        return Error{options.motionY + ": time step " + std::to_string(motionY.timeStepS) + " s differs from " +
-                     options.motionX + "'s " + std::to_string(motionX.timeStepS) + " s"};
-      }
-      hasY = true;
-      report.motion += " + " + describeRecord(options.motionY);
-    }
-    if (options.pgaG) {
-      // Both components scaled by the same factor, so their ratio is kept.
-      const double peak = std::max(motionX.peakAbsMps2(), hasY ? motionY.peakAbsMps2() : 0.0);
-      if (!(peak > 0.0)) return Error{options.motionX + ": the record is all zeros, it cannot be scaled to a PGA"};
-      const double factor = *options.pgaG * seismic::kGravityMps2 / peak;
-      for (double& a : motionX.accelerationMps2) a *= factor;
-      for (double& a : motionY.accelerationMps2) a *= factor;
-      char buffer[64];
-      std::snprintf(buffer, sizeof buffer, ", scaled to PGA %.3f g", *options.pgaG);
-      report.motion += buffer;
-    }
-  }
-  const double recordPeakG =
-      std::max(motionX.peakAbsMps2(), hasY ? motionY.peakAbsMps2() : 0.0) / seismic::kGravityMps2;
-  if (!(recordPeakG > 0.0)) return Error{report.motion + ": the record is all zeros"};
-  const double dt = motionX.timeStepS;
+  auto loaded = loadRecords(options);
+  if (!loaded.ok()) return Error{loaded.error()};
+  std::vector<Record> records = std::move(loaded).value();
+  report.records = records.size();
+  report.motion = records.size() == 1 ? records[0].description
+                                      : std::to_string(records.size()) + " records: " + records[0].description + ", ...";
 
-  // Scenario: the epicentre in the city frame, and the largest delay (farthest corner).
-  glm::dvec2 epicentre(0.0);
-  double maxDelay = 0.0;
-  if (options.scenario) {
-    const CityProjection projection(tileset.originLon, tileset.originLat);
-    epicentre = projection.forward(options.scenario->epicentreLongitudeDeg, options.scenario->epicentreLatitudeDeg);
-    for (const auto& [cx, cy] :
-         {std::pair{tileset.bounds.minX, tileset.bounds.minY}, std::pair{tileset.bounds.maxX, tileset.bounds.minY},
-          std::pair{tileset.bounds.minX, tileset.bounds.maxY}, std::pair{tileset.bounds.maxX, tileset.bounds.maxY}}) {
-      const double km = std::hypot(cx - epicentre.x, cy - epicentre.y) / 1000.0;
-      auto site = seismic::shakingAtSite(*options.scenario, km, recordPeakG);
-      if (!site.ok()) return Error{"scenario: " + site.error()};
-      maxDelay = std::max(maxDelay, site->delaySeconds);
+  std::optional<ShakeMapGrid> grid;
+  if (!options.shakemap.empty()) {
+    auto g = readShakeMapGrid(options.shakemap);
+    if (!g.ok()) return Error{g.error()};
+    if (options.scaleBy == ScaleBy::SpectralAcceleration && !g->hasSpectra()) {
+      return Error{options.shakemap +
+                   ": the grid has no PSA03, PSA10 and PSA30 fields, which scaling by Sa(T1) needs (or give "
+                   "--scale-by pga)"};
     }
-    report.scenario = describeScenario(*options.scenario);
+    grid = std::move(g).value();
   }
-  const double record = std::max(motionX.durationS(), hasY ? motionY.durationS() : 0.0) + dt;
-  const auto frames = static_cast<std::size_t>(std::ceil((maxDelay + record + kTailSeconds) / dt)) + 1;
+  const ShakingField field(options, tileset, grid);
+  if (field.spectral()) {
+    for (Record& r : records) {
+      auto x = seismic::ResponseSpectrum::compute(r.x);
+      if (!x.ok()) return Error{r.description + ": " + x.error()};
+      r.spectrumX = std::move(x).value();
+      if (r.hasY) {
+        auto y = seismic::ResponseSpectrum::compute(r.y);
+        if (!y.ok()) return Error{r.description + ": " + y.error()};
+        r.spectrumY = std::move(y).value();
+      }
+    }
+  }
+  if (options.scenario) {
+    report.scenario = describeScenario(*options.scenario);
+    report.eventType = "SCENARIO";
+  } else if (grid) {
+    const ShakeMapEvent& e = grid->event;
+    char buffer[256];
+    std::snprintf(buffer, sizeof buffer, "ShakeMap %s version %s (%s): M%.1f at %.4f, %.4f, depth %.0f km",
+                  e.eventId.c_str(), e.shakemapVersion.c_str(), std::string(shakeMapEventTypeName(e.type)).c_str(),
+                  e.magnitude, e.longitudeDeg, e.latitudeDeg, e.depthKm);
+    report.scenario = buffer;
+    // Never guessed: a grid that does not say whether it is a scenario leaves the type unstated.
+    report.eventType = e.type == ShakeMapEventType::Actual     ? "ACTUAL"
+                       : e.type == ShakeMapEventType::Scenario ? "SCENARIO"
+                                                               : "";
+  } else {
+    report.eventType = "SCENARIO";  // records chosen by the user: a scenario, not an event's own shaking
+  }
+  report.scaling = !field.present() ? "records as given"
+                   : field.spectral()
+                       ? "each record scaled to the target Sa(T1) at each building's first-mode period, per direction"
+                       : "each record scaled to the target PGA at each building";
+
+  // The output step: the finest record step; the time axis covers the last arrival and the longest record.
+  double dt = records[0].x.timeStepS;
+  double longest = 0.0;
+  for (const Record& r : records) {
+    dt = std::min(dt, r.x.timeStepS);
+    longest = std::max(longest, std::max(r.x.durationS(), r.hasY ? r.y.durationS() : 0.0));
+  }
+  const double maxDelay = field.maxDelayS(tileset);
+  const auto frames = static_cast<std::size_t>(std::ceil((maxDelay + longest + dt + kTailSeconds) / dt)) + 1;
   report.frames = frames;
   report.timeStepS = dt;
-
-  auto writer = ResponseWriter::create(dir, tileset);
-  if (!writer.ok()) return Error{writer.error()};
 
   std::vector<std::uint32_t> leaves;
   std::uint64_t totalBuildings = 0;
@@ -183,6 +418,36 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
       totalBuildings += tileset.nodes[i].buildings;
     }
   }
+  // Buildings outside the ShakeMap: an error naming how many, unless --outside-grid skip.
+  if (grid && options.outsideGrid == OutsideGrid::Error) {
+    std::uint64_t outside = 0;
+    for (const std::uint32_t node : leaves) {
+      const std::string path = dir + "/" + tileset.nodes[node].file;
+      auto bytes = readFile(path);
+      if (!bytes.ok()) return Error{bytes.error()};
+      auto tile = decodeCityTile(*bytes, path);
+      if (!tile.ok()) return Error{tile.error()};
+      for (const TileBuilding& b : tile->buildings) {
+        auto site = field.site(b.attributes.centroidX + tile->originX, b.attributes.centroidY + tile->originY);
+        if (site.ok() && !site->has_value()) ++outside;
+      }
+    }
+    if (outside > 0) {
+      return Error{options.shakemap + ": " + std::to_string(outside) + " of the city's " +
+                   std::to_string(totalBuildings) + " buildings lie outside the grid (" + grid->describeExtent() +
+                   "); give --outside-grid skip to leave them without a result"};
+    }
+  }
+
+  std::optional<Districts> districts;
+  if (!options.districts.empty()) {
+    auto d = readDistricts(options.districts);
+    if (!d.ok()) return Error{d.error()};
+    districts = std::move(d).value();
+  }
+
+  auto writer = ResponseWriter::create(dir, tileset);
+  if (!writer.ok()) return Error{writer.error()};
   // Big tiles first, for an even finish across threads.
   std::sort(leaves.begin(), leaves.end(),
             [&](std::uint32_t a, std::uint32_t b) { return tileset.nodes[a].buildings > tileset.nodes[b].buildings; });
@@ -194,23 +459,36 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   std::string firstError;
   std::vector<double> relativeErrors;
   relativeErrors.reserve(static_cast<std::size_t>(totalBuildings));
+  std::vector<seismic::BuildingLoss> losses;  // every building with a result
+  std::vector<int> lossDistrict;              // its district (-1: none)
   double rateSum = 0.0;
   std::uint64_t rateCount = 0;
+  const bool suite = records.size() > 1;
   Progress progress("solving buildings", totalBuildings);
 
   auto worker = [&] {
-    seismic::ResponseOptions solverOptions;
-    solverOptions.outputStepS = dt;
-    solverOptions.frameCount = frames;
-    solverOptions.floorDisplacements = true;
-    seismic::ResponseSolver solver(solverOptions);
+    seismic::ResponseOptions historyOptions;
+    historyOptions.outputStepS = dt;
+    historyOptions.frameCount = frames;
+    historyOptions.floorDisplacements = true;
+    seismic::ResponseSolver historySolver(historyOptions);
+    seismic::ResponseOptions peakOptions = historyOptions;
+    peakOptions.floorDisplacements = false;
+    seismic::ResponseSolver peakSolver(peakOptions);
     HistoryEncodingOptions encoding;
     encoding.toleranceFraction = options.historyTolerance;
     std::vector<double> localErrors;
-    double localSolve = 0.0, localEncode = 0.0, localRate = 0.0;
+    std::vector<seismic::BuildingLoss> localLosses;
+    std::vector<int> localDistricts;
+    double localSolve = 0.0, localEncode = 0.0, localRate = 0.0, localLoss = 0.0;
     std::uint64_t localRateCount = 0;
     std::uint64_t localStoreySteps = 0;  // storeys × record steps × directions
     std::uint64_t localAttempts = 0;
+    std::uint64_t localOutside = 0;
+    auto setError = [&](std::string message) {
+      const std::lock_guard lock(mutex);
+      if (firstError.empty()) firstError = std::move(message);
+    };
     for (std::size_t k = next++; k < leaves.size(); k = next++) {
       if (interrupted()) return;
       {
@@ -222,15 +500,9 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
       auto bytes = readFile(dir + "/" + n.file);
       Result<CityTile> tile =
           bytes.ok() ? decodeCityTile(*bytes, dir + "/" + n.file) : Result<CityTile>(Error{bytes.error()});
-      if (!tile.ok()) {
-        const std::lock_guard lock(mutex);
-        if (firstError.empty()) firstError = tile.error();
-        return;
-      }
+      if (!tile.ok()) return setError(tile.error());
       std::vector<BuildingResult> results(tile->buildings.size());
-      std::vector<seismic::ShearBuilding> modelsX, modelsY;
-      std::vector<seismic::BuildingShaking> shaking;
-      std::vector<std::size_t> indexOf;  // solver index -> building index
+      std::vector<Analysed> analysed;
       for (std::size_t b = 0; b < tile->buildings.size(); ++b) {
         const BuildingAttributes& a = tile->buildings[b].attributes;
         BuildingResult& result = results[b];
@@ -254,92 +526,231 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
           noResult(NoResultReason::ModelInvalid, !mx.ok() ? mx.error() : my.error());
           continue;
         }
-        seismic::BuildingShaking s;
-        double pga = recordPeakG;
-        if (options.scenario) {
-          const double km =
-              std::hypot(a.centroidX + tile->originX - epicentre.x, a.centroidY + tile->originY - epicentre.y) / 1000.0;
-          auto site = seismic::shakingAtSite(*options.scenario, km, recordPeakG);
-          if (!site.ok()) {
-            noResult(NoResultReason::OutsideField, site.error());
-            continue;
-          }
-          s.scale = site->scale;
-          s.delaySeconds = site->delaySeconds;
-          pga = site->pgaG;
+        auto site = field.site(a.centroidX + tile->originX, a.centroidY + tile->originY);
+        if (!site.ok()) {
+          noResult(NoResultReason::OutsideField, site.error());
+          continue;
         }
-        results[b].summary.pgaG = static_cast<float>(pga);
-        modelsX.push_back(std::move(mx).value());
-        modelsY.push_back(std::move(my).value());
-        shaking.push_back(s);
-        indexOf.push_back(b);
+        if (!site->has_value()) {
+          ++localOutside;
+          noResult(NoResultReason::OutsideField, "outside the ShakeMap grid (" + grid->describeExtent() + ")");
+          continue;
+        }
+        Analysed item;
+        item.index = b;
+        item.site = **site;
+        item.x = std::move(mx).value();
+        item.y = std::move(my).value();
+        if (field.spectral()) {
+          for (int d = 0; d < 2; ++d) {
+            auto period = seismic::firstModePeriodS(d == 0 ? item.x : item.y);
+            if (!period.ok()) return setError("building " + a.id + ": " + period.error());
+            item.periodS[d] = *period;
+            item.targetSaG[d] = field.targetSaG(item.site, *period);
+          }
+        }
+        bool scalable = true;
+        for (const Record& r : records) {
+          seismic::BuildingShaking shaking;
+          shaking.delaySeconds = item.site.delayS;
+          std::array<double, 2> recordSa{0.0, 0.0};
+          if (field.spectral()) {
+            for (int d = 0; d < (r.hasY ? 2 : 1); ++d) {
+              recordSa[d] = (d == 0 ? r.spectrumX : r.spectrumY)->saG(item.periodS[d]);
+              if (!(recordSa[d] > 0.0) || !(item.targetSaG[d] > 0.0)) scalable = false;
+            }
+            if (scalable) {
+              shaking.scale = item.targetSaG[0] / recordSa[0];
+              if (r.hasY) shaking.scaleY = item.targetSaG[1] / recordSa[1];
+            }
+          } else if (field.present()) {
+            shaking.scale = item.site.pgaG / r.peakG;
+          }
+          item.shaking.push_back(shaking);
+          item.recordSaG.push_back(recordSa);
+        }
+        if (!scalable) {
+          noResult(NoResultReason::OutsideField, "no positive target or record Sa at the building's period");
+          continue;
+        }
+        analysed.push_back(std::move(item));
       }
+
+      // Pass one (suites): every record, peaks only.
       const double solveStart = threadCpuSeconds();
       double encodeTime = 0.0;
-      const Status solved = solver.solve(
-          modelsX, shaking, motionX, hasY ? &motionY : nullptr,
-          [&](std::size_t i, const seismic::BuildingResponse& r) {
-            const double encodeStart = threadCpuSeconds();
-            BuildingResult& out = results[indexOf[i]];
-            const std::span<const float> y =
-                r.hasY ? std::span<const float>(r.y.floorDisplacementM) : std::span<const float>();
-            EncodedHistory h = encodeHistory(r.x.floorDisplacementM, y, r.storeys, r.frames, r.timeStepS, encoding);
-            out.history = std::move(h.history);
-            out.summary.source = ResponseSource::Model;
-            out.summary.storeys = static_cast<std::uint16_t>(r.storeys);
-            out.summary.damage = toFormat(r.damage);
-            out.summary.peakDriftRatio = r.maxDriftRatio;
-            out.summary.peakRoofDisplacementM = static_cast<float>(h.peakRoofM);
-            out.summary.peakFloorAccelerationMs2 =
-                std::max(r.x.peakFloorAccelerationMps2, r.hasY ? r.y.peakFloorAccelerationMps2 : 0.0f);
-            float residual = 0.0f;
-            out.storeyPeakDrift.assign(r.storeys, 0.0f);
-            for (std::size_t s = 0; s < r.storeys; ++s) {
-              float peak = s < r.x.peakDriftRatio.size() ? r.x.peakDriftRatio[s] : 0.0f;
-              float res = s < r.x.residualDriftRatio.size() ? std::abs(r.x.residualDriftRatio[s]) : 0.0f;
-              if (r.hasY) {
-                if (s < r.y.peakDriftRatio.size()) peak = std::max(peak, r.y.peakDriftRatio[s]);
-                if (s < r.y.residualDriftRatio.size()) res = std::max(res, std::abs(r.y.residualDriftRatio[s]));
-              }
-              out.storeyPeakDrift[s] = peak;
-              residual = std::max(residual, res);
+      std::vector<seismic::ShearBuilding> modelsX, modelsY;
+      std::vector<seismic::BuildingShaking> shaking;
+      std::vector<std::size_t> members;
+      auto gather = [&](std::size_t record, const std::vector<std::size_t>& which) {
+        modelsX.clear();
+        modelsY.clear();
+        shaking.clear();
+        for (const std::size_t i : which) {
+          modelsX.push_back(analysed[i].x);
+          modelsY.push_back(analysed[i].y);
+          shaking.push_back(analysed[i].shaking[record]);
+        }
+      };
+      std::vector<std::size_t> everyone(analysed.size());
+      for (std::size_t i = 0; i < analysed.size(); ++i) everyone[i] = i;
+      std::vector<std::uint32_t> unconverged(analysed.size(), 0);
+      std::vector<float> worstResidual(analysed.size(), 0.0f);
+      if (suite) {
+        for (std::size_t r = 0; r < records.size(); ++r) {
+          gather(r, everyone);
+          const Status solved = peakSolver.solve(
+              modelsX, shaking, records[r].x, records[r].hasY ? &records[r].y : nullptr,
+              [&](std::size_t i, const seismic::BuildingResponse& response) {
+                analysed[i].peaks.push_back(peaksOf(response));
+                unconverged[i] += response.nonConvergedSteps;
+                worstResidual[i] = std::max(worstResidual[i], response.worstResidualRatio);
+                localStoreySteps += response.storeys * response.frames * (response.hasY ? 2u : 1u);
+              },
+              modelsY);
+          if (!solved.ok()) return setError("tile " + n.key() + ": " + solved.error());
+        }
+        for (Analysed& item : analysed) {
+          std::vector<double> roofs;
+          for (const Peaks& p : item.peaks) roofs.push_back(p.roof);
+          const double median = logStats(roofs, 1e-9).first;
+          double best = std::numeric_limits<double>::infinity();
+          for (std::size_t r = 0; r < roofs.size(); ++r) {
+            const double distance = std::abs(std::log(std::max(roofs[r], 1e-9)) - std::log(median));
+            if (distance < best) {
+              best = distance;
+              item.shown = r;
             }
-            out.summary.residualDriftRatio = residual;
-            out.summary.noResultReason = NoResultReason::None;
-            out.summary.approximate = r.nonConvergedSteps > 0;
-            out.summary.unconvergedSteps = r.nonConvergedSteps;
-            out.summary.worstResidualRatio = r.worstResidualRatio;
-            localErrors.push_back(h.relativeError());
-            localAttempts += static_cast<std::uint64_t>(h.attempts);
-            localRate += out.history.sampleRateHz;
-            localStoreySteps += r.storeys * r.frames * (r.hasY ? 2u : 1u);
-            ++localRateCount;
-            encodeTime += threadCpuSeconds() - encodeStart;
-            progress.update(++buildingsDone);
-          },
-          modelsY);
+          }
+        }
+      }
+
+      // Pass two: the stored history, each building under its shown record.
+      for (std::size_t r = 0; r < records.size(); ++r) {
+        members.clear();
+        for (std::size_t i = 0; i < analysed.size(); ++i) {
+          if (analysed[i].shown == r) members.push_back(i);
+        }
+        if (members.empty()) continue;
+        gather(r, members);
+        const Record& record = records[r];
+        const Status solved = historySolver.solve(
+            modelsX, shaking, record.x, record.hasY ? &record.y : nullptr,
+            [&](std::size_t m, const seismic::BuildingResponse& response) {
+              const double encodeStart = threadCpuSeconds();
+              const std::size_t i = members[m];
+              Analysed& item = analysed[i];
+              if (!suite) {
+                item.peaks = {peaksOf(response)};
+                unconverged[i] = response.nonConvergedSteps;
+                worstResidual[i] = response.worstResidualRatio;
+                localStoreySteps += response.storeys * response.frames * (response.hasY ? 2u : 1u);
+              }
+              BuildingResult& out = results[item.index];
+              const std::span<const float> y =
+                  response.hasY ? std::span<const float>(response.y.floorDisplacementM) : std::span<const float>();
+              EncodedHistory h =
+                  encodeHistory(response.x.floorDisplacementM, y, response.storeys, response.frames, response.timeStepS,
+                                encoding);
+              out.history = std::move(h.history);
+              // Across the suite: medians and log standard deviations of the peaks.
+              std::vector<double> values(item.peaks.size());
+              auto stats = [&](auto pick, double floor) {
+                for (std::size_t q = 0; q < item.peaks.size(); ++q) values[q] = pick(item.peaks[q]);
+                return logStats(values, floor);
+              };
+              const auto [medianDrift, driftBeta] = stats([](const Peaks& p) { return p.maxDrift; }, kDriftFloor);
+              const auto [medianAcceleration, accelerationBeta] =
+                  stats([](const Peaks& p) { return p.maxAcceleration; }, kAccelerationFloor);
+              out.summary.source = ResponseSource::Model;
+              out.summary.storeys = static_cast<std::uint16_t>(response.storeys);
+              out.summary.damage = toFormat(seismic::classifyDamage(medianDrift, item.x.damageDriftThresholds));
+              out.summary.peakDriftRatio = static_cast<float>(medianDrift);
+              out.summary.peakRoofDisplacementM = static_cast<float>(h.peakRoofM);
+              out.summary.peakFloorAccelerationMs2 = static_cast<float>(medianAcceleration);
+              const double appliedX = record.x.peakAbsMps2() * item.shaking[r].scale;
+              const double appliedY =
+                  record.hasY ? record.y.peakAbsMps2() *
+                                    (item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY : item.shaking[r].scale)
+                              : 0.0;
+              out.summary.pgaG = static_cast<float>(std::max(appliedX, appliedY) / seismic::kGravityMps2);
+              out.storeyPeakDrift.assign(response.storeys, 0.0f);
+              out.storeySpread.assign(response.storeys, StoreySpread{});
+              float residual = 0.0f;
+              for (std::size_t s = 0; s < response.storeys; ++s) {
+                const auto [drift, beta] = stats([s](const Peaks& p) { return p.storeyDrift[s]; }, kDriftFloor);
+                const auto [acceleration, aBeta] =
+                    stats([s](const Peaks& p) { return p.floorAcceleration[s]; }, kAccelerationFloor);
+                out.storeyPeakDrift[s] = static_cast<float>(drift);
+                out.storeySpread[s] = {static_cast<float>(beta), static_cast<float>(acceleration),
+                                       static_cast<float>(aBeta)};
+                float res = s < response.x.residualDriftRatio.size() ? std::abs(response.x.residualDriftRatio[s]) : 0.0f;
+                if (response.hasY && s < response.y.residualDriftRatio.size())
+                  res = std::max(res, std::abs(response.y.residualDriftRatio[s]));
+                residual = std::max(residual, res);
+              }
+              out.summary.residualDriftRatio = residual;
+              out.summary.noResultReason = NoResultReason::None;
+              out.summary.approximate = unconverged[i] > 0;
+              out.summary.unconvergedSteps = unconverged[i];
+              out.summary.worstResidualRatio = worstResidual[i];
+              out.spread = BuildingSpread{static_cast<std::uint16_t>(records.size()), static_cast<std::uint16_t>(r),
+                                          static_cast<float>(driftBeta), static_cast<float>(accelerationBeta)};
+              BuildingScaling scaling;
+              for (int d = 0; d < 2; ++d) {
+                scaling.periodS[d] = static_cast<float>(item.periodS[d]);
+                scaling.targetSaG[d] = static_cast<float>(item.targetSaG[d]);
+                scaling.recordSaG[d] = static_cast<float>(item.recordSaG[r][d]);
+                scaling.scale[d] = static_cast<float>(
+                    d == 1 && item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY : item.shaking[r].scale);
+              }
+              out.scaling = scaling;
+              localErrors.push_back(h.relativeError());
+              localAttempts += static_cast<std::uint64_t>(h.attempts);
+              localRate += out.history.sampleRateHz;
+              ++localRateCount;
+              encodeTime += threadCpuSeconds() - encodeStart;
+              // HAZUS probabilities and consequences from the suite's medians and spread.
+              const double lossStart = threadCpuSeconds();
+              const BuildingAttributes& a = tile->buildings[item.index].attributes;
+              seismic::Exposure exposure;
+              exposure.type = item.x.structuralType;
+              exposure.era = item.x.codeEra;
+              exposure.storeys = static_cast<int>(response.storeys);
+              exposure.occupancy = seismic::occupancyFromUse(a.use, exposure.storeys);
+              exposure.floorAreaM2 = static_cast<double>(a.footprintAreaM2) * static_cast<double>(response.storeys);
+              const seismic::BuildingLoss loss =
+                  seismic::assessLoss(exposure, medianDrift, medianAcceleration / seismic::kGravityMps2, driftBeta,
+                                      accelerationBeta, options.timeOfDay);
+              out.loss = toSummaryLoss(loss);
+              localLosses.push_back(loss);
+              if (districts) {
+                const auto lonLat = field.projection().reverse({a.centroidX + tile->originX, a.centroidY + tile->originY});
+                localDistricts.push_back(districts->find(lonLat[0], lonLat[1]));
+              }
+              localLoss += threadCpuSeconds() - lossStart;
+              progress.update(++buildingsDone);
+            },
+            modelsY);
+        if (!solved.ok()) return setError("tile " + n.key() + ": " + solved.error());
+      }
       localSolve += threadCpuSeconds() - solveStart - encodeTime;
       localEncode += encodeTime;
-      if (!solved.ok()) {
-        const std::lock_guard lock(mutex);
-        if (firstError.empty()) firstError = "tile " + n.key() + ": " + solved.error();
-        return;
-      }
-      if (Status s = (*writer)->writeLeaf(node, *tile, results); !s.ok()) {
-        const std::lock_guard lock(mutex);
-        if (firstError.empty()) firstError = s.error();
-        return;
-      }
+      if (Status s = (*writer)->writeLeaf(node, *tile, results); !s.ok()) return setError(s.error());
     }
     const std::lock_guard lock(mutex);
     relativeErrors.insert(relativeErrors.end(), localErrors.begin(), localErrors.end());
+    losses.insert(losses.end(), localLosses.begin(), localLosses.end());
+    lossDistrict.insert(lossDistrict.end(), localDistricts.begin(), localDistricts.end());
     report.solveSeconds += localSolve;
     report.encodeSeconds += localEncode;
+    report.lossSeconds += localLoss;
     report.storeySteps += localStoreySteps;
     report.encodingAttempts += localAttempts;
+    report.outsideGrid += localOutside;
     rateSum += localRate;
     rateCount += localRateCount;
-    report.nonConvergedSteps += solver.stats().nonConvergedSteps;
+    report.nonConvergedSteps += historySolver.stats().nonConvergedSteps + peakSolver.stats().nonConvergedSteps;
   };
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
@@ -352,19 +763,61 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   ResponseInfo info;
   info.motion = report.motion;
   info.scenario = report.scenario;
-  info.method = "MDOF shear building, Bouc-Wen storeys, Newmark average acceleration";
+  info.method = suite ? "MDOF shear building, Bouc-Wen storeys, Newmark average acceleration; medians over " +
+                            std::to_string(records.size()) + " records"
+                      : "MDOF shear building, Bouc-Wen storeys, Newmark average acceleration";
+  info.eventType = report.eventType;
+  info.shakingField = options.scenario ? "scenario" : grid ? "shakemap" : "record";
+  info.scaling = !field.present() ? "" : field.spectral() ? "sa" : "pga";
+  for (const Record& r : records) info.records.push_back(r.description);
+  info.timeOfDay = std::string(seismic::timeOfDayName(options.timeOfDay));
+  if (grid) {
+    const ShakeMapEvent& e = grid->event;
+    ResponseInfo::ShakeMap m;
+    m.eventId = e.eventId;
+    m.version = e.shakemapVersion;
+    m.processTimestamp = e.processTimestamp;
+    m.eventTimestamp = e.eventTimestamp;
+    m.description = e.description;
+    m.source = e.network;
+    m.magnitude = std::isfinite(e.magnitude) ? e.magnitude : 0.0;
+    m.depthKm = std::isfinite(e.depthKm) ? e.depthKm : 0.0;
+    m.latitudeDeg = std::isfinite(e.latitudeDeg) ? e.latitudeDeg : 0.0;
+    m.longitudeDeg = std::isfinite(e.longitudeDeg) ? e.longitudeDeg : 0.0;
+    info.shakemap = m;
+  }
   info.durationSeconds = static_cast<double>(frames - 1) * dt;
   info.sampleRateHz = rateCount > 0 ? rateSum / static_cast<double>(rateCount) : 0.0;
   // The input record for the viewer's plot: the largest |a| of every 0.1 s, in g.
   info.motionPreviewRateHz = 10.0;
-  const auto perWindow = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.1 / dt)));
-  for (std::size_t i = 0; i < motionX.size(); i += perWindow) {
+  const seismic::GroundMotion& preview = records[0].x;
+  const auto perWindow = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.1 / preview.timeStepS)));
+  for (std::size_t i = 0; i < preview.size(); i += perWindow) {
     double best = 0.0;
-    for (std::size_t k = i; k < std::min(motionX.size(), i + perWindow); ++k) {
-      if (std::abs(motionX.accelerationMps2[k]) > std::abs(best)) best = motionX.accelerationMps2[k];
+    for (std::size_t k = i; k < std::min(preview.size(), i + perWindow); ++k) {
+      if (std::abs(preview.accelerationMps2[k]) > std::abs(best)) best = preview.accelerationMps2[k];
     }
     info.motionPreviewG.push_back(static_cast<float>(best / seismic::kGravityMps2));
   }
+  // The consequences' totals: the city, and each district.
+  const double totalsStart = threadCpuSeconds();
+  ConsequenceTotals totals;
+  totals.timeOfDay = info.timeOfDay;
+  totals.city = seismic::totalLosses(losses);
+  if (districts) {
+    for (std::size_t d = 0; d < districts->names.size(); ++d) {
+      std::vector<seismic::BuildingLoss> inside;
+      for (std::size_t i = 0; i < losses.size(); ++i) {
+        if (lossDistrict[i] == static_cast<int>(d)) inside.push_back(losses[i]);
+      }
+      totals.districts.push_back({districts->names[d], seismic::totalLosses(inside)});
+    }
+  }
+  report.losses = totals.city;
+  report.lossSeconds += threadCpuSeconds() - totalsStart;
+  auto consequences = (*writer)->writeFile("consequences.json", consequencesToJson(totals));
+  if (!consequences.ok()) return Error{consequences.error()};
+  info.consequences = *consequences;
   auto written = (*writer)->commit(info);
   if (!written.ok()) return Error{written.error()};
   report.buildings = totalBuildings;

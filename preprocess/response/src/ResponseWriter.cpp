@@ -47,6 +47,41 @@ NoResultReason reasonFromName(std::string_view name) {
   return NoResultReason::Unknown;
 }
 
+// Lays buildings out in a summary tile (storey values after each other) and keeps an optional
+// section only when some building has its value (the others then get zeros).
+class SummaryBuilder {
+ public:
+  /// `r` null: a building without a response (not in the results).
+  void add(const BuildingResult* r) {
+    BuildingResponse s = r != nullptr ? r->summary : BuildingResponse{};
+    s.firstStorey = static_cast<std::uint32_t>(tile_.storeyPeakDrift.size());
+    for (std::uint16_t k = 0; k < s.storeys; ++k) {
+      tile_.storeyPeakDrift.push_back(k < r->storeyPeakDrift.size() ? r->storeyPeakDrift[k] : 0.0f);
+      tile_.storeySpread.push_back(k < r->storeySpread.size() ? r->storeySpread[k] : StoreySpread{});
+    }
+    tile_.buildings.push_back(s);
+    const bool result = r != nullptr && s.source != ResponseSource::None;
+    tile_.scaling.push_back(result && r->scaling ? *r->scaling : BuildingScaling{});
+    tile_.spread.push_back(result && r->spread ? *r->spread : BuildingSpread{});
+    tile_.losses.push_back(result && r->loss ? *r->loss : BuildingLoss{});
+    hasScaling_ = hasScaling_ || (result && r->scaling);
+    hasSpread_ = hasSpread_ || (result && r->spread);
+    hasStoreySpread_ = hasStoreySpread_ || (result && !r->storeySpread.empty());
+    hasLoss_ = hasLoss_ || (result && r->loss);
+  }
+  ResponseSummaryTile& finish() {
+    if (!hasScaling_) tile_.scaling.clear();
+    if (!hasSpread_) tile_.spread.clear();
+    if (!hasStoreySpread_) tile_.storeySpread.clear();
+    if (!hasLoss_) tile_.losses.clear();
+    return tile_;
+  }
+
+ private:
+  ResponseSummaryTile tile_;
+  bool hasScaling_ = false, hasSpread_ = false, hasStoreySpread_ = false, hasLoss_ = false;
+};
+
 }  // namespace
 
 std::string responseNotesToJson(const ResponseNotes& notes) {
@@ -144,28 +179,22 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
     return Error{"internal: results do not match tile " + std::to_string(node)};
   }
   const TileNode& n = tileset_.nodes[node];
-  ResponseSummaryTile summary;
+  SummaryBuilder summary;
   ResponseHistoryTile history;
   history.durationSeconds = 0.0f;
-  for (std::size_t b = 0; b < results.size(); ++b) {
-    BuildingResult& r = results[b];
-    BuildingResponse s = r.summary;
-    if (s.source == ResponseSource::None) {
-      s.storeys = 0;
-      s.damage = DamageState::NoResult;
+  for (BuildingResult& r : results) {
+    if (r.summary.source == ResponseSource::None) {
+      r.summary.storeys = 0;
+      r.summary.damage = DamageState::NoResult;
     }
-    s.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
-    for (std::uint16_t k = 0; k < s.storeys; ++k) {
-      summary.storeyPeakDrift.push_back(k < r.storeyPeakDrift.size() ? r.storeyPeakDrift[k] : 0.0f);
-    }
-    summary.buildings.push_back(s);
+    summary.add(&r);
     if (r.history.sampleCount > 0 && r.history.sampleRateHz > 0.0f) {
       history.durationSeconds =
           std::max(history.durationSeconds, static_cast<float>(r.history.sampleCount - 1) / r.history.sampleRateHz);
     }
     history.buildings.push_back(std::move(r.history));
   }
-  const std::vector<std::uint8_t> summaryBytes = encodeResponseSummary(summary);
+  const std::vector<std::uint8_t> summaryBytes = encodeResponseSummary(summary.finish());
   const std::vector<std::uint8_t> historyBytes = encodeResponseHistory(history);
   TileResponseFiles files;
   files.summaryFile = folder_ + "/" + tileStem(n) + ".qvs";
@@ -182,23 +211,30 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
   report_.summaryBytes += summaryBytes.size();
   report_.historyBytes += historyBytes.size();
   for (std::size_t b = 0; b < tile.buildings.size(); ++b) {
-    const BuildingResponse& s = summary.buildings[b];
+    BuildingResult& r = results[b];
+    const BuildingResponse& s = r.summary;
     ++report_.damage[damageIndex(s.damage)];
     const std::string& id = tile.buildings[b].attributes.id;
     if (s.source == ResponseSource::None) {
       const NoResultReason reason =
           s.noResultReason == NoResultReason::None ? NoResultReason::Unknown : s.noResultReason;
       ++report_.noResultReasons[reason];
-      notes_.noResult.push_back({id, reason, results[b].noResultDetail});
+      notes_.noResult.push_back({id, reason, r.noResultDetail});
     } else if (s.approximate) {
       ++report_.approximate;
       notes_.approximate.push_back({id, s.unconvergedSteps, s.worstResidualRatio});
     }
-    const auto first = summary.storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(s.firstStorey);
-    std::vector<float> storeys(first, first + static_cast<std::ptrdiff_t>(s.storeys));
-    byId_[tile.buildings[b].attributes.id] = {s, std::move(storeys)};
+    r.history = BuildingHistory{};
+    byId_[id] = std::move(r);
   }
   return {};
+}
+
+Result<CityFile> ResponseWriter::writeFile(const std::string& name, const std::string& text) {
+  const std::span<const std::uint8_t> bytes(reinterpret_cast<const std::uint8_t*>(text.data()), text.size());
+  CityFile f{folder_ + "/" + name, bytes.size(), crc32(bytes)};
+  if (Status s = writeFileAtomic(cityDir_ + "/" + f.file, text); !s.ok()) return Error{s.error()};
+  return f;
 }
 
 Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
@@ -213,19 +249,12 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
     if (!bytes.ok()) return Error{bytes.error()};
     auto tile = decodeCityTile(*bytes, cityDir_ + "/" + n.file);
     if (!tile.ok()) return Error{tile.error()};
-    ResponseSummaryTile summary;
+    SummaryBuilder summary;
     for (const TileBuilding& b : tile->buildings) {
-      BuildingResponse s;
       const auto it = byId_.find(b.attributes.id);
-      if (it != byId_.end()) {
-        s = it->second.first;
-        s.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
-        summary.storeyPeakDrift.insert(summary.storeyPeakDrift.end(), it->second.second.begin(),
-                                       it->second.second.end());
-      }
-      summary.buildings.push_back(s);
+      summary.add(it != byId_.end() ? &it->second : nullptr);
     }
-    const auto encoded = encodeResponseSummary(summary);
+    const auto encoded = encodeResponseSummary(summary.finish());
     TileResponseFiles files;
     files.summaryFile = folder_ + "/" + tileStem(n) + ".qvs";
     files.summaryBytes = encoded.size();
@@ -241,19 +270,12 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
     if (!bytes.ok()) return Error{bytes.error()};
     auto index = decodeSearchIndex(*bytes, path);
     if (!index.ok()) return Error{index.error()};
-    ResponseSummaryTile summary;
-    summary.buildings.reserve(index->size());
+    SummaryBuilder summary;
     for (const SearchEntry& e : *index) {
-      BuildingResponse s;
-      if (const auto it = byId_.find(e.id); it != byId_.end()) {
-        s = it->second.first;
-        s.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
-        summary.storeyPeakDrift.insert(summary.storeyPeakDrift.end(), it->second.second.begin(),
-                                       it->second.second.end());
-      }
-      summary.buildings.push_back(s);
+      const auto it = byId_.find(e.id);
+      summary.add(it != byId_.end() ? &it->second : nullptr);
     }
-    const auto encoded = encodeResponseSummary(summary);
+    const auto encoded = encodeResponseSummary(summary.finish());
     CityFile f{folder_ + "/index.qvs", encoded.size(), crc32(encoded)};
     if (Status s = writeFileAtomic(cityDir_ + "/" + f.file, encoded); !s.ok()) return Error{s.error()};
     info.summaryIndex = f;

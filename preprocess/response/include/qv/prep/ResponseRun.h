@@ -1,29 +1,45 @@
 // `quakeview-prep response`: every building of a city analysed as an MDOF shear building with
-// Bouc–Wen storeys under a ground motion (a record file, or the synthetic generator), optionally
-// scaled and delayed per building by an earthquake scenario, in X and Y; results written as
-// response tiles (ResponseWriter).
+// Bouc–Wen storeys, in X and Y, under every record of a suite (record files, or synthetic records),
+// each scaled per building and direction to the shaking field (a ShakeMap grid or a BSSA14 scenario:
+// by default to the target Sa at the model's first-mode period, or to the PGA) and delayed by the
+// S-wave travel time; across the suite, medians and log standard deviations of the peaks; HAZUS
+// probabilities of damage and their consequences; results written as response tiles
+// (ResponseWriter) and the totals as consequences.json.
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "qv/core/Result.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/seismic/GroundMotion.h"
 #include "qv/seismic/GroundMotionModel.h"
+#include "qv/seismic/Loss.h"
 
 namespace qv::prep {
 
+enum class ScaleBy { SpectralAcceleration, Pga };
+enum class OutsideGrid { Error, Skip };
+
 struct ResponseRunOptions {
-  std::string motionX;                             ///< record file; empty with syntheticSeed
-  std::string motionY;                             ///< optional second component
+  /// Record files or folders of records (--motion, repeatable): the suite. Every building is analysed
+  /// under every record. Empty with syntheticSeeds.
+  std::vector<std::string> motions;
+  std::string motionY;                             ///< optional second component (one record only)
   std::optional<double> timeStepS;                 ///< --dt for files without one
   std::optional<seismic::AccelerationUnit> units;  ///< --units for files that do not say
-  std::optional<std::uint64_t> syntheticSeed;      ///< --synthetic SEED
+  std::vector<std::uint64_t> syntheticSeeds;       ///< --synthetic SEED...: one two-component record each
   std::optional<double> pgaG;                      ///< --pga: scale the record(s) to this peak (g)
   std::optional<seismic::Scenario> scenario;       ///< --epicentre ... --magnitude ...
+  std::string shakemap;                            ///< --shakemap grid.xml
+  ScaleBy scaleBy = ScaleBy::SpectralAcceleration;  ///< with a scenario or a ShakeMap
+  OutsideGrid outsideGrid = OutsideGrid::Error;      ///< buildings outside the ShakeMap's grid
+  double shearWaveSpeedKmPerS = 3.5;                 ///< travel time from a ShakeMap's epicentre
+  seismic::TimeOfDay timeOfDay = seismic::TimeOfDay::Day;  ///< for the occupants of the consequences
+  std::string districts;                           ///< --districts FILE.geojson: totals per district
   unsigned threads = 0;                            ///< 0: all cores
   double historyTolerance = 0.019;                 ///< of each building's peak roof displacement
 };
@@ -48,6 +64,12 @@ struct ResponseRunReport {
   std::string motion;
   std::string scenario;
   std::string folder;
+  std::size_t records = 0;   ///< records in the suite
+  std::string scaling;       ///< how the records were scaled, for people
+  std::string eventType;     ///< "SCENARIO" or "ACTUAL"
+  std::uint64_t outsideGrid = 0;   ///< buildings skipped outside the ShakeMap (--outside-grid skip)
+  std::optional<seismic::LossTotals> losses;  ///< the city's consequences
+  double lossSeconds = 0.0;
 };
 
 Result<ResponseRunReport> runCityResponse(const std::string& cityDir, const ResponseRunOptions& options);

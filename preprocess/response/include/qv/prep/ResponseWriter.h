@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -23,7 +24,13 @@ namespace qv::prep {
 struct BuildingResult {
   BuildingResponse summary;            ///< firstStorey is ignored (the writer lays storeys out)
   std::vector<float> storeyPeakDrift;  ///< summary.storeys values, ground up
-  BuildingHistory history;             ///< floors == 0 when there is no history
+  // Optional per-building values (summary sections SPEC, SUIT, SSPR, LOSS): a section is written
+  // when some building of the response has its value; the others then get zeros.
+  std::optional<BuildingScaling> scaling;
+  std::optional<BuildingSpread> spread;
+  std::vector<StoreySpread> storeySpread;  ///< empty, or summary.storeys values
+  std::optional<BuildingLoss> loss;
+  BuildingHistory history;  ///< floors == 0 when there is no history
   /// Without a result: the details of summary.noResultReason (e.g. why the model is invalid),
   /// kept in the response notes for `info --building`.
   std::string noResultDetail;
@@ -77,6 +84,10 @@ class ResponseWriter {
   /// `info`, and removes the previous response folder. Call once, after every leaf.
   Result<ResponseWriteReport> commit(ResponseInfo info);
 
+  /// Writes `text` as `<folder>/<name>` (e.g. consequences.json) before commit(); returns its entry
+  /// for the manifest.
+  Result<CityFile> writeFile(const std::string& name, const std::string& text);
+
   [[nodiscard]] const std::string& folder() const { return folder_; }
 
  private:
@@ -86,7 +97,7 @@ class ResponseWriter {
   std::string folder_;
   std::vector<std::string> previousFolders_;
   std::mutex mutex_;
-  std::map<std::string, std::pair<BuildingResponse, std::vector<float>>> byId_;
+  std::map<std::string, BuildingResult> byId_;  ///< summaries (no histories) for the inner tiles and index
   ResponseWriteReport report_;
   ResponseNotes notes_;
   bool committed_ = false;

@@ -1,0 +1,259 @@
+#include "qv/prep/Consequences.h"
+
+#include <simdjson.h>
+
+#include <cmath>
+
+#include "qv/prep/Files.h"
+
+namespace qv::prep {
+namespace {
+
+constexpr std::size_t kMaxDistrictBytes = 64u << 20;
+constexpr std::size_t kMaxDistricts = 10000;
+constexpr std::size_t kMaxVertices = 1000000;
+
+constexpr const char* kStateKeys[5] = {"none", "slight", "moderate", "extensive", "complete"};
+constexpr const char* kTagKeys[3] = {"green", "yellow", "red"};
+constexpr const char* kSeverityKeys[4] = {"severity_1", "severity_2", "severity_3", "severity_4"};
+
+bool insideRing(const Districts::Ring& ring, double x, double y) {
+  bool inside = false;
+  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    const double xi = ring[i][0], yi = ring[i][1], xj = ring[j][0], yj = ring[j][1];
+    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) inside = !inside;
+  }
+  return inside;
+}
+
+void writeEstimate(JsonWriter& w, std::string_view key, const seismic::Estimate& e) {
+  w.key(key).beginObject().field("expected", e.expected).field("low", e.low).field("high", e.high).endObject();
+}
+
+using simdjson::dom::array;
+using simdjson::dom::element;
+using simdjson::dom::object;
+
+// Reads one polygon's rings ([[[lon, lat], ...], ...]).
+Status readPolygon(array rings, Districts::Polygon& out, std::size_t& vertices, const std::string& where) {
+  for (element ringElement : rings) {
+    array ring;
+    if (ringElement.get(ring) != simdjson::SUCCESS) return Error{where + ": a ring is not an array"};
+    Districts::Ring points;
+    for (element point : ring) {
+      array pair;
+      double lon = 0, lat = 0;
+      if (point.get(pair) != simdjson::SUCCESS || pair.size() < 2 || pair.at(0).get_double().get(lon) ||
+          pair.at(1).get_double().get(lat) || !std::isfinite(lon) || !std::isfinite(lat) || std::abs(lon) > 180.0 ||
+          std::abs(lat) > 90.0) {
+        return Error{where + ": a position is not [longitude, latitude] in degrees"};
+      }
+      points.push_back({lon, lat});
+      if (++vertices > kMaxVertices) return Error{where + ": more than 1,000,000 vertices in the file"};
+    }
+    if (points.size() < 3) return Error{where + ": a ring has fewer than 3 positions"};
+    out.push_back(std::move(points));
+  }
+  if (out.empty()) return Error{where + ": a polygon without rings"};
+  return {};
+}
+
+Result<seismic::Estimate> readEstimate(object parent, const char* key, const std::string& where) {
+  object o;
+  if (parent[key].get(o) != simdjson::SUCCESS) return Error{where + ": missing \"" + key + "\""};
+  seismic::Estimate e;
+  if (o["expected"].get_double().get(e.expected) || o["low"].get_double().get(e.low) ||
+      o["high"].get_double().get(e.high)) {
+    return Error{where + ": \"" + key + "\" needs numbers expected, low and high"};
+  }
+  return e;
+}
+
+Result<seismic::LossTotals> readTotals(object o, const std::string& where) {
+  seismic::LossTotals t;
+  std::uint64_t buildings = 0;
+  if (o["buildings"].get_uint64().get(buildings)) return Error{where + ": missing \"buildings\""};
+  t.buildings = buildings;
+  object states, injuries, tags;
+  if (o["damage_states"].get(states) || o["injuries"].get(injuries) || o["tags"].get(tags)) {
+    return Error{where + ": missing damage_states, injuries or tags"};
+  }
+  for (int k = 0; k < 5; ++k) {
+    auto e = readEstimate(states, kStateKeys[k], where + " damage_states");
+    if (!e.ok()) return Error{e.error()};
+    t.damageStates[static_cast<std::size_t>(k)] = *e;
+  }
+  for (int k = 0; k < 4; ++k) {
+    auto e = readEstimate(injuries, kSeverityKeys[k], where + " injuries");
+    if (!e.ok()) return Error{e.error()};
+    t.injuries[static_cast<std::size_t>(k)] = *e;
+  }
+  for (int k = 0; k < 3; ++k) {
+    auto e = readEstimate(tags, kTagKeys[k], where + " tags");
+    if (!e.ok()) return Error{e.error()};
+    t.tags[static_cast<std::size_t>(k)] = *e;
+  }
+  auto collapsed = readEstimate(o, "collapsed", where);
+  auto occupants = readEstimate(o, "occupants", where);
+  auto cost = readEstimate(o, "repair_cost_usd", where);
+  if (!collapsed.ok()) return Error{collapsed.error()};
+  if (!occupants.ok()) return Error{occupants.error()};
+  if (!cost.ok()) return Error{cost.error()};
+  t.collapsed = *collapsed;
+  t.occupants = *occupants;
+  t.repairCostUsd = *cost;
+  return t;
+}
+
+}  // namespace
+
+int Districts::find(double lon, double lat) const {
+  for (std::size_t d = 0; d < areas.size(); ++d) {
+    for (const Polygon& polygon : areas[d]) {
+      bool inside = false;
+      for (const Ring& ring : polygon) inside ^= insideRing(ring, lon, lat);
+      if (inside) return static_cast<int>(d);
+    }
+  }
+  return -1;
+}
+
+Result<Districts> readDistricts(const std::string& path) {
+  auto text = readTextFile(path, kMaxDistrictBytes);
+  if (!text.ok()) return Error{text.error()};
+  return parseDistricts(*text, path);
+}
+
+Result<Districts> parseDistricts(std::string_view json, const std::string& name) {
+  simdjson::dom::parser parser;
+  element root;
+  if (auto error = parser.parse(json.data(), json.size()).get(root)) {
+    return Error{name + ": not valid JSON (" + simdjson::error_message(error) + ")"};
+  }
+  array features;
+  if (root["features"].get(features) != simdjson::SUCCESS) {
+    return Error{name + ": not a GeoJSON FeatureCollection (no \"features\" array)"};
+  }
+  if (features.size() > kMaxDistricts) return Error{name + ": more than 10,000 districts"};
+  Districts out;
+  std::size_t vertices = 0, index = 0;
+  for (element feature : features) {
+    std::string where = name + ": feature " + std::to_string(index++);
+    std::string_view districtName;
+    if (feature["properties"]["name"].get(districtName) != simdjson::SUCCESS || districtName.empty()) {
+      return Error{where + " has no \"name\" property (a district needs a name)"};
+    }
+    where += " (\"" + std::string(districtName) + "\")";
+    std::string_view type;
+    array coordinates;
+    if (feature["geometry"]["type"].get(type) || feature["geometry"]["coordinates"].get(coordinates)) {
+      return Error{where + " has no geometry"};
+    }
+    std::vector<Districts::Polygon> polygons;
+    if (type == "Polygon") {
+      Districts::Polygon polygon;
+      if (Status s = readPolygon(coordinates, polygon, vertices, where); !s.ok()) return Error{s.error()};
+      polygons.push_back(std::move(polygon));
+    } else if (type == "MultiPolygon") {
+      for (element part : coordinates) {
+        array rings;
+        if (part.get(rings) != simdjson::SUCCESS) return Error{where + ": a polygon is not an array"};
+        Districts::Polygon polygon;
+        if (Status s = readPolygon(rings, polygon, vertices, where); !s.ok()) return Error{s.error()};
+        polygons.push_back(std::move(polygon));
+      }
+    } else {
+      return Error{where + " is a " + std::string(type) + ", not a Polygon or MultiPolygon"};
+    }
+    out.names.emplace_back(districtName);
+    out.areas.push_back(std::move(polygons));
+  }
+  if (out.names.empty()) return Error{name + ": no districts in the file"};
+  return out;
+}
+
+void writeLossTotals(JsonWriter& w, const seismic::LossTotals& t) {
+  w.field("buildings", t.buildings);
+  w.key("damage_states").beginObject();
+  for (int k = 0; k < 5; ++k) writeEstimate(w, kStateKeys[k], t.damageStates[static_cast<std::size_t>(k)]);
+  w.endObject();
+  writeEstimate(w, "collapsed", t.collapsed);
+  writeEstimate(w, "occupants", t.occupants);
+  w.key("injuries").beginObject();
+  for (int k = 0; k < 4; ++k) writeEstimate(w, kSeverityKeys[k], t.injuries[static_cast<std::size_t>(k)]);
+  w.endObject();
+  writeEstimate(w, "deaths", t.injuries[3]);
+  writeEstimate(w, "repair_cost_usd", t.repairCostUsd);
+  w.key("tags").beginObject();
+  for (int k = 0; k < 3; ++k) writeEstimate(w, kTagKeys[k], t.tags[static_cast<std::size_t>(k)]);
+  w.endObject();
+}
+
+std::string consequencesToJson(const ConsequenceTotals& totals) {
+  JsonWriter w;
+  w.beginObject();
+  w.field("format", "quakeview-consequences").field("version", 1);
+  w.field("timeOfDay", totals.timeOfDay);
+  w.field("interval", "90 % (5th to 95th percentile)");
+  w.key("city").beginObject();
+  writeLossTotals(w, totals.city);
+  w.endObject();
+  w.key("districts").beginArray();
+  for (const ConsequenceTotals::District& d : totals.districts) {
+    w.beginObject().field("name", d.name);
+    writeLossTotals(w, d.totals);
+    w.endObject();
+  }
+  w.endArray();
+  w.endObject();
+  return w.take();
+}
+
+Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::string& name) {
+  simdjson::dom::parser parser;
+  element root;
+  if (auto error = parser.parse(json.data(), json.size()).get(root)) {
+    return Error{name + ": not valid JSON (" + simdjson::error_message(error) + ")"};
+  }
+  ConsequenceTotals out;
+  std::string_view timeOfDay;
+  object city;
+  array districts;
+  if (root["timeOfDay"].get(timeOfDay) || root["city"].get(city) || root["districts"].get(districts)) {
+    return Error{name + ": missing timeOfDay, city or districts"};
+  }
+  out.timeOfDay = std::string(timeOfDay);
+  auto c = readTotals(city, name + " city");
+  if (!c.ok()) return Error{c.error()};
+  out.city = *c;
+  for (element e : districts) {
+    object d;
+    std::string_view districtName;
+    if (e.get(d) || d["name"].get(districtName)) return Error{name + ": a district without a name"};
+    auto t = readTotals(d, name + " district " + std::string(districtName));
+    if (!t.ok()) return Error{t.error()};
+    out.districts.push_back({std::string(districtName), *t});
+  }
+  return out;
+}
+
+BuildingLoss toSummaryLoss(const seismic::BuildingLoss& loss) {
+  BuildingLoss out;
+  for (std::size_t k = 0; k < 5; ++k) {
+    out.structural[k] = static_cast<float>(loss.structural.p[k]);
+    out.nonStructuralDrift[k] = static_cast<float>(loss.nonStructuralDrift.p[k]);
+    out.nonStructuralAcceleration[k] = static_cast<float>(loss.nonStructuralAcceleration.p[k]);
+  }
+  out.collapse = static_cast<float>(loss.collapse);
+  out.occupants = static_cast<float>(loss.occupantsPresent);
+  for (std::size_t k = 0; k < 4; ++k) out.injuries[k] = static_cast<float>(loss.injuries[k]);
+  out.replacementValueUsd = static_cast<float>(loss.replacementValueUsd);
+  out.repairCostUsd = static_cast<float>(loss.repairCostUsd);
+  out.repairTimeDays = static_cast<float>(loss.repairTimeDays);
+  for (std::size_t k = 0; k < 3; ++k) out.tag[k] = static_cast<float>(loss.tag[k]);
+  out.flags = static_cast<std::uint8_t>((loss.occupantsInferred ? kLossOccupantsInferred : 0) |
+                                        (loss.valueInferred ? kLossValueInferred : 0));
+  return out;
+}
+
+}  // namespace qv::prep
