@@ -17,7 +17,7 @@
 //   pick(x, y), building(id), select(id), selection()   picking and the selected building
 //   setFilters({minDamage, use, criticalOnly}), filters(), setLodVisibility({lod1, lod2}),
 //   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
-//   'neutral'), colorMode(), search(query), filteredList(limit),
+//   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
 //              render, total}, drawCalls, triangles}, each but seconds/frames as {median, p95};
@@ -39,7 +39,8 @@
   ready.catch(() => {});
 
   let engine = null;
-  const COLOR_MODES = ['drift', 'peak', 'damage', 'neutral'];  // qv::ColorMode 0 … 3
+  // qv::ColorMode 0 … 6
+  const COLOR_MODES = ['drift', 'peak', 'damage', 'neutral', 'p-moderate', 'expected-damage', 'tag'];
   const shellErrors = [];
 
   function setProgress(fraction, label) {
@@ -151,7 +152,8 @@
       return !!engine && typeof x === 'number' && engine._qv_set_amplitude(x) === 1;
     },
     amplitude() { return engine ? engine._qv_amplitude() : null; },
-    // Colour mode: 'drift' (current inter-storey drift), 'peak' (peak drift), 'damage', 'neutral'.
+    // Colour mode: 'drift' (current inter-storey drift), 'peak' (peak drift), 'damage', 'neutral',
+    // 'p-moderate' (P(damage >= moderate)), 'expected-damage', 'tag' (most likely inspection tag).
     setColorMode(name) {
       const mode = COLOR_MODES.indexOf(name);
       return !!engine && mode >= 0 && engine._qv_set_color_mode(mode) === 1;

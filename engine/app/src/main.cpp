@@ -128,10 +128,10 @@ EMSCRIPTEN_KEEPALIVE double qv_amplitude() {
   return gApp != nullptr ? static_cast<double>(gApp->viewer().amplitude()) : 0.0;
 }
 
-/// Colour mode: 0 current drift, 1 peak drift, 2 damage state, 3 neutral (qv::ColorMode); 0 when
-/// out of range.
+/// Colour mode: 0 current drift, 1 peak drift, 2 damage state, 3 neutral, 4 P(>= moderate), 5 expected
+/// damage state, 6 inspection tag (qv::ColorMode); 0 when out of range.
 EMSCRIPTEN_KEEPALIVE int qv_set_color_mode(int mode) {
-  if (gApp == nullptr || mode < 0 || mode > 3) return 0;
+  if (gApp == nullptr || mode < 0 || mode >= qv::kColorModeCount) return 0;
   gApp->viewer().setColorMode(static_cast<qv::ColorMode>(mode));
   return 1;
 }

@@ -74,6 +74,9 @@ std::string paletteGlsl() {
   std::string s = "const vec3 kNoResult = " + vec(kNoResultColor) + ";\n";
   s += "const vec3 kSelected = " + vec(kSelectedColor) + ";\n";
   s += "const vec3 kDimmed = " + vec(kDimmedColor) + ";\n";
+  s += "const vec3 kTagGreen = " + vec(kTagPalette[0]) + ";\n";
+  s += "const vec3 kTagYellow = " + vec(kTagPalette[1]) + ";\n";
+  s += "const vec3 kTagRed = " + vec(kTagPalette[2]) + ";\n";
   s += "vec3 ramp(float t) {\n  t = clamp(t, 0.0, 1.0) * 4.0;\n";
   for (int i = 0; i < 4; ++i) {
     s += "  if (t < " + std::to_string(i + 1) + ".0) return mix(" + vec(kDamagePalette[static_cast<std::size_t>(i)]) +

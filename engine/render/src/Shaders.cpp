@@ -48,6 +48,7 @@ void main() {
   float damage = b1.x;
   uint flags = uint(b1.y + 0.5);
   float baseZ = b1.z;
+  float lossCode = b1.w;  // packLossCode (qv/scene/RenderDevice.h); -1 without probabilities
 
   vec3 position = a_position;
   float drift = peakValue;
@@ -71,12 +72,24 @@ void main() {
   if (u_colorMode == 0) color = ramp(drift / u_driftFullScale);
   else if (u_colorMode == 1) color = ramp(peakStorey / u_driftFullScale);
   else if (u_colorMode == 2) color = damage < -0.5 ? kNoResult : ramp(damage / 4.0);
+  else if (u_colorMode >= 4) {
+    // Probabilistic modes: P(>= moderate), expected damage state / 4, the most likely inspection tag.
+    float code = max(lossCode, 0.0);
+    float tag = floor(code / 65536.0);
+    float rest = code - tag * 65536.0;
+    float expected = floor(rest / 256.0);
+    float moderate = rest - expected * 256.0;
+    if (u_colorMode == 4) color = ramp(moderate / 255.0);
+    else if (u_colorMode == 5) color = ramp(expected / 255.0);
+    else color = tag < 0.5 ? kTagGreen : (tag < 1.5 ? kTagYellow : kTagRed);
+  }
   else color = vec3(0.82, 0.80, 0.76);
   // Results not loaded yet (-2): plain, neither coloured nor marked as missing.
   bool pending = damage < -1.5;
   if (pending) color = vec3(0.82, 0.80, 0.76);
   // No response for this building: its own colour, whatever the mode (hatched in the fragment stage).
-  float noResult = (u_colorMode != 3 && damage < -0.5 && !pending) ? 1.0 : 0.0;
+  // (The probabilistic modes also mark results without probabilities, e.g. imported ones.)
+  float noResult = (u_colorMode != 3 && (damage < -0.5 || (u_colorMode >= 4 && lossCode < -0.5)) && !pending) ? 1.0 : 0.0;
   if (noResult > 0.5) color = kNoResult;
 
   int kind = a_normalKind.w & 0x1f;

@@ -37,7 +37,10 @@ std::string recordText(const std::string& motion) {
 }
 
 const char* const kDamageLabels[6] = {"None", "Slight", "Moderate", "Extensive", "Complete", "No result"};
-const char* const kColorModes[] = {"Current inter-storey drift", "Peak inter-storey drift", "Damage state", "Neutral"};
+const char* const kColorModes[] = {
+    "Current inter-storey drift", "Peak inter-storey drift", "Damage state (median drift)", "Neutral",
+    "P(damage >= moderate)",      "Expected damage state",   "Inspection tag (most likely)"};
+static_assert(sizeof(kColorModes) / sizeof(kColorModes[0]) == kColorModeCount);
 const char* const kUses[] = {"any",         "hospital",   "school",    "fire_station", "police",
                              "residential", "house",      "office",    "retail",       "commercial",
                              "hotel",       "industrial", "warehouse", "religious",    "civic"};
@@ -150,6 +153,42 @@ void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory
   }
 }
 
+void ControlPanel::drawShakingProvenance(const ResponseInfo& r, ui::Widgets& w) {
+  // Whether the shaking is a scenario or an actual event, always in view: confusing the two is the
+  // worst error this product can make.
+  const bool imported = r.method.rfind("imported", 0) == 0;
+  if (r.eventType == "ACTUAL") {
+    w.textColored(0.80f, 0.05f, 0.05f, "Shaking: ACTUAL EVENT (ShakeMap of a recorded earthquake)");
+  } else if (r.eventType == "SCENARIO" || (r.eventType.empty() && !imported && r.shakingField != "shakemap")) {
+    w.textColored(0.55f, 0.25f, 0.0f,
+                  r.shakingField == "shakemap" ? "Shaking: SCENARIO (a ShakeMap scenario, not a recorded event)"
+                                               : "Shaking: SCENARIO (computed, not a recorded event)");
+  } else if (imported) {
+    w.textColored(0.55f, 0.25f, 0.0f, "Shaking: IMPORTED RESULTS (not stated whether a scenario or an actual event)");
+  } else {
+    w.textColored(0.55f, 0.25f, 0.0f, "Shaking: NOT STATED whether a scenario or an actual event");
+  }
+  if (r.shakemap) {
+    w.textWrapped("ShakeMap: " + r.shakemap->eventId + " version " + r.shakemap->version + ", processed " +
+                  r.shakemap->processTimestamp +
+                  (r.shakemap->description.empty() ? "" : "; " + r.shakemap->description));
+  }
+  w.textWrapped("Earthquake: " + (r.scenario.empty() ? std::string("one record for every building") : r.scenario));
+  if (r.records.size() > 1) {
+    w.textWrapped(ui::format("Records: a suite of %zu (medians shown; each building animates the record nearest its "
+                             "median): ",
+                             r.records.size()) +
+                  recordText(r.records.front()) + ", ...");
+  } else {
+    w.textWrapped("Record: " + recordText(r.motion));
+  }
+  if (r.scaling == "sa") {
+    w.textWrapped("Scaling: each record to the target Sa at the building's own first-mode period");
+  } else if (r.scaling == "pga") {
+    w.textWrapped("Scaling: each record to the target PGA at the building");
+  }
+}
+
 void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
@@ -174,13 +213,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     w.textWrapped("Data: " + (tileset->name.empty() ? std::string("(unnamed city)") : "\"" + tileset->name + "\"") +
                   " from " + (viewer.dataSource().empty() ? std::string("this site") : viewer.dataSource()));
     if (tileset->response) {
-      const bool imported = tileset->response->method.rfind("imported", 0) == 0;
-      w.textColored(0.55f, 0.25f, 0.0f,
-                    imported ? "Shaking: IMPORTED RESULTS (not stated whether a scenario or an actual event)"
-                             : "Shaking: SCENARIO (computed, not a recorded event)");
-      w.textWrapped("Earthquake: " + (tileset->response->scenario.empty() ? std::string("one record for every building")
-                                                                          : tileset->response->scenario));
-      w.textWrapped("Record: " + recordText(tileset->response->motion));
+      drawShakingProvenance(*tileset->response, w);
       if (tileset->responseOutOfDate()) {
         w.textColored(0.75f, 0.1f, 0.05f, "Results are older than the buildings: run quakeview-prep response again.");
       }
@@ -205,7 +238,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     float amplitude = viewer.amplitude();
     if (w.sliderFloat("Amplitude", &amplitude, 1.0f, 200.0f, "%.0fx", true)) viewer.setAmplitude(amplitude);
     int mode = static_cast<int>(viewer.colorMode());
-    if (w.combo("Colour", &mode, kColorModes, 4)) viewer.setColorMode(static_cast<ColorMode>(mode));
+    if (w.combo("Colour", &mode, kColorModes, kColorModeCount)) viewer.setColorMode(static_cast<ColorMode>(mode));
     if (tileset != nullptr && tileset->response && !tileset->response->motionPreviewG.empty()) {
       const auto& g = tileset->response->motionPreviewG;
       float peak = 0.0f;
@@ -226,17 +259,33 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   }
 
   if (w.collapsingHeader("Damage and colours")) {
-    const bool byDamage = viewer.colorMode() == ColorMode::DamageState;
+    const ColorMode mode = viewer.colorMode();
+    const bool byDamage = mode == ColorMode::DamageState;
+    const bool probabilistic =
+        mode == ColorMode::ModerateOrWorse || mode == ColorMode::ExpectedDamage || mode == ColorMode::InspectionTag;
     const std::array<std::uint64_t, 6>* inView = city != nullptr ? &city->damageInView() : nullptr;
-    if (byDamage || tileset == nullptr) {
+    if (mode == ColorMode::ModerateOrWorse) {
+      w.text("Probability of moderate damage or worse (HAZUS 5.1 fragility):");
+    } else if (mode == ColorMode::ExpectedDamage) {
+      w.text("Expected damage state (probability-weighted, HAZUS 5.1):");
+    } else if (mode == ColorMode::InspectionTag) {
+      w.text("Most likely inspection tag (ATC-20 placard from the damage probabilities):");
+      const char* tags[3] = {"Green: inspected, no restriction (none or slight damage)",
+                             "Yellow: restricted use (moderate damage)", "Red: unsafe (extensive or complete damage)"};
+      for (std::size_t k = 0; k < 3; ++k) w.swatch(kTagPalette[k].r, kTagPalette[k].g, kTagPalette[k].b, tags[k]);
+    } else if (byDamage || tileset == nullptr) {
       w.text("Damage state (HAZUS, from peak inter-storey drift):");
     } else {
       w.text(ui::format("Inter-storey drift (%s):", viewer.colorMode() == ColorMode::PeakDrift ? "peak" : "now"));
     }
-    for (int k = 0; k < 5; ++k) {
+    for (int k = 0; k < 5 && mode != ColorMode::InspectionTag; ++k) {
       const Rgb c = kDamagePalette[static_cast<std::size_t>(k)];
       std::string label;
-      if (byDamage) {
+      if (mode == ColorMode::ModerateOrWorse) {
+        label = ui::format("%d %%", 25 * k);
+      } else if (mode == ColorMode::ExpectedDamage) {
+        label = ui::format("%d: %s", k, kDamageLabels[k]);
+      } else if (byDamage) {
         label = kDamageLabels[k];
         if (tileset != nullptr && tileset->response) {
           label +=
@@ -251,7 +300,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       }
       w.swatch(c.r, c.g, c.b, label);
     }
-    std::string noResult = "No result (hatched)";
+    std::string noResult = probabilistic ? "No result or no probabilities (hatched)" : "No result (hatched)";
     if (tileset != nullptr && tileset->response) {
       noResult += ui::format(": %llu in the city", static_cast<unsigned long long>(tileset->response->damageStates[5]));
     }

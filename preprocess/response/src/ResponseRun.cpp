@@ -697,7 +697,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
               out.spread = BuildingSpread{static_cast<std::uint16_t>(records.size()), static_cast<std::uint16_t>(r),
                                           static_cast<float>(driftBeta), static_cast<float>(accelerationBeta)};
               BuildingScaling scaling;
-              for (int d = 0; d < 2; ++d) {
+              for (int d = 0; d < (record.hasY ? 2 : 1); ++d) {  // one component: Y is not analysed
                 scaling.periodS[d] = static_cast<float>(item.periodS[d]);
                 scaling.targetSaG[d] = static_cast<float>(item.targetSaG[d]);
                 scaling.recordSaG[d] = static_cast<float>(item.recordSaG[r][d]);

@@ -22,6 +22,11 @@ inline constexpr std::array<Rgb, 5> kDamagePalette = {{{0.92f, 0.92f, 0.90f},
                                                        {0.80f, 0.20f, 0.13f},
                                                        {0.40f, 0.03f, 0.08f}}};
 inline constexpr Rgb kNoResultColor = {0.60f, 0.70f, 0.85f};
+/// Post-earthquake inspection tags (ATC-20 placards): green (inspected), yellow (restricted use), red
+/// (unsafe). The conventional colours, at clearly different lightness (about L* 55, 87, 45) and named
+/// in the legend, so the three stay apart for colour-vision deficiencies and in greyscale.
+inline constexpr std::array<Rgb, 3> kTagPalette = {
+    {{0.15f, 0.62f, 0.38f}, {0.99f, 0.86f, 0.22f}, {0.78f, 0.12f, 0.12f}}};
 inline constexpr Rgb kSelectedColor = {0.10f, 0.75f, 1.00f};
 inline constexpr Rgb kDimmedColor = {0.90f, 0.91f, 0.92f};
 

@@ -32,7 +32,7 @@ struct BuildingGpuRecord {
   float damageState = -1.0f;        ///< 0..4 none..complete, -1 no result, -2 result not loaded yet
   float flags = 0.0f;               ///< BuildingFlag bits
   float baseZ = 0.0f;               ///< height of floor level 0 (the building's min height), metres
-  float reserved = 0.0f;
+  float lossCode = -1.0f;           ///< packLossCode of its HAZUS probabilities, -1 without them
 };
 static_assert(sizeof(BuildingGpuRecord) == 32);
 
@@ -52,7 +52,29 @@ struct FloorGpuRecord {
 };
 static_assert(sizeof(FloorGpuRecord) == 16);
 
-enum class ColorMode : int { CurrentDrift = 0, PeakDrift = 1, DamageState = 2, Neutral = 3 };
+/// The colour modes; values are stable (the page's URL and `setColorMode` use them).
+enum class ColorMode : int {
+  CurrentDrift = 0,
+  PeakDrift = 1,
+  DamageState = 2,  ///< the deterministic state from the (median) peak drift
+  Neutral = 3,
+  ModerateOrWorse = 4,  ///< P(damage state >= moderate), HAZUS fragility
+  ExpectedDamage = 5,   ///< expected damage state, 0 .. 4
+  InspectionTag = 6,    ///< the most likely inspection tag (green, yellow, red)
+};
+inline constexpr int kColorModeCount = 7;
+
+/// The HAZUS probabilities of a building packed into one float of the building table, exactly
+/// representable (< 2^24): round(255 P(DS >= moderate)) + 256 round(255 E[DS] / 4) + 65536 tag, with
+/// tag the most likely of green (0), yellow (1), red (2). The shader unpacks it for modes 4 to 6.
+inline float packLossCode(float moderateOrWorse, float expectedState, int mostLikelyTag) {
+  auto quantize = [](float x) {
+    const float c = x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x);
+    return static_cast<int>(c * 255.0f + 0.5f);
+  };
+  const int tag = mostLikelyTag < 0 ? 0 : (mostLikelyTag > 2 ? 2 : mostLikelyTag);
+  return static_cast<float>(quantize(moderateOrWorse) + 256 * quantize(expectedState / 4.0f) + 65536 * tag);
+}
 
 struct FrameUniforms {
   glm::mat4 viewProjection{1.0f};

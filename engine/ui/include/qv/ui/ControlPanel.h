@@ -46,6 +46,8 @@ class ControlPanel {
   void drawOverlay(Viewer& viewer, ui::Widgets& w);
   /// The active filters as a strip at the top of the canvas, whatever the panel's state.
   void drawFilterChips(Viewer& viewer, ui::Widgets& w);
+  /// SCENARIO or ACTUAL (prominent), the ShakeMap, the earthquake, the record(s) and their scaling.
+  static void drawShakingProvenance(const ResponseInfo& response, ui::Widgets& w);
   std::string lengthText(const Viewer& viewer, double metres) const;
 
   std::optional<std::pair<double, double>> cursor_;

@@ -1,0 +1,338 @@
+// Runs the built quakeview-prep: `response` under a ShakeMap (the shared NYC scenario grid and small
+// uniform grids written here), record suites, Sa(T1) and PGA scaling, HAZUS probabilities and their
+// totals, districts, and the command's refusals (native only).
+#include <unistd.h>
+
+#include <simdjson.h>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "ToolRun.h"
+
+namespace {
+
+const std::string kTool = QUAKEVIEW_PREP_EXE;
+const std::string kShared = QUAKEVIEW_SHARED_DATA_DIR;
+const std::string kNycGrid = kShared + "/shakemap/nyc-m5.8-scenario-grid.xml";
+const std::string kRecords = kShared + "/ground-motions/";
+
+qv::test::ToolRun run(const std::string& arguments) {
+  return qv::test::runTool(kTool, arguments, true);
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A square footprint of side ~20 m at (lon, lat) as an OSM way with `tags`.
+std::string square(int id, double lon, double lat, const std::string& tags) {
+  const double d = 0.0002;
+  std::string s;
+  const double corners[4][2] = {{lon, lat}, {lon + d, lat}, {lon + d, lat + d}, {lon, lat + d}};
+  for (int k = 0; k < 4; ++k) {
+    s += "<node id=\"" + std::to_string(id * 10 + k) + "\" lat=\"" + std::to_string(corners[k][1]) + "\" lon=\"" +
+         std::to_string(corners[k][0]) + "\"/>\n";
+  }
+  s += "<way id=\"" + std::to_string(id) + "\">";
+  for (int k = 0; k <= 4; ++k) s += "<nd ref=\"" + std::to_string(id * 10 + k % 4) + "\"/>";
+  return s + tags + "</way>\n";
+}
+
+std::string tag(const std::string& k, const std::string& v) {
+  return "<tag k=\"" + k + "\" v=\"" + v + "\"/>";
+}
+
+// Five buildings of different heights and uses in Lower Manhattan, at (baseLon, baseLat).
+std::string lowerManhattan(double baseLon = -74.0100, double baseLat = 40.7100) {
+  std::string osm = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<osm version=\"0.6\">\n";
+  const char* uses[5] = {"residential", "office", "retail", "apartments", "school"};
+  const char* heights[5] = {"9", "45", "12", "30", "14"};
+  for (int i = 0; i < 5; ++i) {
+    osm +=
+        square(i + 1, baseLon + 0.001 * i, baseLat,
+               tag("building", uses[i]) + tag("height", heights[i]) + tag("start_date", i % 2 == 0 ? "1925" : "1985"));
+  }
+  return osm + "</osm>\n";
+}
+
+// A ShakeMap 4 style grid of 3 x 3 nodes over [lon0, lon0 + 0.2] x [lat0, lat0 + 0.2], the same values
+// everywhere (percent g), event type `type`.
+std::string uniformGrid(double lon0, double lat0, const char* type, double pga, double psa03, double psa10,
+                        double psa30) {
+  std::string xml =
+      "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<shakemap_grid event_id=\"test1\" "
+      "shakemap_version=\"2\" code_version=\"4.0\" process_timestamp=\"2026-11-25T10:00:00Z\" "
+      "shakemap_originator=\"us\" map_status=\"RELEASED\" shakemap_event_type=\"" +
+      std::string(type) + "\">\n<event event_id=\"test1\" magnitude=\"6.1\" depth=\"8.0\" lat=\"" +
+      std::to_string(lat0) + "\" lon=\"" + std::to_string(lon0) +
+      "\" event_timestamp=\"2026-11-25T09:41:07Z\" event_network=\"us\" "
+      "event_description=\"Test event\"/>\n<grid_specification lon_min=\"" +
+      std::to_string(lon0) + "\" lat_min=\"" + std::to_string(lat0) + "\" lon_max=\"" + std::to_string(lon0 + 0.2) +
+      "\" lat_max=\"" + std::to_string(lat0 + 0.2) +
+      "\" nominal_lon_spacing=\"0.1\" nominal_lat_spacing=\"0.1\" nlon=\"3\" nlat=\"3\"/>\n";
+  const char* fields[9][2] = {{"LON", "dd"},   {"LAT", "dd"},   {"MMI", "intensity"}, {"PGA", "%g"},  {"PGV", "cm/s"},
+                              {"PSA03", "%g"}, {"PSA10", "%g"}, {"PSA30", "%g"},      {"SVEL", "m/s"}};
+  for (int i = 0; i < 9; ++i) {
+    xml += "<grid_field index=\"" + std::to_string(i + 1) + "\" name=\"" + fields[i][0] + "\" units=\"" + fields[i][1] +
+           "\"/>\n";
+  }
+  xml += "<grid_data>\n";
+  for (int row = 0; row < 3; ++row) {
+    for (int col = 0; col < 3; ++col) {
+      char line[256];
+      std::snprintf(line, sizeof line, "%.4f %.4f 6.5 %.4f 20 %.4f %.4f %.4f 400\n", lon0 + 0.1 * col,
+                    lat0 + 0.2 - 0.1 * row, pga, psa03, psa10, psa30);
+      xml += line;
+    }
+  }
+  return xml + "</grid_data>\n</shakemap_grid>\n";
+}
+
+struct City {
+  std::string dir;
+  explicit City(const std::string& name, const std::string& osm) {
+    dir = "/tmp/qv-shakemap-" + name + "-" + std::to_string(getpid());
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/in.osm") << osm;
+    const auto city = run("city --input '" + dir + "/in.osm' --out '" + dir + "/city'");
+    INFO(city.output);
+    REQUIRE(city.exitCode == 0);
+  }
+  ~City() { std::filesystem::remove_all(dir); }
+  [[nodiscard]] std::string path() const { return "'" + dir + "/city'"; }
+};
+
+simdjson::dom::element parse(simdjson::dom::parser& parser, const std::string& json) {
+  simdjson::dom::element doc;
+  INFO(json);
+  REQUIRE(parser.parse(json).get(doc) == simdjson::SUCCESS);
+  return doc;
+}
+
+double number(simdjson::dom::element e) {
+  double v = 0.0;
+  REQUIRE(e.get_double().get(v) == simdjson::SUCCESS);
+  return v;
+}
+
+// The ShakeMap target spectrum written independently of the tool: log-log between PGA (0.03 s),
+// PSA03, PSA10, PSA30; 1/T from 3 s to 6 s; 1/T² beyond (docs/spectral-scaling.md).
+double targetSa(double pga, double psa03, double psa10, double psa30, double t) {
+  const double periods[4] = {0.03, 0.3, 1.0, 3.0};
+  const double values[4] = {pga, psa03, psa10, psa30};
+  if (t <= periods[0]) return pga;
+  if (t > 6.0) return psa30 * 3.0 * 6.0 / (t * t);
+  if (t > 3.0) return psa30 * 3.0 / t;
+  for (int i = 0; i < 3; ++i) {
+    if (t <= periods[i + 1]) {
+      const double f = std::log(t / periods[i]) / std::log(periods[i + 1] / periods[i]);
+      return std::exp(std::log(values[i]) + f * (std::log(values[i + 1]) - std::log(values[i])));
+    }
+  }
+  return psa30;
+}
+
+}  // namespace
+
+TEST_CASE("response under the NYC ShakeMap: a record suite, HAZUS probabilities and totals that add up",
+          "[response][cli][shakemap]") {
+  const City city("nyc", lowerManhattan());
+  const std::string districts = city.dir + "/districts.geojson";
+  // Two districts splitting the five buildings (west: 1-2, east: 3-5).
+  std::ofstream(districts) << R"({"type":"FeatureCollection","features":[
+    {"type":"Feature","properties":{"name":"West"},"geometry":{"type":"Polygon","coordinates":[[[-74.02,40.70],[-74.0085,40.70],[-74.0085,40.72],[-74.02,40.72],[-74.02,40.70]]]}},
+    {"type":"Feature","properties":{"name":"East"},"geometry":{"type":"MultiPolygon","coordinates":[[[[-74.0085,40.70],[-74.0,40.70],[-74.0,40.72],[-74.0085,40.72],[-74.0085,40.70]]]]}}]})";
+  const auto response = run("response --city " + city.path() + " --shakemap '" + kNycGrid +
+                            "' --synthetic 1 2 3 --time-of-day night --districts '" + districts + "'");
+  INFO(response.output);
+  REQUIRE(response.exitCode == 0);
+  CHECK(response.output.find("SCENARIO: ShakeMap NYC_M5.8_se") != std::string::npos);
+  CHECK(response.output.find("consequences (HAZUS 5.1, night") != std::string::npos);
+
+  simdjson::dom::parser parser;
+  const auto info = run("info " + city.path() + " --json");
+  REQUIRE(info.exitCode == 0);
+  const auto doc = parse(parser, info.output);
+  CHECK(std::string(doc["event_type"].get_string().value()) == "SCENARIO");
+  CHECK(std::string(doc["shaking_field"].get_string().value()) == "shakemap");
+  CHECK(std::string(doc["scaling"].get_string().value()) == "sa");
+  CHECK(std::string(doc["shakemap"]["event_id"].get_string().value()) == "NYC_M5.8_se");
+  CHECK(std::string(doc["shakemap"]["process_timestamp"].get_string().value()) == "2017-10-20T16:51:52Z");
+  CHECK(doc["records"].get_array().value().size() == 3);
+  CHECK(std::string(doc["time_of_day"].get_string().value()) == "night");
+
+  // Expected counts per damage state sum to the buildings with a result (all five).
+  double states = 0.0;
+  for (const char* k : {"none", "slight", "moderate", "extensive", "complete"})
+    states += number(doc["expected_damage_states"][k]);
+  CHECK(states == Approx(5.0).epsilon(1e-6));
+  const auto totals = doc["consequences"];
+  CHECK(totals["buildings"].get_uint64().value() == 5);
+
+  // The totals are the sums over buildings of what each building's inspection says.
+  double occupants = 0.0, cost = 0.0, deaths = 0.0, moderate = 0.0, red = 0.0;
+  double westOccupants = 0.0;
+  for (int id = 1; id <= 5; ++id) {
+    simdjson::dom::parser p;
+    const auto b = run("info " + city.path() + " --building w" + std::to_string(id) + " --json");
+    REQUIRE(b.exitCode == 0);
+    const auto building = parse(p, b.output);
+    double sum = 0.0;
+    for (const char* k : {"none", "slight", "moderate", "extensive", "complete"})
+      sum += number(building["damage_probabilities"][k]);
+    CHECK(sum == Approx(1.0).epsilon(1e-5));
+    moderate += number(building["damage_probabilities"]["moderate"]);
+    const auto c = building["consequences"];
+    occupants += number(c["occupants"]);
+    if (id <= 2) westOccupants += number(c["occupants"]);
+    cost += number(c["repair_cost_usd"]);
+    deaths += number(c["deaths"]);
+    red += number(c["tags"]["red"]);
+    CHECK(c["occupants_inferred"].get_bool().value());  // OSM gives no occupant counts
+    CHECK(c["value_inferred"].get_bool().value());
+    // Sa(T1) scaling, direction by direction: scale x the record's Sa(T1) is the target.
+    for (const char* d : {"x", "y"}) {
+      const auto s = building["spectral_scaling"][d];
+      CHECK(number(s["period_s"]) > 0.0);
+      CHECK(number(s["scale"]) * number(s["record_sa_g"]) == Approx(number(s["target_sa_g"])).epsilon(1e-4));
+    }
+    CHECK(building["suite"]["records"].get_uint64().value() == 3);
+    CHECK(building["suite"]["shown_record"].get_uint64().value() < 3);
+  }
+  CHECK(number(totals["occupants"]["expected"]) == Approx(occupants).epsilon(1e-4));
+  CHECK(number(totals["repair_cost_usd"]["expected"]) == Approx(cost).epsilon(1e-4));
+  CHECK(number(totals["deaths"]["expected"]) == Approx(deaths).epsilon(1e-4).margin(1e-9));
+  CHECK(number(totals["damage_states"]["moderate"]["expected"]) == Approx(moderate).epsilon(1e-4).margin(1e-9));
+  CHECK(number(totals["tags"]["red"]["expected"]) == Approx(red).epsilon(1e-4).margin(1e-9));
+  // The 90 % interval brackets the expected value.
+  CHECK(number(totals["repair_cost_usd"]["low"]) <= number(totals["repair_cost_usd"]["expected"]) + 1e-6);
+  CHECK(number(totals["repair_cost_usd"]["high"]) >= number(totals["repair_cost_usd"]["expected"]) - 1e-6);
+  // Districts: named, counted and summed.
+  const auto list = totals["districts"].get_array().value();
+  REQUIRE(list.size() == 2);
+  CHECK(std::string(list.at(0)["name"].get_string().value()) == "West");
+  CHECK(list.at(0)["buildings"].get_uint64().value() == 2);
+  CHECK(list.at(1)["buildings"].get_uint64().value() == 3);
+  CHECK(number(list.at(0)["occupants"]["expected"]) == Approx(westOccupants).epsilon(1e-4));
+  // The response files never carry the grid's path on this machine.
+  CHECK(readText(city.dir + "/city/tileset.json").find(kShared) == std::string::npos);
+}
+
+TEST_CASE("response under a uniform ShakeMap hits its targets: Sa(T1) by default, PGA on request",
+          "[response][cli][shakemap]") {
+  const City city("uniform", lowerManhattan());
+  const std::string grid = city.dir + "/grid.xml";
+  std::ofstream(grid) << uniformGrid(-74.1, 40.6, "ACTUAL", 30.0, 60.0, 25.0, 8.0);
+  SECTION("Sa(T1) targets from the log-log spectrum of the grid's values") {
+    const auto response =
+        run("response --city " + city.path() + " --shakemap '" + grid + "' --motion '" + kRecords + "TAK000.AT2'");
+    INFO(response.output);
+    REQUIRE(response.exitCode == 0);
+    CHECK(response.output.find("ACTUAL") != std::string::npos);
+    simdjson::dom::parser parser;
+    const auto doc = parse(parser, run("info " + city.path() + " --json").output);
+    CHECK(std::string(doc["event_type"].get_string().value()) == "ACTUAL");
+    for (int id = 1; id <= 5; ++id) {
+      simdjson::dom::parser p;
+      const auto building =
+          parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+      const auto s = building["spectral_scaling"]["x"];
+      const double period = number(s["period_s"]);
+      CHECK(number(s["target_sa_g"]) == Approx(targetSa(0.30, 0.60, 0.25, 0.08, period)).epsilon(1e-4));
+      // One component: Y is not analysed.
+      CHECK(number(building["spectral_scaling"]["y"]["scale"]) == 0.0);
+    }
+  }
+  SECTION("--scale-by pga: every building's record peaks at the grid's PGA") {
+    const auto response = run("response --city " + city.path() + " --shakemap '" + grid + "' --motion '" + kRecords +
+                              "TAK000.AT2' --scale-by pga");
+    INFO(response.output);
+    REQUIRE(response.exitCode == 0);
+    for (int id = 1; id <= 5; ++id) {
+      simdjson::dom::parser p;
+      const auto building =
+          parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+      CHECK(number(building["pga_g"]) == Approx(0.30).epsilon(1e-4));
+    }
+  }
+}
+
+TEST_CASE("response refuses buildings outside the ShakeMap unless told to skip them, and bad grids",
+          "[response][cli][shakemap]") {
+  const City city("outside", lowerManhattan());
+  const std::string grid = city.dir + "/grid.xml";
+  // The grid covers lon -75.5 .. -75.3: none of the city.
+  std::ofstream(grid) << uniformGrid(-75.5, 40.6, "SCENARIO", 30.0, 60.0, 25.0, 8.0);
+  const std::string before = readText(city.dir + "/city/tileset.json");
+  const auto refused = run("response --city " + city.path() + " --shakemap '" + grid + "' --synthetic 1");
+  CHECK(refused.exitCode != 0);
+  CHECK(refused.output.find("5 of the city's 5 buildings lie outside the grid") != std::string::npos);
+  CHECK(refused.output.find("lon -75.5") != std::string::npos);
+  CHECK(refused.output.find("--outside-grid skip") != std::string::npos);
+  CHECK(readText(city.dir + "/city/tileset.json") == before);  // nothing written
+
+  const auto skipped =
+      run("response --city " + city.path() + " --shakemap '" + grid + "' --synthetic 1 --outside-grid skip");
+  INFO(skipped.output);
+  REQUIRE(skipped.exitCode == 0);
+  simdjson::dom::parser parser;
+  const auto doc = parse(parser, run("info " + city.path() + " --json").output);
+  CHECK(doc["no_result_reasons"]["outside_field"].get_uint64().value() == 5);
+  const auto building = parse(parser, run("info " + city.path() + " --building w1 --json").output);
+  CHECK(std::string(building["no_result_detail"].get_string().value()).find("outside the ShakeMap grid") !=
+        std::string::npos);
+
+  SECTION("a truncated grid is refused with its file and line, and the city keeps its response") {
+    const std::string kept = readText(city.dir + "/city/tileset.json");
+    std::string text = uniformGrid(-74.1, 40.6, "SCENARIO", 30.0, 60.0, 25.0, 8.0);
+    text.erase(text.rfind("\n-74"), std::string::npos);  // drop the last row and the closing tags
+    text += "\n</grid_data>\n</shakemap_grid>\n";
+    std::ofstream(grid, std::ios::trunc) << text;
+    const auto bad = run("response --city " + city.path() + " --shakemap '" + grid + "' --synthetic 1");
+    CHECK(bad.exitCode != 0);
+    CHECK(bad.output.find(grid) != std::string::npos);
+    CHECK(bad.output.find("line") != std::string::npos);
+    CHECK(readText(city.dir + "/city/tileset.json") == kept);
+  }
+}
+
+TEST_CASE("response's ShakeMap, suite and consequence options are checked before any work", "[response][cli]") {
+  const City city("options", lowerManhattan());
+  struct Case {
+    std::string arguments, message;
+  };
+  const std::vector<Case> cases = {
+      {"--shakemap '" + kNycGrid + "' --epicentre -74,40.5,5 --magnitude 6 --synthetic 1", "not both"},
+      {"--synthetic 1 --scale-by sa", "--scale-by goes with --shakemap or --epicentre"},
+      {"--synthetic 1 --shakemap '" + kNycGrid + "' --scale-by psa", "--scale-by must be sa or pga"},
+      {"--synthetic 1 --outside-grid skip", "--outside-grid goes with --shakemap"},
+      {"--synthetic 1 --time-of-day noon", "--time-of-day must be night, day or commute"},
+      {"--synthetic 1 x", "unexpected argument"},
+      {"--synthetic 1 --shakemap '" + kNycGrid + "' --pga 0.3", "--pga scales the records without a shaking field"},
+      {"--motion '" + kRecords + "elCentro.AT2' '" + kRecords + "TAK000.AT2' --motion-y '" + kRecords + "TAK000.AT2'",
+       "--motion-y goes with exactly one --motion record"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run("response --city " + city.path() + " " + c.arguments);
+    INFO(c.arguments);
+    INFO(r.output);
+    CHECK(r.exitCode != 0);
+    CHECK(r.output.find(c.message) != std::string::npos);
+  }
+  const auto missing = run("response --city " + city.path() + " --synthetic 1 --shakemap /nonexistent/grid.xml");
+  CHECK(missing.exitCode != 0);
+  CHECK(missing.output.find("/nonexistent/grid.xml") != std::string::npos);
+  const std::string badDistricts = city.dir + "/bad.geojson";
+  std::ofstream(badDistricts)
+      << R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[0,0]}}]})";
+  const auto districts = run("response --city " + city.path() + " --synthetic 1 --districts '" + badDistricts + "'");
+  CHECK(districts.exitCode != 0);
+  CHECK(districts.output.find("feature 0 has no \"name\" property") != std::string::npos);
+}
