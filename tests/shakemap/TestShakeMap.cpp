@@ -272,6 +272,34 @@ TEST_CASE("ShakeMap 4 and 3.5 layouts, extra fields and empty units all give the
   }
 }
 
+TEST_CASE("Accepted variations of the text: CRLF lines, namespace prefixes, exponents, blank lines", "[shakemap]") {
+  const std::string good = readText(kDataDir + "/sm4-4x3.xml");
+  const ShakeMapGrid reference = parsed(good, "sm4-4x3.xml");
+  std::string crlf;
+  for (const char c : good) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  std::string prefixed = good;
+  for (const std::string element : {"shakemap_grid", "event", "grid_specification", "grid_field", "grid_data"}) {
+    for (std::size_t at = 0; (at = prefixed.find("<" + element, at)) != std::string::npos; at += 4)
+      prefixed.replace(at, 1, "<sm:");
+    for (std::size_t at = 0; (at = prefixed.find("</" + element, at)) != std::string::npos; at += 5)
+      prefixed.replace(at, 2, "</sm:");
+  }
+  prefixed = replaced(prefixed, "<sm:shakemap_grid ",
+                      "<sm:shakemap_grid xmlns:sm=\"http://earthquake.usgs.gov/eqcenter/shakemap\" ");
+  const std::string numbers =
+      replaced(replaced(replaced(good, " 6.5 36.1 ", " 6.5e0 3.61E+1 "), " 425.365\n", " +425.365\n\n  \n"),
+               "-74.0300 40.6746 ", "\t-74.03 40.67460000000000000000001 ");
+  for (const auto& [what, text] : std::vector<std::pair<std::string, std::string>>{
+           {"CRLF", crlf}, {"prefixed", prefixed}, {"number spellings", numbers}}) {
+    INFO(what);
+    const ShakeMapGrid grid = parsed(text, what + ".xml");
+    CHECK(grid.pga == reference.pga);
+    CHECK(grid.mmi == reference.mmi);
+    CHECK(grid.vs30 == reference.vs30);
+    CHECK(grid.psa30 == reference.psa30);
+  }
+}
+
 TEST_CASE("A ShakeMap with PGA only: no spectra, absent fields sample as NaN, PGA in g", "[shakemap]") {
   const std::string xml = R"(<?xml version="1.0"?>
 <shakemap_grid event_id="us7000abcd" shakemap_event_type="ACTUAL" code_version="4.1.3">
@@ -380,13 +408,25 @@ TEST_CASE("Bad ShakeMaps are refused with the file and the line", "[shakemap]") 
       {"an element inside grid_data",
        replaced(good, "<grid_data>\n", "<grid_data>\n<row/>\n"),
        firstRow,
-       {"<row>", "grid_data"}},
+       {"\"<row", "only numbers"}},
       {"another root element", "<?xml version=\"1.0\"?>\n<gpx version=\"1.1\"/>\n", 2, {"<gpx>", "not a ShakeMap"}},
       {"a grid cut off inside grid_data",
        good.substr(0, good.find("-73.9800 40.6746")),
        lineOf(good, "-73.9800 40.6746"),
        {"ends inside <grid_data>", "10 of 12", "truncated"}},
       {"not XML", "lon,lat,pga\n-74.03,40.72,0.36\n", 1, {"not XML"}},
+      {"a comment inside grid_data",
+       replaced(good, "</grid_data>", "<!-- end --></grid_data>"),
+       lineOf(good, "</grid_data>"),
+       {"only numbers", "<!--"}},
+      {"an empty grid_data element",
+       replaced(good, "<grid_data>", "<grid_data/><grid_data_rest>"),
+       gridDataLine,
+       {"0 rows", "4 x 3 = 12"}},
+      {"junk after the grid",
+       replaced(good, "</shakemap_grid>", "</shakemap_grid><more/>"),
+       lineOf(good, "</shakemap_grid>"),
+       {"XML error"}},
   };
   for (const Case& c : cases) {
     INFO(c.what);
