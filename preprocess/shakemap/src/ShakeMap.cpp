@@ -307,6 +307,7 @@ class GridParser {
     lineOffset_ = dataEndLine_ - 1;
     return feed(xml, dataEnd_);
   }
+
   // ---- expat callbacks ----
   static void XMLCALL onStart(void* self, const XML_Char* name, const XML_Char** attributes) {
     auto* parser = static_cast<GridParser*>(self);
@@ -346,10 +347,6 @@ class GridParser {
     if (stopped()) return error_;
     const std::string line = std::to_string(currentLine());
     const std::string reason = XML_ErrorString(XML_GetErrorCode(parser_));
-    if (inGridData_)
-      return name_ + ":" + line + ": the file ends inside <grid_data> after " + std::to_string(rows_) + " of " +
-             std::to_string(expectedRows_) + " rows (nlon x nlat = " + std::to_string(grid_.lonCount) + " x " +
-             std::to_string(grid_.latCount) + "): truncated grid (XML: " + reason + ")";
     if (!sawRoot_) return name_ + ":" + line + ": not XML, not a ShakeMap grid.xml (XML: " + reason + ")";
     return name_ + ":" + line + ": XML error: " + reason;
   }
@@ -821,9 +818,9 @@ Result<ShakeMapGrid> parseShakeMapGrid(std::string_view xml, std::string_view na
 }
 
 Result<ShakeMapGrid> readShakeMapGrid(const std::string& path, const ShakeMapLimits& limits) {
-  auto text = readTextFile(path, limits.maxBytes);
-  if (!text.ok()) return Error{text.error()};
-  return parseShakeMapGrid(*text, path, limits);
+  const auto bytes = readFile(path, limits.maxBytes);
+  if (!bytes.ok()) return Error{bytes.error()};
+  return parseShakeMapGrid(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()), path, limits);
 }
 
 std::optional<ShakeMapSample> sampleShakeMap(const ShakeMapGrid& grid, double longitudeDeg, double latitudeDeg) {

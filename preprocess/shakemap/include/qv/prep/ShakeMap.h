@@ -32,6 +32,10 @@
 //     LAT must equal its node's lattice position within 1e-4 degrees (files print 4 decimals), so
 //     rows out of order are refused too. Known fields must be finite.
 //   - Exactly nlon * nlat rows: fewer (truncated grids exist in the wild) or more is an error.
+//   - <grid_data> holds only numbers and whitespace (no comments, CDATA or character references;
+//     no ShakeMap writes them), in an ASCII-compatible encoding (UTF-8, ASCII, ISO-8859-1).
+//     Numbers are read locale-independently (std::from_chars, or an exactly equivalent fast path
+//     for plain decimals); a leading '+' is accepted. Blank lines are skipped.
 //   - Security: any DOCTYPE (hence any entity declaration: "billion laughs", external entities) is
 //     refused as soon as it starts; nothing external is ever fetched; element nesting is bounded by
 //     ShakeMapLimits::maxDepth, input size by maxBytes, and nlon * nlat * fields by maxValues, which
