@@ -221,7 +221,7 @@ struct LossTotals {
 };
 
 /// Number of realisations totalLosses draws.
-inline constexpr int kLossRealisations = 1000;
+inline constexpr int kLossRealisations = 500;
 
 /// Totals over buildings. Expected values are exact sums of the buildings' expected values. The
 /// 90 % interval is Monte Carlo (kLossRealisations realisations, deterministic for a seed): each
