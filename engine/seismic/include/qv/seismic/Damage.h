@@ -2,9 +2,11 @@
 //
 // Source: Hazus Earthquake Model Technical Manual (FEMA, Hazus 5.1, 2022), Tables 5-9a to 5-9d,
 // "Structural fragility curve parameters": the median average inter-story drift ratio at the
-// threshold of each structural damage state, per model building type and seismic design level
-// (the same values as Hazus-MH 2.1, Tables 5.9a–5.9d). Types not permitted at the high and
-// moderate code levels (C3, URM) use their low-code values; an unknown era uses moderate code.
+// threshold of each structural damage state, per model building type and seismic design level.
+// The values are the shipped HAZUS table (HazusTables.h, generated from the SimCenter Damage and
+// Loss Model Library's hazus_data_eq.json), the same medians Loss.h's fragilities use. Types not
+// permitted at the high and moderate code levels (C3, URM) use their low-code values; an unknown
+// era uses moderate code. Loss.h gives the probabilistic counterpart (probabilities of each state).
 #pragma once
 
 #include <array>

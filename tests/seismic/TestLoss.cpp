@@ -1,0 +1,335 @@
+// HAZUS damage probabilities and consequences (Loss.h). Expected numbers are worked by hand from the
+// Hazus 5.1 values (written out in the comments: median, beta, ln ratio, Phi), never taken from the
+// code under test.
+#include <catch2/catch.hpp>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "qv/seismic/Loss.h"
+
+using namespace qv;
+using namespace qv::seismic;
+
+namespace {
+
+void checkProbabilities(const DamageProbabilities& d, const std::array<double, 5>& expected) {
+  double sum = 0;
+  for (std::size_t k = 0; k < 5; ++k) {
+    INFO("state " << k);
+    CHECK(d.p[k] == Approx(expected[k]).margin(1e-8));
+    CHECK(d.p[k] >= 0.0);
+    sum += d.p[k];
+  }
+  CHECK(sum == Approx(1.0).margin(1e-12));
+}
+
+}  // namespace
+
+TEST_CASE("Structural fragility probabilities match hand-computed values", "[loss]") {
+  SECTION("C1M moderate code at its moderate median") {
+    // Medians .0033 .0058 .0156 .040, beta 0.4, drift 0.0058:
+    // P>=1 = Phi(ln(.0058/.0033)/.4) = Phi(0.563935/.4 = 1.409839) = 0.920706330
+    // P>=2 = Phi(0) = 0.5
+    // P>=3 = Phi(ln(.0058/.0156)/.4) = Phi(-0.989413/.4 = -2.473532) = 0.006689232
+    // P>=4 = Phi(ln(.0058/.040)/.4) = Phi(-1.931022/.4 = -4.827554) = 0.000000691
+    const auto d = structuralDamage(StructuralType::C1M, CodeEra::ModerateCode, 0.0058);
+    checkProbabilities(d,
+                       {1 - 0.920706330, 0.920706330 - 0.5, 0.5 - 0.006689232, 0.006689232 - 0.000000691, 0.000000691});
+    CHECK(d.atLeast(2) == Approx(0.5));
+    CHECK(d.mostLikely() == 2);
+    // Expected state = 1(.420706) + 2(.493311) + 3(.006689) + 4(.0000007) = 1.427398.
+    CHECK(d.expectedState() == Approx(0.420706330 + 2 * 0.493310768 + 3 * 0.006688541 + 4 * 0.000000691));
+    // Collapse = P(complete) x P_collapse(C1M) = 6.91e-7 x 0.10.
+    CHECK(collapseProbability(StructuralType::C1M, d) == Approx(0.000000691 * 0.10).epsilon(1e-3));
+  }
+  SECTION("URML pre-code") {
+    // Medians .0024 .0048 .012 .028, beta 0.4, drift 0.01:
+    // P>=1 = Phi(ln(.01/.0024)/.4 = 1.427116/.4 = 3.567791) = 0.999819998
+    // P>=2 = Phi(0.733969/.4 = 1.834923) = 0.966741446
+    // P>=3 = Phi(-0.182322/.4 = -0.455804) = 0.324265503
+    // P>=4 = Phi(-1.029619/.4 = -2.574049) = 0.005025808
+    const auto d = structuralDamage(StructuralType::URML, CodeEra::PreCode, 0.01);
+    checkProbabilities(d, {0.000180002, 0.033078552, 0.642475943, 0.319239694, 0.005025808});
+    CHECK(collapseProbability(StructuralType::URML, d) == Approx(0.005025808 * 0.15).epsilon(1e-6));
+  }
+  SECTION("S1H high code") {
+    // Medians .003 .006 .015 .040, beta 0.4, drift 0.02:
+    // P>=1 = Phi(1.897120/.4 = 4.742800) = 0.999998946; P>=2 = Phi(1.203973/.4 = 3.009932) = 0.998693469
+    // P>=3 = Phi(0.287682/.4 = 0.719205) = 0.763992746; P>=4 = Phi(-0.693147/.4 = -1.732868) = 0.041559571
+    const auto d = structuralDamage(StructuralType::S1H, CodeEra::HighCode, 0.02);
+    checkProbabilities(d, {0.000001054, 0.001305477, 0.234700723, 0.722433175, 0.041559571});
+    CHECK(d.mostLikely() == 3);
+  }
+  SECTION("a record-to-record dispersion combines by SRSS") {
+    // C1M moderate, drift 0.0058, demand beta 0.3: beta = sqrt(.4^2 + .3^2) = 0.5.
+    // P>=1 = Phi(0.563935/.5 = 1.127871) = 0.870312777; P>=2 = 0.5
+    // P>=3 = Phi(-0.989413/.5 = -1.978826) = 0.023917800; P>=4 = Phi(-1.931022/.5 = -3.862043) = 0.000056221
+    const auto d = structuralDamage(StructuralType::C1M, CodeEra::ModerateCode, 0.0058, 0.3);
+    checkProbabilities(d, {0.129687223, 0.370312777, 0.476082200, 0.023861579, 0.000056221});
+  }
+  SECTION("types and eras Hazus does not define resolve like the deterministic thresholds") {
+    // URML has no moderate-code row: low code (medians .003 .006 .015 .035); at drift .006, P>=2 = 0.5.
+    CHECK(structuralDamage(StructuralType::URML, CodeEra::ModerateCode, 0.006).atLeast(2) == Approx(0.5));
+    // Unknown type of 12 storeys: C1H; unknown era: moderate (C1H moderate: slight median .0025).
+    CHECK(structuralDamage(StructuralType::Unknown, CodeEra::Unknown, 0.0025, 0, 12).atLeast(1) == Approx(0.5));
+  }
+  SECTION("no demand: certainly undamaged") {
+    checkProbabilities(structuralDamage(StructuralType::W1, CodeEra::HighCode, 0.0), {1, 0, 0, 0, 0});
+    checkProbabilities(structuralDamage(StructuralType::W1, CodeEra::HighCode, std::nan("")), {1, 0, 0, 0, 0});
+  }
+}
+
+TEST_CASE("Probabilities sum to one and shift monotonically to worse states as the drift grows", "[loss]") {
+  for (int t = 1; t < static_cast<int>(StructuralType::Count); ++t) {
+    for (int e = 1; e <= 4; ++e) {
+      const auto type = static_cast<StructuralType>(t);
+      const auto era = static_cast<CodeEra>(e);
+      INFO(structuralTypeCode(type) << " " << codeEraName(era));
+      std::array<double, 5> previous{1, 0, 0, 0, 0};  // P(DS >= k) at the previous drift
+      for (double drift = 1e-4; drift < 0.2; drift *= 1.5) {
+        const auto d = structuralDamage(type, era, drift, 0.25);
+        double sum = 0;
+        for (double p : d.p) sum += p;
+        CHECK(sum == Approx(1.0).margin(1e-12));
+        for (int k = 1; k <= 4; ++k) {
+          CHECK(d.atLeast(k) >= previous[static_cast<std::size_t>(k)]);
+          previous[static_cast<std::size_t>(k)] = d.atLeast(k);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("Non-structural fragilities match hand-computed values", "[loss]") {
+  // Drift-sensitive: medians .004 .008 .025 .05, beta 0.5, drift 0.01:
+  // P>=1 = Phi(ln(2.5)/.5 = 1.832581) = 0.966567582; P>=2 = Phi(ln(1.25)/.5 = 0.446287) = 0.672305064
+  // P>=3 = Phi(-1.832581) = 0.033432418; P>=4 = Phi(ln(.2)/.5 = -3.218876) = 0.000643471
+  checkProbabilities(
+      nonStructuralDriftDamage(0.01),
+      {1 - 0.966567582, 0.966567582 - 0.672305064, 0.672305064 - 0.033432418, 0.033432418 - 0.000643471, 0.000643471});
+  // Acceleration-sensitive, moderate code: medians .25 .5 1 2 g, beta 0.6, PFA 0.5 g:
+  // P>=1 = Phi(ln 2/.6 = 1.155245) = 0.876005006; P>=2 = 0.5; P>=3 = Phi(-1.155245) = 0.123994994
+  // P>=4 = Phi(ln .25/.6 = -2.310491) = 0.010430504
+  const std::array<double, 5> nsa{1 - 0.876005006, 0.376005006, 0.5 - 0.123994994, 0.123994994 - 0.010430504,
+                                  0.010430504};
+  checkProbabilities(nonStructuralAccelerationDamage(CodeEra::ModerateCode, 0.5), nsa);
+  checkProbabilities(nonStructuralAccelerationDamage(CodeEra::Unknown, 0.5), nsa);
+  // High code is more tolerant: median slight 0.3 g.
+  CHECK(nonStructuralAccelerationDamage(CodeEra::HighCode, 0.3).atLeast(1) == Approx(0.5));
+}
+
+TEST_CASE("Occupancy, time of day and the inferred tables", "[loss]") {
+  CHECK(occupancyFromUse("house", 2) == Occupancy::RES1);
+  CHECK(occupancyFromUse("residential", 8) == Occupancy::RES3);
+  CHECK(occupancyFromUse("office", 30) == Occupancy::COM4);
+  CHECK(occupancyFromUse("hospital", 5) == Occupancy::COM6);
+  CHECK(occupancyFromUse("school", 3) == Occupancy::EDU1);
+  CHECK(occupancyFromUse("religious", 1) == Occupancy::REL1);
+  CHECK(occupancyFromUse("fire_station", 2) == Occupancy::GOV2);
+  CHECK(occupancyFromUse("unknown", 1) == Occupancy::RES1);
+  CHECK(occupancyFromUse("", 6) == Occupancy::RES3);
+  CHECK(occupancyCode(Occupancy::COM10) == "COM10");
+  CHECK(occupancyCode(Occupancy::EDU2) == "EDU2");
+
+  REQUIRE(parseTimeOfDay("commute").ok());
+  CHECK(*parseTimeOfDay("commute") == TimeOfDay::Commute);
+  CHECK(timeOfDayName(*parseTimeOfDay("night")) == "night");
+  const auto bad = parseTimeOfDay("noon");
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().find("noon") != std::string::npos);
+  CHECK(bad.error().find("commute") != std::string::npos);
+  CHECK(timeOfDayAtHour(3) == TimeOfDay::Night);
+  CHECK(timeOfDayAtHour(12) == TimeOfDay::Day);
+  CHECK(timeOfDayAtHour(17) == TimeOfDay::Commute);
+  CHECK(timeOfDayAtHour(-1) == TimeOfDay::Night);  // 23:00
+
+  // Population_Distribution: offices empty at night (1 %), full by day; dwellings the reverse.
+  CHECK(occupantsPresentShare(Occupancy::COM4, TimeOfDay::Night) == 0.01);
+  CHECK(occupantsPresentShare(Occupancy::COM4, TimeOfDay::Day) == 1.0);
+  CHECK(occupantsPresentShare(Occupancy::RES3, TimeOfDay::Day) == 0.53);
+  CHECK(occupantsPresentShare(Occupancy::RES4, TimeOfDay::Night) == 1.0);
+  CHECK(occupantsPresentShare(Occupancy::EDU1, TimeOfDay::Commute) == 0.5);
+  // IBC 2018 business: 150 ft² = 13.935 m² per occupant.
+  CHECK(occupantDensityM2PerPerson(Occupancy::COM4) == Approx(13.935456));
+  for (int o = 0; o < static_cast<int>(Occupancy::Count); ++o) {
+    CHECK(occupantDensityM2PerPerson(static_cast<Occupancy>(o)) > 1.0);
+    CHECK(replacementCostUsdPerM2(static_cast<Occupancy>(o)) > 100.0);
+  }
+}
+
+TEST_CASE("One building's injuries, repair cost, time and tags, worked by hand", "[loss]") {
+  // A C1M moderate-code office (COM4) with 100 occupants and a value of $1,000,000, by day
+  // (Commercial: 100 % present), median peak drift 0.01 and peak floor acceleration 0.5 g.
+  Exposure office;
+  office.type = StructuralType::C1M;
+  office.era = CodeEra::ModerateCode;
+  office.occupancy = Occupancy::COM4;
+  office.storeys = 5;
+  office.floorAreaM2 = 3000;
+  office.occupants = 100;
+  office.replacementValueUsd = 1e6;
+  const BuildingLoss loss = assessLoss(office, 0.01, 0.5, 0, 0, TimeOfDay::Day);
+
+  // Structural, drift .01, medians .0033 .0058 .0156 .040, beta .4: P>=1..4 = Phi(2.771657) =
+  // 0.997211408, Phi(1.361818) = 0.913372326, Phi(-1.111715) = 0.133130450, Phi(-3.465736) = 0.000264391.
+  const std::array<double, 5> ps{0.002788592, 0.083839082, 0.780241875, 0.132866059, 0.000264391};
+  checkProbabilities(loss.structural, ps);
+  CHECK(loss.occupantsPresent == Approx(100));
+  CHECK_FALSE(loss.occupantsInferred);
+  CHECK_FALSE(loss.valueInferred);
+  CHECK(loss.collapse == Approx(ps[4] * 0.10));
+
+  // C1M injury rates (%), severity 1..4: DS1 .05 0 0 0; DS2 .25 .03 0 0; DS3 1 .1 .001 .001;
+  // DS4 5 1 .01 .01; collapse 40 20 5 10; P_collapse .10. Injuries = 100 x sum P x rate / 100.
+  const double c = 0.10;
+  const std::array<double, 4> expectedInjuries{
+      ps[1] * 0.05 + ps[2] * 0.25 + ps[3] * 1 + ps[4] * ((1 - c) * 5 + c * 40),
+      ps[2] * 0.03 + ps[3] * 0.1 + ps[4] * ((1 - c) * 1 + c * 20),
+      ps[3] * 0.001 + ps[4] * ((1 - c) * 0.01 + c * 5),
+      ps[3] * 0.001 + ps[4] * ((1 - c) * 0.01 + c * 10),
+  };
+  for (std::size_t s = 0; s < 4; ++s) {
+    INFO("severity " << s + 1);
+    CHECK(loss.injuries[s] == Approx(expectedInjuries[s]).epsilon(1e-6));
+  }
+  CHECK(loss.injuries[0] == Approx(0.33436581).epsilon(1e-6));  // about one person in three
+
+  // Repair cost, COM4 ratios (%): structural .4 1.9 9.6 19.2; drift-sensitive .7 3.3 16.4 32.9;
+  // acceleration-sensitive .9 4.8 14.4 47.9. NSD P(=k) from medians .004 .008 .025 .05 (beta .5)
+  // and NSA from .25 .5 1 2 g (beta .6), as in the non-structural test above.
+  const std::array<double, 5> pn{1 - 0.966567582, 0.966567582 - 0.672305064, 0.672305064 - 0.033432418,
+                                 0.033432418 - 0.000643471, 0.000643471};
+  const std::array<double, 5> pa{1 - 0.876005006, 0.376005006, 0.5 - 0.123994994, 0.123994994 - 0.010430504,
+                                 0.010430504};
+  const double cost = 1e6 *
+                      (ps[1] * 0.4 + ps[2] * 1.9 + ps[3] * 9.6 + ps[4] * 19.2 + pn[1] * 0.7 + pn[2] * 3.3 +
+                       pn[3] * 16.4 + pn[4] * 32.9 + pa[1] * 0.9 + pa[2] * 4.8 + pa[3] * 14.4 + pa[4] * 47.9) /
+                      100;
+  CHECK(loss.repairCostUsd == Approx(cost).epsilon(1e-6));
+  CHECK(loss.repairCostUsd == Approx(99479.36).epsilon(1e-5));
+  // Repair time, COM4: 5 30 120 240 days.
+  CHECK(loss.repairTimeDays == Approx(ps[1] * 5 + ps[2] * 30 + ps[3] * 120 + ps[4] * 240).epsilon(1e-6));
+  // Tags: green none + slight, yellow moderate, red extensive + complete.
+  CHECK(loss.tag[0] == Approx(ps[0] + ps[1]));
+  CHECK(loss.tag[1] == Approx(ps[2]));
+  CHECK(loss.tag[2] == Approx(ps[3] + ps[4]));
+
+  SECTION("at night the office is nearly empty: injuries scale with the 1 % present") {
+    const BuildingLoss night = assessLoss(office, 0.01, 0.5, 0, 0, TimeOfDay::Night);
+    CHECK(night.occupantsPresent == Approx(1.0));
+    CHECK(night.injuries[0] == Approx(expectedInjuries[0] / 100).epsilon(1e-6));
+    CHECK(night.repairCostUsd == Approx(loss.repairCostUsd));
+  }
+  SECTION("without tagged occupants and value both are inferred from the floor area") {
+    office.occupants.reset();
+    office.replacementValueUsd.reset();
+    const BuildingLoss inferred = assessLoss(office, 0.01, 0.5, 0, 0, TimeOfDay::Day);
+    CHECK(inferred.occupantsInferred);
+    CHECK(inferred.valueInferred);
+    // 3000 m² / (150 ft² = 13.935 m²) = 215.28 occupants.
+    CHECK(inferred.occupantsPresent == Approx(3000 / (150 * 0.09290304)));
+    CHECK(inferred.replacementValueUsd == Approx(3000 * replacementCostUsdPerM2(Occupancy::COM4)));
+  }
+}
+
+TEST_CASE("City totals: expected values are sums, the interval holds them and repeats per seed", "[loss]") {
+  SECTION("no buildings: zeros") {
+    const LossTotals t = totalLosses({});
+    CHECK(t.buildings == 0);
+    for (const Estimate& e : t.damageStates) CHECK((e.expected == 0 && e.low == 0 && e.high == 0));
+    CHECK((t.repairCostUsd.expected == 0 && t.repairCostUsd.high == 0));
+    CHECK((t.collapsed.expected == 0 && t.occupants.expected == 0));
+  }
+
+  // 400 buildings of mixed types, eras and shaking.
+  std::vector<BuildingLoss> losses;
+  for (int i = 0; i < 400; ++i) {
+    Exposure x;
+    x.type = static_cast<StructuralType>(1 + i % 23);
+    x.era = static_cast<CodeEra>(1 + i % 4);
+    x.occupancy = static_cast<Occupancy>(i % 28);
+    x.storeys = 1 + i % 10;
+    x.floorAreaM2 = 200.0 + 37.0 * (i % 50);
+    const double drift = 0.001 + 0.0002 * (i % 97);
+    losses.push_back(assessLoss(x, drift, 0.1 + 0.01 * (i % 60), 0.3, 0.3, TimeOfDay::Day));
+  }
+  const LossTotals t = totalLosses(losses, 7);
+  CHECK(t.buildings == 400);
+
+  std::array<double, 5> states{};
+  std::array<double, 4> injuries{};
+  double cost = 0, collapsed = 0, occupants = 0, red = 0;
+  for (const BuildingLoss& b : losses) {
+    for (std::size_t k = 0; k < 5; ++k) states[k] += b.structural.p[k];
+    for (std::size_t s = 0; s < 4; ++s) injuries[s] += b.injuries[s];
+    cost += b.repairCostUsd;
+    collapsed += b.collapse;
+    occupants += b.occupantsPresent;
+    red += b.tag[2];
+  }
+  double stateSum = 0;
+  for (std::size_t k = 0; k < 5; ++k) {
+    CHECK(t.damageStates[k].expected == Approx(states[k]));
+    stateSum += t.damageStates[k].expected;
+  }
+  CHECK(stateSum == Approx(400));
+  for (std::size_t s = 0; s < 4; ++s) CHECK(t.injuries[s].expected == Approx(injuries[s]));
+  CHECK(t.repairCostUsd.expected == Approx(cost));
+  CHECK(t.collapsed.expected == Approx(collapsed));
+  CHECK(t.occupants.expected == Approx(occupants));
+  CHECK(t.tags[2].expected == Approx(red));
+  CHECK(t.tags[0].expected + t.tags[1].expected + t.tags[2].expected == Approx(400));
+
+  auto contains = [](const Estimate& e) { return e.low <= e.expected && e.expected <= e.high; };
+  for (const Estimate& e : t.damageStates) CHECK(contains(e));
+  for (const Estimate& e : t.injuries) CHECK(contains(e));
+  for (const Estimate& e : t.tags) CHECK(contains(e));
+  CHECK(contains(t.repairCostUsd));
+  CHECK(contains(t.collapsed));
+  // The interval is a real spread where outcomes vary: hundreds of uncertain buildings.
+  CHECK(t.damageStates[2].high - t.damageStates[2].low > 5);
+  CHECK(t.repairCostUsd.high > t.repairCostUsd.low);
+  // Under independence, counts are sums of Bernoulli draws: the 90 % interval of the moderate count
+  // is about +-1.645 standard deviations, sqrt(sum p(1 - p)).
+  double variance = 0;
+  for (const BuildingLoss& b : losses) variance += b.structural.p[2] * (1 - b.structural.p[2]);
+  const double halfWidth = 1.645 * std::sqrt(variance);
+  CHECK((t.damageStates[2].high - t.damageStates[2].low) / 2 == Approx(halfWidth).epsilon(0.15));
+
+  // Deterministic for a seed; another seed moves the sampled bounds but not the expected values.
+  const LossTotals again = totalLosses(losses, 7);
+  CHECK(again.repairCostUsd.low == t.repairCostUsd.low);
+  CHECK(again.damageStates[2].high == t.damageStates[2].high);
+  CHECK(again.injuries[0].high == t.injuries[0].high);
+  const LossTotals other = totalLosses(losses, 8);
+  CHECK(other.repairCostUsd.expected == t.repairCostUsd.expected);
+  CHECK(other.repairCostUsd.low != t.repairCostUsd.low);
+}
+
+// Opt-in timing (hidden: `test_seismic "[.loss-bench]"`, meaningful in a release build): assessing and
+// totalling 100,000 buildings. The brief's budget for totalLosses is 2 s.
+TEST_CASE("Totals of 100,000 buildings", "[.loss-bench]") {
+  std::vector<BuildingLoss> losses;
+  losses.reserve(100000);
+  const auto t0 = std::chrono::steady_clock::now();
+  for (int i = 0; i < 100000; ++i) {
+    Exposure x;
+    x.type = static_cast<StructuralType>(1 + i % 23);
+    x.era = static_cast<CodeEra>(1 + i % 4);
+    x.occupancy = static_cast<Occupancy>(i % 28);
+    x.storeys = 1 + i % 10;
+    x.floorAreaM2 = 200.0 + 37.0 * (i % 50);
+    losses.push_back(assessLoss(x, 0.001 + 0.0002 * (i % 97), 0.1 + 0.01 * (i % 60), 0.3, 0.3, TimeOfDay::Day));
+  }
+  const auto t1 = std::chrono::steady_clock::now();
+  const LossTotals t = totalLosses(losses);
+  const auto t2 = std::chrono::steady_clock::now();
+  const double assessS = std::chrono::duration<double>(t1 - t0).count();
+  const double totalsS = std::chrono::duration<double>(t2 - t1).count();
+  WARN("assessLoss x 100000: " << assessS << " s; totalLosses: " << totalsS << " s");
+  CHECK(t.buildings == 100000);
+#ifdef NDEBUG
+  CHECK(totalsS < 2.0);
+#endif
+}
