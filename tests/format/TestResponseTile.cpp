@@ -139,11 +139,14 @@ TEST_CASE("The optional summary sections (scaling, suite spread, losses) round-t
   loss.tag[0] = 0.5f;
   loss.tag[1] = 0.25f;
   loss.tag[2] = 0.25f;
+  loss.repairCostStdUsd = 4.5e5f;
+  loss.injuriesStd[0] = 1.25f;
+  loss.injuriesStd[3] = 0.1f;
   loss.flags = kLossOccupantsInferred | kLossValueInferred;
   t.losses = {loss, BuildingLoss{}};
   const auto bytes = encodeResponseSummary(t);
   // Four more section table entries and the documented record sizes.
-  CHECK(bytes.size() == encodeResponseSummary(tinySummary()).size() + 4 * 12 + 2 * 32 + 2 * 12 + 2 * 12 + 2 * 112);
+  CHECK(bytes.size() == encodeResponseSummary(tinySummary()).size() + 4 * 12 + 2 * 32 + 2 * 12 + 2 * 12 + 2 * 132);
   const auto decoded = decodeResponseSummary(bytes, "optional.qvs");
   REQUIRE(decoded.ok());
   CHECK(decoded->scaling == t.scaling);

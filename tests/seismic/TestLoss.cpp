@@ -6,6 +6,7 @@
 #include <cmath>
 #include <vector>
 
+#include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/Loss.h"
 
 using namespace qv;
@@ -305,6 +306,37 @@ TEST_CASE("City totals: expected values are sums, the interval holds them and re
   const LossTotals other = totalLosses(losses, 8);
   CHECK(other.repairCostUsd.expected == t.repairCostUsd.expected);
   CHECK(other.repairCostUsd.low != t.repairCostUsd.low);
+}
+
+TEST_CASE("One building's spread of cost and injuries agrees with the Monte Carlo totals of its copies", "[loss]") {
+  Exposure x;
+  x.type = StructuralType::URML;
+  x.era = CodeEra::PreCode;
+  x.occupancy = Occupancy::COM4;
+  x.storeys = 2;
+  x.floorAreaM2 = 800.0;
+  const BuildingLoss one = assessLoss(x, 0.01, 0.4, 0.3, 0.3, TimeOfDay::Day);
+  const LossSpread spread = lossSpread(one);
+  CHECK(spread.repairCostUsd > 0.0);
+  CHECK(spread.injuries[0] > 0.0);
+  // 900 independent copies: the sampled 90 % interval of the total is about +-1.645 sqrt(900) sigma.
+  const std::vector<BuildingLoss> copies(900, one);
+  const LossTotals t = totalLosses(copies, 3);
+  CHECK((t.repairCostUsd.high - t.repairCostUsd.low) / 2 == Approx(1.645 * 30.0 * spread.repairCostUsd).epsilon(0.12));
+  CHECK((t.injuries[0].high - t.injuries[0].low) / 2 == Approx(1.645 * 30.0 * spread.injuries[0]).epsilon(0.12));
+  // A building certainly undamaged has no spread.
+  const BuildingLoss calm = assessLoss(x, 0.0, 0.0, 0.0, 0.0, TimeOfDay::Day);
+  CHECK(lossSpread(calm).repairCostUsd == Approx(0.0).margin(1e-9));
+  // Exposure from attributes resolves type and era as the building model does.
+  BuildingAttributes a;
+  a.use = "office";
+  a.footprintAreaM2 = 500.0f;
+  a.structuralType = StructuralType::Unknown;
+  const Exposure e = exposureFromAttributes(a, 12);
+  CHECK(e.type == resolvedStructuralType(StructuralType::Unknown, 12));
+  CHECK(e.era == resolvedCodeEra(e.type, CodeEra::Unknown));
+  CHECK(e.floorAreaM2 == Approx(6000.0));
+  CHECK(e.occupancy == occupancyFromUse("office", 12));
 }
 
 // Opt-in timing (hidden: `test_seismic "[.loss-bench]"`, meaningful in a release build): assessing and

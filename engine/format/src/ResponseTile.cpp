@@ -128,7 +128,7 @@ std::optional<std::pair<std::size_t, std::size_t>> findSection(const Parsed& p, 
 constexpr std::size_t kScalingRecordSize = 32;
 constexpr std::size_t kSpreadRecordSize = 12;
 constexpr std::size_t kStoreySpreadRecordSize = 12;
-constexpr std::size_t kLossRecordSize = 112;
+constexpr std::size_t kLossRecordSize = 132;
 
 // The optional summary sections (SPEC, SUIT, SSPR, LOSS): sizes match the counts, values are finite,
 // non-negative, and probabilities lie in [0, 1].
@@ -215,12 +215,15 @@ Status decodeOptionalSections(std::span<const std::uint8_t> bytes, const Parsed&
       b.repairCostUsd = r.f32("repair cost");
       b.repairTimeDays = r.f32("repair time");
       for (float& v : b.tag) v = r.f32("tag probability");
+      b.repairCostStdUsd = r.f32("repair cost deviation");
+      for (float& v : b.injuriesStd) v = r.f32("injuries deviation");
       b.flags = r.u8("flags");
       r.skip(3, "reserved");
       if (!probability(b.collapse) || !probability(b.tag[0]) || !probability(b.tag[1]) || !probability(b.tag[2]))
         return bad("LOSS", r, "invalid probability");
       for (const float v : {b.occupants, b.injuries[0], b.injuries[1], b.injuries[2], b.injuries[3],
-                            b.replacementValueUsd, b.repairCostUsd, b.repairTimeDays}) {
+                            b.replacementValueUsd, b.repairCostUsd, b.repairTimeDays, b.repairCostStdUsd,
+                            b.injuriesStd[0], b.injuriesStd[1], b.injuriesStd[2], b.injuriesStd[3]}) {
         if (!value(v)) return bad("LOSS", r, "invalid consequence value");
       }
     }
@@ -364,6 +367,8 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
       loss.f32(b.repairCostUsd);
       loss.f32(b.repairTimeDays);
       for (const float v : b.tag) loss.f32(v);
+      loss.f32(b.repairCostStdUsd);
+      for (const float v : b.injuriesStd) loss.f32(v);
       loss.u8(b.flags);
       loss.u8(0);
       loss.u16(0);

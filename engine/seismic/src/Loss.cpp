@@ -405,4 +405,53 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
   return totals;
 }
 
+LossSpread lossSpread(const BuildingLoss& b) {
+  const std::array<double, 4> str{b.structural.atLeast(1), b.structural.atLeast(2), b.structural.atLeast(3),
+                                  b.structural.atLeast(4)};
+  const std::array<double, 4> nsd{b.nonStructuralDrift.atLeast(1), b.nonStructuralDrift.atLeast(2),
+                                  b.nonStructuralDrift.atLeast(3), b.nonStructuralDrift.atLeast(4)};
+  const std::array<double, 4> nsa{b.nonStructuralAcceleration.atLeast(1), b.nonStructuralAcceleration.atLeast(2),
+                                  b.nonStructuralAcceleration.atLeast(3), b.nonStructuralAcceleration.atLeast(4)};
+  // Every outcome is constant between consecutive breakpoints of the draw v in (0, 1]; evaluate each
+  // piece at its right end (the outcome there holds on the whole piece, as stateAt compares v <= P).
+  std::vector<double> cuts = {0.0, 1.0, b.collapse};
+  for (const auto* set : {&str, &nsd, &nsa}) cuts.insert(cuts.end(), set->begin(), set->end());
+  for (double& c : cuts) c = std::clamp(c, 0.0, 1.0);
+  std::sort(cuts.begin(), cuts.end());
+  double cost = 0, cost2 = 0;
+  std::array<double, 4> injury{}, injury2{};
+  for (std::size_t i = 1; i < cuts.size(); ++i) {
+    const double width = cuts[i] - cuts[i - 1];
+    if (!(width > 0.0)) continue;
+    const double v = cuts[i];
+    const int s = stateAt(str, v);
+    const bool collapsed = s == 4 && v <= b.collapse;
+    const auto outcome = static_cast<std::size_t>(collapsed ? 5 : s);
+    const double c = b.given.structuralCostUsd[static_cast<std::size_t>(s)] +
+                     b.given.nsDriftCostUsd[static_cast<std::size_t>(stateAt(nsd, v))] +
+                     b.given.nsAccelerationCostUsd[static_cast<std::size_t>(stateAt(nsa, v))];
+    cost += width * c;
+    cost2 += width * c * c;
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double x = b.given.injuries[outcome][k];
+      injury[k] += width * x;
+      injury2[k] += width * x * x;
+    }
+  }
+  LossSpread out;
+  out.repairCostUsd = std::sqrt(std::max(0.0, cost2 - cost * cost));
+  for (std::size_t k = 0; k < 4; ++k) out.injuries[k] = std::sqrt(std::max(0.0, injury2[k] - injury[k] * injury[k]));
+  return out;
+}
+
+Exposure exposureFromAttributes(const BuildingAttributes& a, int storeys) {
+  Exposure e;
+  e.storeys = std::max(storeys, 1);
+  e.type = resolvedStructuralType(a.structuralType, e.storeys);
+  e.era = resolvedCodeEra(e.type, a.codeEra);
+  e.occupancy = occupancyFromUse(a.use, e.storeys);
+  e.floorAreaM2 = static_cast<double>(a.footprintAreaM2) * static_cast<double>(e.storeys);
+  return e;
+}
+
 }  // namespace qv::seismic

@@ -8,10 +8,10 @@
 #include "CityFiles.h"
 #include "Commands.h"
 #include "Summary.h"
-#include "qv/prep/Consequences.h"
 #include "qv/core/JsonWriter.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/prep/Cli.h"
+#include "qv/prep/Consequences.h"
 #include "qv/prep/Files.h"
 #include "qv/prep/ResponseWriter.h"
 
@@ -221,10 +221,10 @@ void printBuildingLoss(const BuildingResponseView& r) {
   }
   if (!r.loss) return;
   const BuildingLoss& l = *r.loss;
-  std::printf("  P(damage state): none %.3f, slight %.3f, moderate %.3f, extensive %.3f, complete %.3f; collapse %.4f\n",
-              static_cast<double>(l.structural[0]), static_cast<double>(l.structural[1]),
-              static_cast<double>(l.structural[2]), static_cast<double>(l.structural[3]),
-              static_cast<double>(l.structural[4]), static_cast<double>(l.collapse));
+  std::printf(
+      "  P(damage state): none %.3f, slight %.3f, moderate %.3f, extensive %.3f, complete %.3f; collapse %.4f\n",
+      static_cast<double>(l.structural[0]), static_cast<double>(l.structural[1]), static_cast<double>(l.structural[2]),
+      static_cast<double>(l.structural[3]), static_cast<double>(l.structural[4]), static_cast<double>(l.collapse));
   std::printf("  occupants %.1f%s, injuries %.3f / %.3f / %.3f, deaths %.4f\n", static_cast<double>(l.occupants),
               (l.flags & kLossOccupantsInferred) != 0 ? " (inferred from floor area and use)" : "",
               static_cast<double>(l.injuries[0]), static_cast<double>(l.injuries[1]),

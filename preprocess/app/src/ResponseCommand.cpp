@@ -42,28 +42,13 @@ const char* const kUsage =
 
 int runResponse(const CommandArgs& argv) {
   std::string error;
-  const auto args = Args::parse(argv,
-                                {{"city"},
-                                 {"motion", true, true},
-                                 {"shakemap"},
-                                 {"scale-by"},
-                                 {"outside-grid"},
-                                 {"time-of-day"},
-                                 {"districts"},
-                                 {"motion-y"},
-                                 {"dt"},
-                                 {"units"},
-                                 {"synthetic", true, true},
-                                 {"pga"},
-                                 {"epicentre"},
-                                 {"epicenter"},
-                                 {"magnitude"},
-                                 {"vs30"},
-                                 {"site-factor"},
-                                 {"wave-speed"},
-                                 {"threads"},
-                                 {"help", false}},
-                                error);
+  const auto args = Args::parse(
+      argv,
+      {{"city"},      {"motion", true, true}, {"shakemap"},  {"scale-by"}, {"outside-grid"},          {"time-of-day"},
+       {"districts"}, {"motion-y"},           {"dt"},        {"units"},    {"synthetic", true, true}, {"pga"},
+       {"epicentre"}, {"epicenter"},          {"magnitude"}, {"vs30"},     {"site-factor"},           {"wave-speed"},
+       {"threads"},   {"help", false}},
+      error);
   if (!args || args->has("help")) {
     if (!args) std::fprintf(stderr, "response: %s\n", error.c_str());
     std::fputs(kUsage, args ? stdout : stderr);
@@ -178,8 +163,9 @@ int runResponse(const CommandArgs& argv) {
     return usage("--scale-by goes with --shakemap or --epicentre (without them the records are used as given)");
   }
   if (options.pgaG && (options.scenario || !options.shakemap.empty())) {
-    return usage("--pga scales the records without a shaking field; with --shakemap or --epicentre the field "
-                 "sets each building's target");
+    return usage(
+        "--pga scales the records without a shaking field; with --shakemap or --epicentre the field "
+        "sets each building's target");
   }
   if (const auto threads = args->value("threads")) {
     const auto v = parseInteger(*threads);

@@ -251,6 +251,9 @@ BuildingLoss toSummaryLoss(const seismic::BuildingLoss& loss) {
   out.repairCostUsd = static_cast<float>(loss.repairCostUsd);
   out.repairTimeDays = static_cast<float>(loss.repairTimeDays);
   for (std::size_t k = 0; k < 3; ++k) out.tag[k] = static_cast<float>(loss.tag[k]);
+  const seismic::LossSpread spread = seismic::lossSpread(loss);
+  out.repairCostStdUsd = static_cast<float>(spread.repairCostUsd);
+  for (std::size_t k = 0; k < 4; ++k) out.injuriesStd[k] = static_cast<float>(spread.injuries[k]);
   out.flags = static_cast<std::uint8_t>((loss.occupantsInferred ? kLossOccupantsInferred : 0) |
                                         (loss.valueInferred ? kLossValueInferred : 0));
   return out;

@@ -14,16 +14,16 @@
 #include "qv/format/CityTile.h"
 #include "qv/format/Tileset.h"
 #include "qv/prep/Cli.h"
+#include "qv/prep/Consequences.h"
 #include "qv/prep/Files.h"
 #include "qv/prep/HistoryEncoder.h"
 #include "qv/prep/Projection.h"
 #include "qv/prep/ResponseWriter.h"
 #include "qv/prep/ShakeMap.h"
-#include "qv/prep/Consequences.h"
 #include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/GroundMotionReader.h"
-#include "qv/seismic/ResponseSpectrum.h"
 #include "qv/seismic/ResponseSolver.h"
+#include "qv/seismic/ResponseSpectrum.h"
 #include "qv/seismic/SyntheticMotion.h"
 
 namespace qv::prep {
@@ -197,8 +197,8 @@ Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options) {
 class ShakingField {
  public:
   struct Site {
-    double pgaG = 0.0;       // the field's median PGA at the site (0 without a field)
-    double delayS = 0.0;     // S-wave travel time from the hypocentre
+    double pgaG = 0.0;                     // the field's median PGA at the site (0 without a field)
+    double delayS = 0.0;                   // S-wave travel time from the hypocentre
     seismic::SpectralOrdinates spectra{};  // ShakeMap values at the site (g)
     double distanceKm = 0.0;               // epicentral (Joyner-Boore for the point source)
   };
@@ -284,14 +284,15 @@ std::pair<double, double> logStats(std::span<const double> values, double floor)
   for (const double v : values) sum += std::log(std::max(v, floor));
   const double mean = sum / static_cast<double>(values.size());
   double squares = 0.0;
-  for (const double v : values) squares += (std::log(std::max(v, floor)) - mean) * (std::log(std::max(v, floor)) - mean);
+  for (const double v : values)
+    squares += (std::log(std::max(v, floor)) - mean) * (std::log(std::max(v, floor)) - mean);
   const double beta = values.size() > 1 ? std::sqrt(squares / static_cast<double>(values.size() - 1)) : 0.0;
   return {std::exp(mean), beta};
 }
 
 // What pass one keeps of a building under one record: peaks only.
 struct Peaks {
-  std::vector<double> storeyDrift;  // per storey, max over directions
+  std::vector<double> storeyDrift;        // per storey, max over directions
   std::vector<double> floorAcceleration;  // per floor, m/s², max over directions
   double maxDrift = 0.0, maxAcceleration = 0.0, roof = 0.0;
 };
@@ -302,7 +303,8 @@ Peaks peaksOf(const seismic::BuildingResponse& r) {
   p.floorAcceleration.assign(r.storeys, 0.0);
   for (std::size_t s = 0; s < r.storeys; ++s) {
     double drift = s < r.x.peakDriftRatio.size() ? r.x.peakDriftRatio[s] : 0.0;
-    double acceleration = s < r.x.peakFloorAccelerationPerFloorMps2.size() ? r.x.peakFloorAccelerationPerFloorMps2[s] : 0.0;
+    double acceleration =
+        s < r.x.peakFloorAccelerationPerFloorMps2.size() ? r.x.peakFloorAccelerationPerFloorMps2[s] : 0.0;
     if (r.hasY) {
       if (s < r.y.peakDriftRatio.size()) drift = std::max(drift, static_cast<double>(r.y.peakDriftRatio[s]));
       if (s < r.y.peakFloorAccelerationPerFloorMps2.size())
@@ -335,7 +337,6 @@ constexpr double kAccelerationFloor = 1e-4;  // m/s²
 
 }  // namespace
 
-
 Result<ResponseRunReport> runCityResponse(const std::string& dir, const ResponseRunOptions& options) {
   const auto start = Clock::now();
   ResponseRunReport report;
@@ -349,8 +350,9 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   if (!loaded.ok()) return Error{loaded.error()};
   std::vector<Record> records = std::move(loaded).value();
   report.records = records.size();
-  report.motion = records.size() == 1 ? records[0].description
-                                      : std::to_string(records.size()) + " records: " + records[0].description + ", ...";
+  report.motion = records.size() == 1
+                      ? records[0].description
+                      : std::to_string(records.size()) + " records: " + records[0].description + ", ...";
 
   std::optional<ShakeMapGrid> grid;
   if (!options.shakemap.empty()) {
@@ -649,9 +651,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
               BuildingResult& out = results[item.index];
               const std::span<const float> y =
                   response.hasY ? std::span<const float>(response.y.floorDisplacementM) : std::span<const float>();
-              EncodedHistory h =
-                  encodeHistory(response.x.floorDisplacementM, y, response.storeys, response.frames, response.timeStepS,
-                                encoding);
+              EncodedHistory h = encodeHistory(response.x.floorDisplacementM, y, response.storeys, response.frames,
+                                               response.timeStepS, encoding);
               out.history = std::move(h.history);
               // Across the suite: medians and log standard deviations of the peaks.
               std::vector<double> values(item.peaks.size());
@@ -684,7 +685,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
                 out.storeyPeakDrift[s] = static_cast<float>(drift);
                 out.storeySpread[s] = {static_cast<float>(beta), static_cast<float>(acceleration),
                                        static_cast<float>(aBeta)};
-                float res = s < response.x.residualDriftRatio.size() ? std::abs(response.x.residualDriftRatio[s]) : 0.0f;
+                float res =
+                    s < response.x.residualDriftRatio.size() ? std::abs(response.x.residualDriftRatio[s]) : 0.0f;
                 if (response.hasY && s < response.y.residualDriftRatio.size())
                   res = std::max(res, std::abs(response.y.residualDriftRatio[s]));
                 residual = std::max(residual, res);
@@ -701,8 +703,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
                 scaling.periodS[d] = static_cast<float>(item.periodS[d]);
                 scaling.targetSaG[d] = static_cast<float>(item.targetSaG[d]);
                 scaling.recordSaG[d] = static_cast<float>(item.recordSaG[r][d]);
-                scaling.scale[d] = static_cast<float>(
-                    d == 1 && item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY : item.shaking[r].scale);
+                scaling.scale[d] = static_cast<float>(d == 1 && item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY
+                                                                                             : item.shaking[r].scale);
               }
               out.scaling = scaling;
               localErrors.push_back(h.relativeError());
@@ -713,19 +715,15 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
               // HAZUS probabilities and consequences from the suite's medians and spread.
               const double lossStart = threadCpuSeconds();
               const BuildingAttributes& a = tile->buildings[item.index].attributes;
-              seismic::Exposure exposure;
-              exposure.type = item.x.structuralType;
-              exposure.era = item.x.codeEra;
-              exposure.storeys = static_cast<int>(response.storeys);
-              exposure.occupancy = seismic::occupancyFromUse(a.use, exposure.storeys);
-              exposure.floorAreaM2 = static_cast<double>(a.footprintAreaM2) * static_cast<double>(response.storeys);
+              const seismic::Exposure exposure = seismic::exposureFromAttributes(a, static_cast<int>(response.storeys));
               const seismic::BuildingLoss loss =
                   seismic::assessLoss(exposure, medianDrift, medianAcceleration / seismic::kGravityMps2, driftBeta,
                                       accelerationBeta, options.timeOfDay);
               out.loss = toSummaryLoss(loss);
               localLosses.push_back(loss);
               if (districts) {
-                const auto lonLat = field.projection().reverse({a.centroidX + tile->originX, a.centroidY + tile->originY});
+                const auto lonLat =
+                    field.projection().reverse({a.centroidX + tile->originX, a.centroidY + tile->originY});
                 localDistricts.push_back(districts->find(lonLat[0], lonLat[1]));
               }
               localLoss += threadCpuSeconds() - lossStart;

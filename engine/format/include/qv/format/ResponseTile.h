@@ -128,7 +128,11 @@ struct BuildingLoss {
   float repairCostUsd = 0.0f;
   float repairTimeDays = 0.0f;
   float tag[3] = {0, 0, 0};  ///< probability of a green, yellow, red inspection tag
-  std::uint8_t flags = 0;    ///< LossFlag bits
+  /// Standard deviations of the building's repair cost and injuries over its damage states (the
+  /// spread the view's totals add up, buildings taken as independent).
+  float repairCostStdUsd = 0.0f;
+  float injuriesStd[4] = {0, 0, 0, 0};
+  std::uint8_t flags = 0;  ///< LossFlag bits
   bool operator==(const BuildingLoss&) const = default;
   /// Σ k · P(DS = k) of the structural states, 0 .. 4.
   [[nodiscard]] float expectedState() const;

@@ -237,4 +237,19 @@ inline constexpr int kLossRealisations = 500;
 /// bound of the real uncertainty. Fast: one uniform per building per realisation.
 LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t seed = 1);
 
+/// Standard deviations of one building's repair cost (USD) and injuries (people, severity 1..4)
+/// under the draw totalLosses makes (one uniform draw sets every component's state), computed
+/// exactly by integrating over the draw. Summed as variances over independent buildings they give
+/// the normal approximation the viewer uses for the totals of the current view.
+struct LossSpread {
+  double repairCostUsd = 0;
+  std::array<double, 4> injuries{};
+};
+LossSpread lossSpread(const BuildingLoss& building);
+
+/// A building's exposure from its attributes, as `quakeview-prep response` assesses it: the type and
+/// code era the building model resolves (resolvedStructuralType, resolvedCodeEra), the occupancy
+/// from its use, floor area = footprint x storeys, no tagged occupants or value (inferred).
+Exposure exposureFromAttributes(const BuildingAttributes& attributes, int storeys);
+
 }  // namespace qv::seismic

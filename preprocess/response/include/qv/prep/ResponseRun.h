@@ -28,20 +28,20 @@ struct ResponseRunOptions {
   /// Record files or folders of records (--motion, repeatable): the suite. Every building is analysed
   /// under every record. Empty with syntheticSeeds.
   std::vector<std::string> motions;
-  std::string motionY;                             ///< optional second component (one record only)
-  std::optional<double> timeStepS;                 ///< --dt for files without one
-  std::optional<seismic::AccelerationUnit> units;  ///< --units for files that do not say
-  std::vector<std::uint64_t> syntheticSeeds;       ///< --synthetic SEED...: one two-component record each
-  std::optional<double> pgaG;                      ///< --pga: scale the record(s) to this peak (g)
-  std::optional<seismic::Scenario> scenario;       ///< --epicentre ... --magnitude ...
-  std::string shakemap;                            ///< --shakemap grid.xml
-  ScaleBy scaleBy = ScaleBy::SpectralAcceleration;  ///< with a scenario or a ShakeMap
-  OutsideGrid outsideGrid = OutsideGrid::Error;      ///< buildings outside the ShakeMap's grid
-  double shearWaveSpeedKmPerS = 3.5;                 ///< travel time from a ShakeMap's epicentre
+  std::string motionY;                                     ///< optional second component (one record only)
+  std::optional<double> timeStepS;                         ///< --dt for files without one
+  std::optional<seismic::AccelerationUnit> units;          ///< --units for files that do not say
+  std::vector<std::uint64_t> syntheticSeeds;               ///< --synthetic SEED...: one two-component record each
+  std::optional<double> pgaG;                              ///< --pga: scale the record(s) to this peak (g)
+  std::optional<seismic::Scenario> scenario;               ///< --epicentre ... --magnitude ...
+  std::string shakemap;                                    ///< --shakemap grid.xml
+  ScaleBy scaleBy = ScaleBy::SpectralAcceleration;         ///< with a scenario or a ShakeMap
+  OutsideGrid outsideGrid = OutsideGrid::Error;            ///< buildings outside the ShakeMap's grid
+  double shearWaveSpeedKmPerS = 3.5;                       ///< travel time from a ShakeMap's epicentre
   seismic::TimeOfDay timeOfDay = seismic::TimeOfDay::Day;  ///< for the occupants of the consequences
-  std::string districts;                           ///< --districts FILE.geojson: totals per district
-  unsigned threads = 0;                            ///< 0: all cores
-  double historyTolerance = 0.019;                 ///< of each building's peak roof displacement
+  std::string districts;                                   ///< --districts FILE.geojson: totals per district
+  unsigned threads = 0;                                    ///< 0: all cores
+  double historyTolerance = 0.019;                         ///< of each building's peak roof displacement
 };
 
 struct ResponseRunReport {
@@ -64,10 +64,10 @@ struct ResponseRunReport {
   std::string motion;
   std::string scenario;
   std::string folder;
-  std::size_t records = 0;   ///< records in the suite
-  std::string scaling;       ///< how the records were scaled, for people
-  std::string eventType;     ///< "SCENARIO" or "ACTUAL"
-  std::uint64_t outsideGrid = 0;   ///< buildings skipped outside the ShakeMap (--outside-grid skip)
+  std::size_t records = 0;                    ///< records in the suite
+  std::string scaling;                        ///< how the records were scaled, for people
+  std::string eventType;                      ///< "SCENARIO" or "ACTUAL"
+  std::uint64_t outsideGrid = 0;              ///< buildings skipped outside the ShakeMap (--outside-grid skip)
   std::optional<seismic::LossTotals> losses;  ///< the city's consequences
   double lossSeconds = 0.0;
 };
