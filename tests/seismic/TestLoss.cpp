@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "qv/seismic/BuildingModel.h"
+#include "qv/seismic/ConsequencesFile.h"
 #include "qv/seismic/Loss.h"
 
 using namespace qv;
@@ -337,6 +338,35 @@ TEST_CASE("One building's spread of cost and injuries agrees with the Monte Carl
   CHECK(e.era == resolvedCodeEra(e.type, CodeEra::Unknown));
   CHECK(e.floorAreaM2 == Approx(6000.0));
   CHECK(e.occupancy == occupancyFromUse("office", 12));
+}
+
+TEST_CASE("The consequences file round-trips the totals and refuses what it cannot read", "[loss]") {
+  ConsequenceTotals totals;
+  totals.timeOfDay = "night";
+  totals.city.buildings = 12;
+  totals.city.damageStates[2] = {3.25, 1.0, 6.0};
+  totals.city.repairCostUsd = {1.5e6, 2.5e5, 4.0e6};
+  totals.city.injuries[3] = {0.125, 0.0, 1.0};
+  totals.city.tags[2] = {2.5, 0.0, 5.0};
+  totals.districts.push_back({"Lower \"East\" Side", totals.city});
+  const std::string json = consequencesToJson(totals);
+  CHECK(json.find("\"deaths\":{\"expected\":0.125") != std::string::npos);
+  const auto parsed = parseConsequences(json, "consequences.json");
+  REQUIRE(parsed.ok());
+  CHECK(parsed->timeOfDay == "night");
+  CHECK(parsed->city.buildings == 12);
+  CHECK(parsed->city.damageStates[2].expected == 3.25);
+  CHECK(parsed->city.repairCostUsd.high == 4.0e6);
+  CHECK(parsed->city.injuries[3].expected == 0.125);
+  REQUIRE(parsed->districts.size() == 1);
+  CHECK(parsed->districts[0].name == "Lower \"East\" Side");
+  CHECK(parsed->districts[0].totals.tags[2].high == 5.0);
+  std::string broken = json;
+  broken.replace(broken.find("\"repair_cost_usd\""), 17, "\"repair_cost_eur\"");
+  const auto refused = parseConsequences(broken, "consequences.json");
+  REQUIRE_FALSE(refused.ok());
+  CHECK_THAT(refused.error(), Catch::Contains("consequences.json") && Catch::Contains("repair_cost_usd"));
+  CHECK_FALSE(parseConsequences("{", "c.json").ok());
 }
 
 // Opt-in timing (hidden: `test_seismic "[.loss-bench]"`, meaningful in a release build): assessing and

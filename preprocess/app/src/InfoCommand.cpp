@@ -442,7 +442,7 @@ int runInfo(const CommandArgs& argv) {
   std::uint64_t unconvergedSteps = 0;
   for (const ResponseNotes::Approximate& n : notes.approximate) unconvergedSteps += n.unconvergedSteps;
   // The consequences' totals (responses with HAZUS losses).
-  std::optional<ConsequenceTotals> consequences;
+  std::optional<seismic::ConsequenceTotals> consequences;
   if (t.response && t.response->consequences) {
     const std::string path = dir + "/" + t.response->consequences->file;
     auto text = readTextFile(path, 64ull << 20);
@@ -450,7 +450,7 @@ int runInfo(const CommandArgs& argv) {
       std::fprintf(stderr, "info: %s\n", text.error().c_str());
       return kExitDataError;
     }
-    auto parsedTotals = parseConsequences(*text, path);
+    auto parsedTotals = seismic::parseConsequences(*text, path);
     if (!parsedTotals.ok()) {
       std::fprintf(stderr, "info: %s\n", parsedTotals.error().c_str());
       return kExitDataError;
@@ -535,11 +535,11 @@ int runInfo(const CommandArgs& argv) {
         w.endObject();
         w.key("consequences").beginObject();
         w.field("time_of_day", consequences->timeOfDay);
-        writeLossTotals(w, consequences->city);
+        seismic::writeLossTotals(w, consequences->city);
         w.key("districts").beginArray();
-        for (const ConsequenceTotals::District& d : consequences->districts) {
+        for (const seismic::ConsequenceTotals::District& d : consequences->districts) {
           w.beginObject().field("name", d.name);
-          writeLossTotals(w, d.totals);
+          seismic::writeLossTotals(w, d.totals);
           w.endObject();
         }
         w.endArray();

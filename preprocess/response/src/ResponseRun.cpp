@@ -799,7 +799,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   }
   // The consequences' totals: the city, and each district.
   const double totalsStart = threadCpuSeconds();
-  ConsequenceTotals totals;
+  seismic::ConsequenceTotals totals;
   totals.timeOfDay = info.timeOfDay;
   totals.city = seismic::totalLosses(losses);
   if (districts) {
@@ -813,7 +813,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   }
   report.losses = totals.city;
   report.lossSeconds += threadCpuSeconds() - totalsStart;
-  auto consequences = (*writer)->writeFile("consequences.json", consequencesToJson(totals));
+  auto consequences = (*writer)->writeFile("consequences.json", seismic::consequencesToJson(totals));
   if (!consequences.ok()) return Error{consequences.error()};
   info.consequences = *consequences;
   auto written = (*writer)->commit(info);

@@ -1,16 +1,14 @@
-// The consequences of a response for people who decide: the totals of the HAZUS losses (expected
-// values with 90 % intervals, engine/seismic Loss.h) for the city and for each district of a
-// `--districts` GeoJSON file, written as `response-<n>/consequences.json` (docs/losses.md) and shown
-// by `info --json` and the viewer.
+// Districts for the consequence totals of `quakeview-prep response --districts` (the totals' file
+// is engine/seismic ConsequencesFile.h), and a building's losses as the summary stores them.
 #pragma once
 
 #include <array>
 #include <string>
 #include <vector>
 
-#include "qv/core/JsonWriter.h"
 #include "qv/core/Result.h"
 #include "qv/format/ResponseTile.h"
+#include "qv/seismic/ConsequencesFile.h"
 #include "qv/seismic/Loss.h"
 
 namespace qv::prep {
@@ -30,27 +28,6 @@ struct Districts {
 /// 1 000 000 vertices.
 Result<Districts> readDistricts(const std::string& path);
 Result<Districts> parseDistricts(std::string_view json, const std::string& name);
-
-struct ConsequenceTotals {
-  std::string timeOfDay;  ///< "night", "day", "commute"
-  seismic::LossTotals city;
-  struct District {
-    std::string name;
-    seismic::LossTotals totals;
-  };
-  std::vector<District> districts;
-};
-
-/// {"timeOfDay": ..., "city": {totals}, "districts": [{"name": ..., totals}, ...]} with totals as
-/// writeLossTotals writes them.
-std::string consequencesToJson(const ConsequenceTotals& totals);
-Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::string& name);
-
-/// The members of one totals object: "buildings", "damage_states" ({"none": {"expected", "low",
-/// "high"}, ... "complete"}), "collapsed", "occupants", "injuries" ({"severity_1" .. "severity_4"}),
-/// "deaths" (= severity 4), "repair_cost_usd", "tags" ({"green", "yellow", "red"}). Every estimate is
-/// {"expected", "low", "high"}: the expected value and the 5th and 95th percentiles.
-void writeLossTotals(JsonWriter& w, const seismic::LossTotals& totals);
 
 /// A building's losses as the response summary stores them (section LOSS).
 BuildingLoss toSummaryLoss(const seismic::BuildingLoss& loss);

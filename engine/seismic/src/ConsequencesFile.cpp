@@ -1,0 +1,133 @@
+#include "qv/seismic/ConsequencesFile.h"
+
+#include <simdjson.h>
+
+#include <cmath>
+
+namespace qv::seismic {
+namespace {
+
+constexpr const char* kStateKeys[5] = {"none", "slight", "moderate", "extensive", "complete"};
+constexpr const char* kTagKeys[3] = {"green", "yellow", "red"};
+constexpr const char* kSeverityKeys[4] = {"severity_1", "severity_2", "severity_3", "severity_4"};
+
+using simdjson::dom::array;
+using simdjson::dom::element;
+using simdjson::dom::object;
+
+void writeEstimate(JsonWriter& w, std::string_view key, const Estimate& e) {
+  w.key(key).beginObject().field("expected", e.expected).field("low", e.low).field("high", e.high).endObject();
+}
+Result<Estimate> readEstimate(object parent, const char* key, const std::string& where) {
+  object o;
+  if (parent[key].get(o) != simdjson::SUCCESS) return Error{where + ": missing \"" + key + "\""};
+  Estimate e;
+  if (o["expected"].get_double().get(e.expected) || o["low"].get_double().get(e.low) ||
+      o["high"].get_double().get(e.high)) {
+    return Error{where + ": \"" + key + "\" needs numbers expected, low and high"};
+  }
+  return e;
+}
+Result<LossTotals> readTotals(object o, const std::string& where) {
+  LossTotals t;
+  std::uint64_t buildings = 0;
+  if (o["buildings"].get_uint64().get(buildings)) return Error{where + ": missing \"buildings\""};
+  t.buildings = buildings;
+  object states, injuries, tags;
+  if (o["damage_states"].get(states) || o["injuries"].get(injuries) || o["tags"].get(tags)) {
+    return Error{where + ": missing damage_states, injuries or tags"};
+  }
+  for (int k = 0; k < 5; ++k) {
+    auto e = readEstimate(states, kStateKeys[k], where + " damage_states");
+    if (!e.ok()) return Error{e.error()};
+    t.damageStates[static_cast<std::size_t>(k)] = *e;
+  }
+  for (int k = 0; k < 4; ++k) {
+    auto e = readEstimate(injuries, kSeverityKeys[k], where + " injuries");
+    if (!e.ok()) return Error{e.error()};
+    t.injuries[static_cast<std::size_t>(k)] = *e;
+  }
+  for (int k = 0; k < 3; ++k) {
+    auto e = readEstimate(tags, kTagKeys[k], where + " tags");
+    if (!e.ok()) return Error{e.error()};
+    t.tags[static_cast<std::size_t>(k)] = *e;
+  }
+  auto collapsed = readEstimate(o, "collapsed", where);
+  auto occupants = readEstimate(o, "occupants", where);
+  auto cost = readEstimate(o, "repair_cost_usd", where);
+  if (!collapsed.ok()) return Error{collapsed.error()};
+  if (!occupants.ok()) return Error{occupants.error()};
+  if (!cost.ok()) return Error{cost.error()};
+  t.collapsed = *collapsed;
+  t.occupants = *occupants;
+  t.repairCostUsd = *cost;
+  return t;
+}
+
+}  // namespace
+
+void writeLossTotals(JsonWriter& w, const LossTotals& t) {
+  w.field("buildings", t.buildings);
+  w.key("damage_states").beginObject();
+  for (int k = 0; k < 5; ++k) writeEstimate(w, kStateKeys[k], t.damageStates[static_cast<std::size_t>(k)]);
+  w.endObject();
+  writeEstimate(w, "collapsed", t.collapsed);
+  writeEstimate(w, "occupants", t.occupants);
+  w.key("injuries").beginObject();
+  for (int k = 0; k < 4; ++k) writeEstimate(w, kSeverityKeys[k], t.injuries[static_cast<std::size_t>(k)]);
+  w.endObject();
+  writeEstimate(w, "deaths", t.injuries[3]);
+  writeEstimate(w, "repair_cost_usd", t.repairCostUsd);
+  w.key("tags").beginObject();
+  for (int k = 0; k < 3; ++k) writeEstimate(w, kTagKeys[k], t.tags[static_cast<std::size_t>(k)]);
+  w.endObject();
+}
+std::string consequencesToJson(const ConsequenceTotals& totals) {
+  JsonWriter w;
+  w.beginObject();
+  w.field("format", "quakeview-consequences").field("version", 1);
+  w.field("timeOfDay", totals.timeOfDay);
+  w.field("interval", "90 % (5th to 95th percentile)");
+  w.key("city").beginObject();
+  writeLossTotals(w, totals.city);
+  w.endObject();
+  w.key("districts").beginArray();
+  for (const ConsequenceTotals::District& d : totals.districts) {
+    w.beginObject().field("name", d.name);
+    writeLossTotals(w, d.totals);
+    w.endObject();
+  }
+  w.endArray();
+  w.endObject();
+  return w.take();
+}
+Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::string& name) {
+  simdjson::dom::parser parser;
+  element root;
+  if (auto error = parser.parse(json.data(), json.size()).get(root)) {
+    return Error{name + ": not valid JSON (" + simdjson::error_message(error) + ")"};
+  }
+  ConsequenceTotals out;
+  std::string_view timeOfDay;
+  object city;
+  array districts;
+  if (root["timeOfDay"].get(timeOfDay) || root["city"].get(city) || root["districts"].get(districts)) {
+    return Error{name + ": missing timeOfDay, city or districts"};
+  }
+  out.timeOfDay = std::string(timeOfDay);
+  auto c = readTotals(city, name + " city");
+  if (!c.ok()) return Error{c.error()};
+  out.city = *c;
+  if (districts.size() > 10000) return Error{name + ": more than 10,000 districts"};
+  for (element e : districts) {
+    object d;
+    std::string_view districtName;
+    if (e.get(d) || d["name"].get(districtName)) return Error{name + ": a district without a name"};
+    auto t = readTotals(d, name + " district " + std::string(districtName));
+    if (!t.ok()) return Error{t.error()};
+    out.districts.push_back({std::string(districtName), *t});
+  }
+  return out;
+}
+
+}  // namespace qv::seismic
