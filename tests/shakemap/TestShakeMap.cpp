@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "../fuzz/RegressionInputs.h"
 #include "qv/prep/ShakeMap.h"
 
 using namespace qv;
@@ -364,6 +365,10 @@ TEST_CASE("Bad ShakeMaps are refused with the file and the line", "[shakemap]") 
       {"rows out of order", swappedRows, firstRow, {"off the grid", "lon -74.03, lat 40.7244"}},
       {"a nan value", replaced(good, "6.5 36.1", "6.5 nan"), lineOf(good, "6.5 36.1"), {"PGA", "not a finite number"}},
       {"an inf value", replaced(good, "600.931", "inf"), lineOf(good, "600.931"), {"SVEL", "not a finite number"}},
+      {"a value beyond float range",
+       replaced(good, "600.931", "1e300"),
+       lineOf(good, "600.931"),
+       {"SVEL", "out of range"}},
       {"a garbage value",
        replaced(good, "6.5 36.1", "6.5 3x6.1"),
        lineOf(good, "6.5 36.1"),
@@ -532,4 +537,22 @@ TEST_CASE("A large generated grid parses whole, every node on its lattice", "[sh
   for (std::size_t k : {std::size_t{0}, std::size_t{399}, std::size_t{400}, std::size_t{12345}, nlon * nlat - 1})
     CHECK(grid.pga[k] == static_cast<float>(static_cast<double>(k % 1000) / 100.0));
   CHECK(grid.vs30.back() == 760.0f);
+}
+
+TEST_CASE("Fuzzer-found ShakeMaps are read or refused cleanly", "[shakemap][fuzz]") {
+  // tests/fuzz/regressions/shakemap: float-overflow.xml holds a finite value (1e300 range) that
+  // would have become an infinite float.
+  const auto inputs = qv::fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "shakemap");
+  REQUIRE(!inputs.empty());
+  for (const auto& input : inputs) {
+    INFO(input.path);
+    const auto grid = readShakeMapGrid(input.path);
+    if (!grid.ok()) {
+      CHECK(contains(grid.error(), input.path + ":"));
+      continue;
+    }
+    for (const auto* field :
+         {&grid->pga, &grid->pgv, &grid->mmi, &grid->psa03, &grid->psa10, &grid->psa30, &grid->vs30})
+      for (const float v : *field) CHECK(std::isfinite(v));
+  }
 }

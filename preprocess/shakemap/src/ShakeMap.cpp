@@ -624,15 +624,19 @@ class GridParser {
       return;
     }
     expectedRows_ = nodes;
+    const XML_Index tagStart = XML_GetCurrentByteIndex(parser_);
+    const int tagBytes = XML_GetCurrentByteCount(parser_);
+    // Room for the rows the rest of the input can hold (a row takes at least 2 bytes per value), so
+    // a small file declaring a huge grid allocates little before it is found truncated.
+    const std::size_t restBytes = tagStart < 0 ? 0 : xml_.size() - static_cast<std::size_t>(tagStart);
+    const std::size_t reserved = std::min(nodes, restBytes / (2 * columns_.size()));
     for (Column& column : columns_) {
       column.declared = false;
       std::vector<float>* values = column.field ? storage(*column.field) : nullptr;
-      if (values != nullptr) values->reserve(nodes);
+      if (values != nullptr) values->reserve(reserved);
     }
     row_.resize(columns_.size());
     // <grid_data/>: no rows; the end handler reports the truncated grid.
-    const XML_Index tagStart = XML_GetCurrentByteIndex(parser_);
-    const int tagBytes = XML_GetCurrentByteCount(parser_);
     inGridData_ = true;
     if (tagStart < 0 || tagBytes < 2 ||
         xml_[static_cast<std::size_t>(tagStart) + static_cast<std::size_t>(tagBytes) - 2] == '/')
@@ -707,8 +711,14 @@ class GridParser {
       return;
     }
     for (std::size_t i = 0; i < row_.size(); ++i) {
-      if (columns_[i].field && !std::isfinite(row_[i])) {
+      if (!columns_[i].field) continue;
+      if (!std::isfinite(row_[i])) {
         stopAt(lineNumber, columnName(i) + " value " + formatNumber(row_[i]) + " is not a finite number");
+        return;
+      }
+      // Stored as float: a value beyond its range (1e300) would become infinite (found by fuzz_shakemap).
+      if (std::fabs(row_[i] / columns_[i].divisor) > static_cast<double>(std::numeric_limits<float>::max())) {
+        stopAt(lineNumber, columnName(i) + " value " + formatNumber(row_[i]) + " is out of range");
         return;
       }
     }
