@@ -176,6 +176,7 @@ TEST_CASE("ResponseSpectrum rejects records and ranges it cannot describe", "[sp
   CHECK_FALSE(ResponseSpectrum::compute(GroundMotion{"empty", 0.01, {}}).ok());
   CHECK_FALSE(ResponseSpectrum::compute(record, 1.0, 0.5).ok());
   CHECK_FALSE(ResponseSpectrum::compute(record, 0.0, 1.0).ok());
+  CHECK_FALSE(ResponseSpectrum::compute(record, 1e-4, 1.0).ok());
   CHECK_FALSE(ResponseSpectrum::compute(record, 0.1, INFINITY).ok());
   CHECK_FALSE(ResponseSpectrum::compute(record, 0.1, 1.0, 1.0).ok());
 }

@@ -29,6 +29,7 @@ namespace qv::seismic {
 ///   - After the record (t > (N+1)·dt) the oscillator runs on in free vibration for one damped period
 ///     T_D = T / √(1 - ζ²): the free response's extrema come every T_D / 2 with decreasing
 ///     amplitude, so its largest value is reached within that time; long periods reach their peak.
+/// Cost: (N + 1)·max(1, ⌈20·dt / T⌉) recurrence steps plus one damped period.
 /// Returns 0 for a record without samples; NaN when periodS is not finite and > 0, dampingRatio is
 /// not in [0, 1), or the record's time step is not finite and > 0.
 double pseudoSpectralAccelerationG(const GroundMotion& record, double periodS, double dampingRatio = 0.05);
@@ -63,8 +64,8 @@ class ResponseSpectrum {
   static constexpr double kInterpolationErrorBound = 1e-3;
 
   /// Errors (naming the record): no samples, time step not finite and > 0, all-zero record,
-  /// periods not finite with 0 < minPeriodS < maxPeriodS and maxPeriodS / minPeriodS <= 1e6,
-  /// dampingRatio outside [0, 1).
+  /// periods not 0.001 <= minPeriodS < maxPeriodS <= 1000 s (the cost of a period grows as
+  /// dt / T below 20 dt), dampingRatio outside [0, 1).
   static Result<ResponseSpectrum> compute(const GroundMotion& record, double minPeriodS = 0.01,
                                           double maxPeriodS = 10.0, double dampingRatio = 0.05);
 
