@@ -558,8 +558,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
           std::array<double, 2> recordSa{0.0, 0.0};
           if (field.spectral()) {
             for (int d = 0; d < (r.hasY ? 2 : 1); ++d) {
-              recordSa[d] = (d == 0 ? r.spectrumX : r.spectrumY)->saG(item.periodS[d]);
-              if (!(recordSa[d] > 0.0) || !(item.targetSaG[d] > 0.0)) scalable = false;
+              recordSa[static_cast<std::size_t>(d)] = (d == 0 ? r.spectrumX : r.spectrumY)->saG(item.periodS[d]);
+              if (!(recordSa[static_cast<std::size_t>(d)] > 0.0) || !(item.targetSaG[d] > 0.0)) scalable = false;
             }
             if (scalable) {
               shaking.scale = item.targetSaG[0] / recordSa[0];
@@ -702,7 +702,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
               for (int d = 0; d < (record.hasY ? 2 : 1); ++d) {  // one component: Y is not analysed
                 scaling.periodS[d] = static_cast<float>(item.periodS[d]);
                 scaling.targetSaG[d] = static_cast<float>(item.targetSaG[d]);
-                scaling.recordSaG[d] = static_cast<float>(item.recordSaG[r][d]);
+                scaling.recordSaG[d] = static_cast<float>(item.recordSaG[r][static_cast<std::size_t>(d)]);
                 scaling.scale[d] = static_cast<float>(d == 1 && item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY
                                                                                              : item.shaking[r].scale);
               }
