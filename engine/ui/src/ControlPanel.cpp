@@ -20,6 +20,14 @@ constexpr float kInspectionWidth = 370.0f;
 // The record as the panel shows it: file names only. Responses written before the files stored
 // only the name carried the path of the machine that ran `response`; its directories are dropped
 // (each " + "-separated component, before any " (header title)", which may contain slashes).
+// "$1.25 M", "$830 k", "$920".
+std::string usd(double v) {
+  if (v >= 1e9) return ui::format("$%.2f bn", v / 1e9);
+  if (v >= 1e6) return ui::format("$%.2f M", v / 1e6);
+  if (v >= 1e3) return ui::format("$%.0f k", v / 1e3);
+  return ui::format("$%.0f", v);
+}
+
 std::string recordText(const std::string& motion) {
   std::string out;
   std::size_t at = 0;
@@ -189,6 +197,127 @@ void ControlPanel::drawShakingProvenance(const ResponseInfo& r, ui::Widgets& w) 
   }
 }
 
+void ControlPanel::drawShakingOfBuilding(const BuildingInfo& info, ui::Widgets& w) {
+  if (info.scaling && info.scaling->periodS[0] > 0.0f) {
+    const BuildingScaling& s = *info.scaling;
+    for (int d = 0; d < 2; ++d) {
+      if (!(s.scale[d] > 0.0f)) continue;
+      w.field(d == 0 ? "Shaking, X" : "Shaking, Y",
+              ui::format("T1 %.2f s; target Sa(T1) %.3f g, the record's own %.3f g, scaled by %.3f",
+                         static_cast<double>(s.periodS[d]), static_cast<double>(s.targetSaG[d]),
+                         static_cast<double>(s.recordSaG[d]), static_cast<double>(s.scale[d])));
+    }
+  }
+  if (info.spread && info.spread->records > 1) {
+    w.textWrapped(ui::format("Across %u records: peak drift and floor acceleration are medians (log standard "
+                             "deviation %.2f and %.2f); the motion shown is record %u, the nearest the median",
+                             info.spread->records, static_cast<double>(info.spread->driftBeta),
+                             static_cast<double>(info.spread->accelerationBeta), info.spread->shownRecord + 1u));
+  }
+}
+
+void ControlPanel::drawBuildingLoss(const BuildingLoss& l, ui::Widgets& w) {
+  w.separator();
+  w.text("Damage probabilities (HAZUS 5.1 fragility):");
+  for (std::size_t k = 0; k < 5; ++k) {
+    const Rgb c = kDamagePalette[k];
+    w.meter(kDamageLabels[k], l.structural[k], ui::format("%.1f %%", 100.0 * static_cast<double>(l.structural[k])), c.r,
+            c.g, c.b);
+  }
+  const float moderate = l.structural[2] + l.structural[3] + l.structural[4];
+  w.field("Moderate or worse", ui::format("%.1f %%; expected state %.2f (0 none .. 4 complete); collapse %.2f %%",
+                                          100.0 * static_cast<double>(moderate),
+                                          static_cast<double>(l.expectedState()), 100.0 * static_cast<double>(l.collapse)));
+  const char* tags[3] = {"Tag green", "Tag yellow", "Tag red"};
+  for (std::size_t k = 0; k < 3; ++k) {
+    w.meter(tags[k], l.tag[k], ui::format("%.1f %%", 100.0 * static_cast<double>(l.tag[k])), kTagPalette[k].r,
+            kTagPalette[k].g, kTagPalette[k].b);
+  }
+  const bool occupantsInferred = (l.flags & kLossOccupantsInferred) != 0;
+  const bool valueInferred = (l.flags & kLossValueInferred) != 0;
+  w.field("Occupants present", ui::format("%.1f%s", static_cast<double>(l.occupants),
+                                          occupantsInferred ? " (inferred from floor area and use)" : ""));
+  w.field("Expected injuries",
+          ui::format("%.2f minor, %.2f hospital, %.3f life-threatening; deaths %.3f%s",
+                     static_cast<double>(l.injuries[0]), static_cast<double>(l.injuries[1]),
+                     static_cast<double>(l.injuries[2]), static_cast<double>(l.injuries[3]),
+                     occupantsInferred ? " (from inferred occupants)" : ""));
+  w.field("Expected repair cost",
+          ui::format("%s of %s%s; repair time %.0f days", usd(l.repairCostUsd).c_str(),
+                     usd(l.replacementValueUsd).c_str(), valueInferred ? " (value inferred from floor area and use)" : "",
+                     static_cast<double>(l.repairTimeDays)));
+}
+
+void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host) {
+  CityScene* city = viewer.city();
+  const Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
+  if (tileset == nullptr || !tileset->response || !w.collapsingHeader("Consequences", true)) return;
+  const ResponseInfo& r = *tileset->response;
+  // Provenance first: which shaking these numbers assume.
+  w.textColored(r.eventType == "ACTUAL" ? 0.80f : 0.55f, r.eventType == "ACTUAL" ? 0.05f : 0.25f, 0.0f,
+                r.eventType == "ACTUAL"     ? "ACTUAL EVENT"
+                : r.eventType == "SCENARIO" ? "SCENARIO (not a recorded event)"
+                                            : "NOT STATED whether a scenario or an actual event");
+  if (r.shakemap) {
+    w.textWrapped("ShakeMap " + r.shakemap->eventId + ", version " + r.shakemap->version + ", processed " +
+                  r.shakemap->processTimestamp);
+  }
+  const seismic::ConsequenceTotals* file = city->consequences();
+  if (file == nullptr) {
+    w.textWrapped(r.consequences ? (city->consequencesFailed() ? "The consequences file could not be loaded."
+                                                              : "Loading the consequences...")
+                                 : "These results carry no damage probabilities or consequences (computed before "
+                                   "they existed, or imported): run quakeview-prep response again.");
+    return;
+  }
+  const seismic::LossTotals view = city->consequencesInView();
+  w.textWrapped(ui::format("HAZUS 5.1, occupants at %s. Expected values with a 90 %% interval; the view's interval "
+                           "is a normal approximation (docs/losses.md). Occupants and replacement values are "
+                           "inferred from floor area and use unless the data gives them.",
+                           file->timeOfDay.c_str()));
+  auto cell = [](const seismic::Estimate& e, int decimals) {
+    return ui::format("%.*f (%.*f-%.*f)", decimals, e.expected, decimals, e.low, decimals, e.high);
+  };
+  auto money = [](const seismic::Estimate& e) {
+    return usd(e.expected) + " (" + usd(e.low) + "-" + usd(e.high) + ")";
+  };
+  const seismic::LossTotals& c = file->city;
+  std::vector<std::vector<std::string>> rows;
+  rows.push_back({"Buildings with a result", ui::format("%llu", static_cast<unsigned long long>(c.buildings)),
+                  ui::format("%llu", static_cast<unsigned long long>(view.buildings))});
+  for (std::size_t k = 0; k < 5; ++k) {
+    rows.push_back({std::string(kDamageLabels[k]), cell(c.damageStates[k], 1), cell(view.damageStates[k], 1)});
+  }
+  rows.push_back({"Collapsed", cell(c.collapsed, 2), cell(view.collapsed, 2)});
+  const char* tags[3] = {"Tag green", "Tag yellow", "Tag red"};
+  for (std::size_t k = 0; k < 3; ++k) rows.push_back({tags[k], cell(c.tags[k], 1), cell(view.tags[k], 1)});
+  rows.push_back({"Occupants present (inferred)", ui::format("%.0f", c.occupants.expected),
+                  ui::format("%.0f", view.occupants.expected)});
+  const char* injuries[4] = {"Injuries, minor", "Injuries, hospital", "Injuries, life-threatening", "Deaths"};
+  for (std::size_t k = 0; k < 4; ++k) rows.push_back({injuries[k], cell(c.injuries[k], 2), cell(view.injuries[k], 2)});
+  rows.push_back({"Repair cost", money(c.repairCostUsd), money(view.repairCostUsd)});
+  w.table("##consequences", {"", "City", "In view"}, rows);
+  if (!file->districts.empty()) {
+    w.text("Districts:");
+    std::vector<std::vector<std::string>> districtRows;
+    for (const seismic::ConsequenceTotals::District& d : file->districts) {
+      const seismic::LossTotals& t = d.totals;
+      const double moderate =
+          t.damageStates[2].expected + t.damageStates[3].expected + t.damageStates[4].expected;
+      double hurt = 0.0;
+      for (std::size_t k = 0; k < 3; ++k) hurt += t.injuries[k].expected;
+      districtRows.push_back({d.name, ui::format("%llu", static_cast<unsigned long long>(t.buildings)),
+                              ui::format("%.1f", moderate), cell(t.tags[2], 1), ui::format("%.2f", hurt),
+                              cell(t.injuries[3], 3), money(t.repairCostUsd)});
+    }
+    w.table("##districts", {"District", "Buildings", ">= moderate", "Red tags", "Injured", "Deaths", "Repair cost"},
+            districtRows);
+  }
+  if (w.button("Export totals (CSV)")) {
+    host.download("quakeview-consequences.csv", "text/csv", exportConsequencesCsv(*file, &view));
+  }
+}
+
 void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
@@ -314,6 +443,8 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
                    percent(thresholds[0]).c_str(), percent(thresholds[1]).c_str(), percent(thresholds[2]).c_str(),
                    percent(thresholds[3]).c_str()));
   }
+
+  drawConsequences(viewer, w, host);
 
   if (city != nullptr && w.collapsingHeader("Find and filter", false)) {
     const bool focus = focusSearch_;
@@ -467,6 +598,10 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
     }
     if (!why.empty()) importance += " (" + why + ")";
     w.field("Importance", importance);
+    // Why values were inferred or changed (docs/attributes.md, "Plausibility rules").
+    for (unsigned bit = 1; bit < 256; bit <<= 1) {
+      if ((a.notes & bit) != 0) w.textWrapped("Inferred: " + std::string(attributeNoteText(bit)));
+    }
     if (a.lod == 2 && !info->modelSource.empty()) {
       const std::string_view source = info->modelSource == "cityjson"    ? "CityJSON"
                                       : info->modelSource == "obj"       ? "OBJ"
@@ -506,6 +641,8 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
                       ui::format("Approximate (solver did not converge at %u steps, residual %.2g of the forces)",
                                  r.unconvergedSteps, static_cast<double>(r.worstResidualRatio)));
       }
+      drawShakingOfBuilding(*info, w);
+      if (info->loss) drawBuildingLoss(*info->loss, w);
       if (CityScene* city = viewer.city()) {
         if (const auto series = city->selectionSeries(240)) {
           const float cursor = static_cast<float>(viewer.time() / std::max(series->durationSeconds, 1e-3));

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdarg>
 #include <cstdio>
+#include <cmath>
 #include <cstring>
 
 #include <imgui.h>
@@ -213,6 +214,55 @@ void Widgets::bars(const char* id, const float* values, int count, float maxValu
   ImGui::PopTextWrapPos();
   ImGui::PlotHistogram(id, values, count, 0, nullptr, 0.0f, maxValue, ImVec2(ImGui::GetContentRegionAvail().x, height));
   mirror_.line(summary);
+}
+
+void Widgets::meter(std::string_view rawLabel, float fraction, std::string_view rawValue, float r, float g, float b) {
+  const Shown label(rawLabel);
+  const Shown value(rawValue);
+  const float f = std::clamp(std::isfinite(fraction) ? fraction : 0.0f, 0.0f, 1.0f);
+  const float labelWidth = ImGui::GetFontSize() * 6.5f;
+  const float barWidth = std::max(40.0f, ImGui::GetContentRegionAvail().x - labelWidth - ImGui::GetFontSize() * 5.0f);
+  ImGui::TextUnformatted(label.view().data(), label.view().data() + label.view().size());
+  ImGui::SameLine(labelWidth);
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  const float height = ImGui::GetTextLineHeight();
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  draw->AddRectFilled(p, ImVec2(p.x + barWidth, p.y + height), IM_COL32(70, 70, 80, 120));
+  draw->AddRectFilled(p, ImVec2(p.x + barWidth * f, p.y + height), ImGui::GetColorU32(ImVec4(r, g, b, 1.0f)));
+  ImGui::Dummy(ImVec2(barWidth, height));
+  ImGui::SameLine();
+  ImGui::TextUnformatted(value.view().data(), value.view().data() + value.view().size());
+  mirror_.line(std::string(label.view()) + ": " + std::string(value.view()));
+}
+
+void Widgets::table(const char* id, const std::vector<std::string>& headers,
+                    const std::vector<std::vector<std::string>>& rows) {
+  const int columns = static_cast<int>(headers.size());
+  if (columns == 0) return;
+  std::string line;
+  for (std::size_t c = 0; c < headers.size(); ++c) line += (c > 0 ? " | " : "") + std::string(Shown(headers[c]).view());
+  mirror_.line(line);
+  const bool shown = ImGui::BeginTable(id, columns, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
+                                                        ImGuiTableFlags_SizingFixedFit);
+  if (shown) {
+    for (const std::string& h : headers) ImGui::TableSetupColumn(std::string(Shown(h).view()).c_str());
+    ImGui::TableHeadersRow();
+  }
+  for (const auto& row : rows) {
+    line.clear();
+    if (shown) ImGui::TableNextRow();
+    for (int c = 0; c < columns; ++c) {
+      const std::string cell = static_cast<std::size_t>(c) < row.size() ? row[static_cast<std::size_t>(c)] : "";
+      const Shown text(cell);
+      line += (c > 0 ? " | " : "") + std::string(text.view());
+      if (shown) {
+        ImGui::TableSetColumnIndex(c);
+        ImGui::TextUnformatted(text.view().data(), text.view().data() + text.view().size());
+      }
+    }
+    mirror_.line(line);
+  }
+  if (shown) ImGui::EndTable();
 }
 
 void Widgets::swatch(float r, float g, float b, std::string_view raw, bool hatched) {

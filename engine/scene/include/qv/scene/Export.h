@@ -5,6 +5,7 @@
 #include <string>
 
 #include "qv/geometry/GeoFrame.h"
+#include "qv/seismic/ConsequencesFile.h"
 #include "qv/scene/CityScene.h"
 
 namespace qv {
@@ -20,5 +21,13 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
 /// same fields as properties. Strings are valid UTF-8 (invalid bytes become U+FFFD) and kept
 /// otherwise as they are: a GIS shows them as text.
 std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const GeoFrame& geo);
+
+/// The consequence totals as CSV, one row per area: the city, then the view when given, then each
+/// district; columns area_kind ("city", "view", "district"), area (the district's name), buildings,
+/// time_of_day, then for each quantity its expected value and the 5th
+/// and 95th percentiles (`_low`, `_high`): none, slight, moderate, extensive, complete (expected
+/// building counts), collapsed, tag_green, tag_yellow, tag_red, occupants, injuries_1 .. injuries_3,
+/// deaths, repair_cost_usd. Text fields are made safe as in exportCsv.
+std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, const seismic::LossTotals* view);
 
 }  // namespace qv

@@ -48,6 +48,12 @@ class ControlPanel {
   void drawFilterChips(Viewer& viewer, ui::Widgets& w);
   /// SCENARIO or ACTUAL (prominent), the ShakeMap, the earthquake, the record(s) and their scaling.
   static void drawShakingProvenance(const ResponseInfo& response, ui::Widgets& w);
+  /// The building's Sa(T1) scaling and its spread across the record suite.
+  static void drawShakingOfBuilding(const BuildingInfo& info, ui::Widgets& w);
+  /// Damage-state probabilities as bars, tags, and the consequences with their "inferred" marks.
+  static void drawBuildingLoss(const BuildingLoss& loss, ui::Widgets& w);
+  /// City, view and district totals with their provenance, and their CSV exports.
+  void drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host);
   std::string lengthText(const Viewer& viewer, double metres) const;
 
   std::optional<std::pair<double, double>> cursor_;

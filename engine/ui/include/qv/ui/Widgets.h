@@ -5,6 +5,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "qv/ui/TextMirror.h"
 
@@ -49,6 +50,12 @@ class Widgets {
             float cursorFraction, std::string_view summary);
   /// A histogram (bars), mirrored as `summary`.
   void bars(const char* id, const float* values, int count, float maxValue, float height, std::string_view summary);
+  /// A horizontal bar filled to `fraction` (0..1) in the given colour, with `label` before it and
+  /// `value` after it; mirrored as "label: value".
+  void meter(std::string_view label, float fraction, std::string_view value, float r, float g, float b);
+  /// A table with a header row; cells are text. Mirrored one row a line, cells separated by " | ".
+  void table(const char* id, const std::vector<std::string>& headers,
+             const std::vector<std::vector<std::string>>& rows);
   /// A filled colour square followed by text on the same line.
   void swatch(float r, float g, float b, std::string_view text, bool hatched = false);
 

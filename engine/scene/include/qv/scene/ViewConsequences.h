@@ -1,0 +1,46 @@
+// The consequences of the buildings in view: sums of the HAZUS losses the response summary stores
+// per building (section LOSS), with a 90 % interval by a normal approximation.
+//
+// Method: buildings are independent (as in the city totals of `quakeview-prep response`). A count
+// (buildings in a damage state, collapsed, with a tag) is a sum of Bernoulli indicators, variance
+// Σ p (1 − p); repair cost and injuries add the per-building variances the summary stores
+// (BuildingLoss::repairCostStdUsd, injuriesStd: exact for the tool's model). The interval is the
+// expected value ± 1.645 standard deviations, clipped at zero and at the number of buildings for
+// counts. The city's and districts' totals in consequences.json are Monte Carlo percentiles instead
+// (docs/losses.md); the two agree closely for many buildings and differ for a few very skewed ones.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "qv/format/ResponseTile.h"
+#include "qv/seismic/Loss.h"
+
+namespace qv {
+
+class ConsequenceSums {
+ public:
+  void clear() { *this = ConsequenceSums{}; }
+  /// Adds one building with a result and probabilities.
+  void add(const BuildingLoss& loss);
+  [[nodiscard]] std::uint64_t buildings() const { return buildings_; }
+  /// Expected values and 90 % intervals (occupants: the exact sum, no interval).
+  [[nodiscard]] seismic::LossTotals totals() const;
+
+ private:
+  struct Sum {
+    double mean = 0.0, variance = 0.0;
+    void add(double m, double v) {
+      mean += m;
+      variance += v;
+    }
+  };
+  std::uint64_t buildings_ = 0;
+  std::array<Sum, 5> states_{};
+  Sum collapsed_, cost_;
+  std::array<Sum, 4> injuries_{};
+  std::array<Sum, 3> tags_{};
+  double occupants_ = 0.0;
+};
+
+}  // namespace qv

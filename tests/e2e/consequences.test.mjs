@@ -1,0 +1,116 @@
+// Decision-grade results in the browser: whether the shaking is a SCENARIO or an ACTUAL event is on
+// screen; the Consequences panel and `quakeview.consequences()` give the city's totals exactly as
+// `quakeview-prep info --json` does, plus the view's and each district's; the probabilistic colour
+// modes colour the city; a building's inspection shows its damage-state probabilities.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { changedFraction, decodePng } from './lib/pixels.mjs';
+import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
+
+const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
+const ACTUAL = path.join(DATA, 'actual');
+const SYNTH = path.join(DATA, 'synth');
+const CITY_RECT = { x: 300, y: 120, w: 600, h: 420 };
+let server;
+
+before(async () => {
+  for (const dir of [ACTUAL, SYNTH]) {
+    assert.ok(fs.existsSync(path.join(dir, 'tileset.json')), `test city missing: ${dir} (scripts/test.sh prepares it)`);
+  }
+  fs.mkdirSync(ARTIFACTS, { recursive: true });
+  server = await serveSite({ '/actual': ACTUAL, '/synth': SYNTH });
+});
+after(() => server?.close());
+
+test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool wrote', async () => {
+  const info = JSON.parse(fs.readFileSync(path.join(DATA, 'actual-info.json'), 'utf8'));
+  assert.equal(info.event_type, 'ACTUAL');
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/actual/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await page.waitForFunction(() => window.quakeview.consequences()?.city != null, null, { timeout: 30000 });
+    const text = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(text, /Shaking: ACTUAL EVENT \(ShakeMap of a recorded earthquake\)/);
+    assert.match(text, /ShakeMap: qvtest2026 version 4, processed 2026-11-25T10:05:00Z/);
+    assert.doesNotMatch(text, /SCENARIO/);
+
+    const c = await page.evaluate(() => window.quakeview.consequences());
+    assert.equal(c.eventType, 'ACTUAL');
+    assert.equal(c.timeOfDay, 'night');
+    assert.equal(c.shakemap.eventId, 'qvtest2026');
+    // The city's totals are the file's, as info --json reports them.
+    const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
+    for (const s of states) {
+      assert.ok(Math.abs(c.city.damageStates[s].expected - info.expected_damage_states[s]) < 1e-6, s);
+    }
+    const sum = states.reduce((a, s) => a + c.city.damageStates[s].expected, 0);
+    assert.ok(Math.abs(sum - c.city.buildings) < 1e-6, `expected counts sum to ${sum}, not ${c.city.buildings}`);
+    assert.ok(Math.abs(c.city.repairCostUsd.expected - info.consequences.repair_cost_usd.expected) < 1e-3);
+    assert.equal(c.districts.length, 2);
+    assert.equal(c.districts[0].name, 'West of -73.9995');
+    assert.equal(c.districts[0].buildings + c.districts[1].buildings, c.city.buildings);
+    // The whole small city is in view at the overview: the view's expected values are the city's.
+    assert.equal(c.view.buildings, c.city.buildings);
+    for (const s of states) {
+      assert.ok(Math.abs(c.view.damageStates[s].expected - c.city.damageStates[s].expected) < 1e-3, s);
+      assert.ok(c.view.damageStates[s].low <= c.view.damageStates[s].expected + 1e-9);
+      assert.ok(c.view.damageStates[s].high >= c.view.damageStates[s].expected - 1e-9);
+    }
+    assert.ok(Math.abs(c.view.repairCostUsd.expected - c.city.repairCostUsd.expected) <=
+      1e-4 * Math.max(1, c.city.repairCostUsd.expected));
+
+    // The Consequences section of the panel (open by default) shows the same table.
+    const panel = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(panel, /\| City \| In view/);
+    assert.match(panel, /Repair cost \| \$/);
+    assert.match(panel, /West of -73.9995 \|/);
+    await page.screenshot({ path: path.join(ARTIFACTS, 'consequences-panel.png') });
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+test('the probabilistic colour modes colour the city, and the inspection shows the probabilities', async () => {
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/synth/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await page.evaluate(() => { window.quakeview.pause(); window.quakeview.setTime(0); });
+    const shots = {};
+    for (const mode of ['neutral', 'p-moderate', 'expected-damage', 'tag']) {
+      assert.equal(await page.evaluate((m) => window.quakeview.setColorMode(m), mode), true, mode);
+      assert.equal(await page.evaluate(() => window.quakeview.colorMode()), mode);
+      await page.waitForTimeout(300);
+      shots[mode] = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, `colour-${mode}.png`) }));
+    }
+    for (const mode of ['p-moderate', 'expected-damage', 'tag']) {
+      assert.ok(changedFraction(shots.neutral, shots[mode], 24, CITY_RECT) > 0.02, `${mode} colours the city`);
+    }
+    assert.equal(await page.evaluate(() => window.quakeview.setColorMode('probability')), false);
+
+    const info = JSON.parse(fs.readFileSync(path.join(DATA, 'synth-s1.json'), 'utf8'));
+    await page.evaluate(() => window.quakeview.select('s1'));
+    await page.waitForFunction(() => window.quakeview.building('s1')?.damageProbabilities != null, null, { timeout: 30000 });
+    const b = await page.evaluate(() => window.quakeview.building('s1'));
+    const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
+    const total = states.reduce((a, s) => a + b.damageProbabilities[s], 0);
+    assert.ok(Math.abs(total - 1) < 1e-4, `probabilities sum to ${total}`);
+    for (const s of states) assert.ok(Math.abs(b.damageProbabilities[s] - info.damage_probabilities[s]) < 1e-6, s);
+    assert.ok(Math.abs(b.consequences.repairCostUsd - info.consequences.repair_cost_usd) <= 1e-3 * Math.max(1, info.consequences.repair_cost_usd));
+    assert.equal(b.consequences.occupantsInferred, true);
+    const text = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(text, /Damage probabilities \(HAZUS 5.1 fragility\):/);
+    assert.match(text, /Moderate: \d+\.\d %/);
+    assert.match(text, /Occupants present: [\d.]+ \(inferred from floor area and use\)/);
+    assert.match(text, /Shaking, X: T1 [\d.]+ s; target Sa\(T1\)/);
+    await page.screenshot({ path: path.join(ARTIFACTS, 'inspection-probabilities.png') });
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
