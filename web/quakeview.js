@@ -15,6 +15,7 @@
 //   setCamera(c)  any subset of getCamera()'s fields; false when a value was invalid.
 //   setTime(s), time(), duration(), play(), pause(), playing()
 //   pick(x, y), building(id), select(id), selection()   picking and the selected building
+//   consequences()   totals of the city, the view and each district, and the shaking's provenance
 //   setFilters({minDamage, use, criticalOnly}), filters(), setLodVisibility({lod1, lod2}),
 //   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
 //   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), search(query), filteredList(limit),
@@ -123,6 +124,12 @@
     building(id) {
       if (!engine || typeof id !== 'string') return null;
       return JSON.parse(engine.ccall('qv_building', 'string', ['string'], [id]));
+    },
+    // The consequences' totals (city, view, districts) and the shaking's provenance; null without
+    // results. Shape in the README's table.
+    consequences() {
+      if (!engine) return null;
+      return JSON.parse(engine.ccall('qv_consequences', 'string', [], []));
     },
     select(id) {
       if (!engine || typeof id !== 'string') return false;

@@ -103,6 +103,17 @@ EMSCRIPTEN_KEEPALIVE const char* qv_building(const char* id) {
   return hand(info ? qv::buildingInfoJson(*info) : std::string("null"));
 }
 
+/// `quakeview.consequences()`: the totals of the city (consequences.json), of the view and of each
+/// district, with the shaking's provenance (qv/scene/ViewConsequences.h); "null" without a response.
+EMSCRIPTEN_KEEPALIVE const char* qv_consequences() {
+  if (gApp == nullptr) return hand("null");
+  qv::CityScene* city = gApp->viewer().city();
+  const qv::Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
+  if (tileset == nullptr || !tileset->response) return hand("null");
+  const qv::seismic::LossTotals view = city->consequencesInView();
+  return hand(qv::consequencesJson(&*tileset->response, city->consequences(), &view));
+}
+
 EMSCRIPTEN_KEEPALIVE int qv_select(const char* id) {
   return gApp != nullptr && id != nullptr && gApp->viewer().select(id) ? 1 : 0;
 }

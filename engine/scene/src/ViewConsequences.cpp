@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "qv/core/JsonWriter.h"
+
 namespace qv {
 namespace {
 
@@ -43,6 +45,81 @@ seismic::LossTotals ConsequenceSums::totals() const {
   for (std::size_t k = 0; k < 4; ++k) t.injuries[k] = estimate(injuries_[k].mean, injuries_[k].variance, HUGE_VAL);
   t.occupants = {occupants_, occupants_, occupants_};
   return t;
+}
+
+namespace {
+
+void writeEstimate(JsonWriter& w, std::string_view key, const seismic::Estimate& e) {
+  w.key(key).beginObject().field("expected", e.expected).field("low", e.low).field("high", e.high).endObject();
+}
+
+void writeTotals(JsonWriter& w, const seismic::LossTotals& t) {
+  static const char* const states[5] = {"none", "slight", "moderate", "extensive", "complete"};
+  static const char* const tags[3] = {"green", "yellow", "red"};
+  static const char* const severities[4] = {"severity1", "severity2", "severity3", "severity4"};
+  w.field("buildings", t.buildings);
+  w.key("damageStates").beginObject();
+  for (std::size_t k = 0; k < 5; ++k) writeEstimate(w, states[k], t.damageStates[k]);
+  w.endObject();
+  writeEstimate(w, "collapsed", t.collapsed);
+  writeEstimate(w, "occupants", t.occupants);
+  w.key("injuries").beginObject();
+  for (std::size_t k = 0; k < 4; ++k) writeEstimate(w, severities[k], t.injuries[k]);
+  w.endObject();
+  writeEstimate(w, "deaths", t.injuries[3]);
+  writeEstimate(w, "repairCostUsd", t.repairCostUsd);
+  w.key("tags").beginObject();
+  for (std::size_t k = 0; k < 3; ++k) writeEstimate(w, tags[k], t.tags[k]);
+  w.endObject();
+}
+
+}  // namespace
+
+std::string consequencesJson(const ResponseInfo* response, const seismic::ConsequenceTotals* file,
+                             const seismic::LossTotals* view) {
+  if (response == nullptr) return "null";
+  JsonWriter w;
+  w.beginObject();
+  if (response->eventType.empty()) {
+    w.key("eventType").null();
+  } else {
+    w.field("eventType", response->eventType);
+  }
+  w.field("shakingField", response->shakingField);
+  if (response->shakemap) {
+    const ResponseInfo::ShakeMap& m = *response->shakemap;
+    w.key("shakemap").beginObject().field("eventId", m.eventId).field("version", m.version);
+    w.field("processTimestamp", m.processTimestamp).field("eventTimestamp", m.eventTimestamp);
+    w.field("description", m.description).endObject();
+  } else {
+    w.key("shakemap").null();
+  }
+  w.field("timeOfDay", file != nullptr ? file->timeOfDay : response->timeOfDay);
+  if (file != nullptr) {
+    w.key("city").beginObject();
+    writeTotals(w, file->city);
+    w.endObject();
+  } else {
+    w.key("city").null();
+  }
+  if (view != nullptr && file != nullptr) {
+    w.key("view").beginObject();
+    writeTotals(w, *view);
+    w.endObject();
+  } else {
+    w.key("view").null();
+  }
+  w.key("districts").beginArray();
+  if (file != nullptr) {
+    for (const seismic::ConsequenceTotals::District& d : file->districts) {
+      w.beginObject().field("name", d.name);
+      writeTotals(w, d.totals);
+      w.endObject();
+    }
+  }
+  w.endArray();
+  w.endObject();
+  return w.take();
 }
 
 }  // namespace qv

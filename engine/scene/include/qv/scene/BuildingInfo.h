@@ -20,6 +20,10 @@ struct BuildingInfo {
   bool hasResponse = false;
   BuildingResponse response;           ///< damage, peaks (meaningful when hasResponse)
   std::vector<float> storeyPeakDrift;  ///< per storey, ground up (empty without a response)
+  // From the summary's optional sections, when the response has them (quakeview-prep response).
+  std::optional<BuildingScaling> scaling;
+  std::optional<BuildingSpread> spread;
+  std::optional<BuildingLoss> loss;
   /// LOD2 buildings whose tile carries the model: where it came from ("cityjson", "obj",
   /// "osm-parts", "synthetic") and the triangles drawn (empty and 0 otherwise).
   std::string modelSource;
@@ -31,7 +35,9 @@ struct BuildingInfo {
 /// peakRoofDisplacementM, pgaG} plus informative extras (minHeightM, footprintAreaM2,
 /// structuralTypeDescription, importanceReasons, startYear, responseSource, noResultReason (null
 /// with a result), approximate, unconvergedSteps, worstResidualRatio, detailed, and for LOD2 models
-/// modelSource and modelTriangles).
+/// modelSource and modelTriangles); with HAZUS results also spectralScaling, suite,
+/// damageProbabilities, collapseProbability, expectedDamageState, mostLikelyDamageState and
+/// consequences (README's table).
 std::string buildingInfoJson(const BuildingInfo& info);
 
 /// Picking: where a ray first meets a building (an extruded polygon with holes between two

@@ -12,8 +12,11 @@
 
 #include <array>
 #include <cstdint>
+#include <string>
 
 #include "qv/format/ResponseTile.h"
+#include "qv/format/Tileset.h"
+#include "qv/seismic/ConsequencesFile.h"
 #include "qv/seismic/Loss.h"
 
 namespace qv {
@@ -42,5 +45,14 @@ class ConsequenceSums {
   std::array<Sum, 3> tags_{};
   double occupants_ = 0.0;
 };
+
+/// `quakeview.consequences()` JSON: {eventType ("SCENARIO", "ACTUAL" or null), shakingField,
+/// shakemap ({eventId, version, processTimestamp, eventTimestamp, description} or null), timeOfDay,
+/// city, view (totals or null), districts: [{name, ...totals}]}, totals being {buildings,
+/// damageStates: {none, slight, moderate, extensive, complete}, collapsed, occupants, injuries:
+/// {severity1 .. severity4}, deaths, repairCostUsd, tags: {green, yellow, red}}, every estimate
+/// {expected, low, high}. "null" without a response.
+std::string consequencesJson(const ResponseInfo* response, const seismic::ConsequenceTotals* file,
+                             const seismic::LossTotals* view);
 
 }  // namespace qv
