@@ -54,8 +54,10 @@ void velocitySpectrum(const std::vector<double>& padded, double dt, std::vector<
   }
 }
 
-// The spectrum at a period, linear in log(period) between grid points, clamped to the grid.
+// The spectrum at a period, linear in log(period) between grid points, clamped to the grid (0 for a
+// period that is not positive).
 double spectrumAt(const std::vector<double>& spectrum, double periodS) {
+  if (!(periodS > 0.0) || spectrum.size() != kSpectrumPeriods) return 0.0;
   const double position = std::clamp(std::log(periodS / kSpectrumFirstPeriodS) / std::log(kSpectrumRatio), 0.0,
                                      static_cast<double>(kSpectrumPeriods - 1));
   const auto j = std::min(static_cast<std::size_t>(position), kSpectrumPeriods - 2);
