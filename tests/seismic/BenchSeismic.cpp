@@ -4,7 +4,14 @@
 // per-building peaks are kept). Prints a table.
 //
 // usage: bench_seismic [--buildings N[,N...]] [--threads T] [--precision float|double|both]
-//                      [--no-histories] [--tile N]
+//                      [--no-histories] [--tile N] [--compare-bound]
+// --bound E: ResponseOptions::maxHystereticError for the runs with the bound on (default: its default).
+// --accuracy N: first, N buildings spread over the city solved with the bound off and on, their peaks
+// (base shear, roof displacement, largest drift ratio, X and Y) against 64 equal sub-steps in double
+// precision (converged to ~0.05 %): relative errors, median / 99th percentile / largest.
+// --compare-bound: each row twice in one run, first with the hysteretic error bound off (sub-steps from
+// the periods alone, the city path's default before issue 21) and then with the default bound, so the
+// CPU times compare under the same load.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -121,8 +128,9 @@ struct RunResult {
   std::size_t historyFloats = 0;  // floor displacement values streamed (and discarded)
 };
 
+// `boundOff`: ResponseOptions::maxHystereticError = 1 (periods alone); else the default.
 RunResult runCity(const std::vector<CityBuilding>& city, std::size_t count, int threads, Precision precision,
-                  bool histories, std::size_t tile, const GroundMotion& record) {
+                  bool histories, std::size_t tile, const GroundMotion& record, bool boundOff, double bound) {
   RunResult total;
   std::atomic<std::size_t> nextTile{0};
   std::vector<RunResult> perThread(static_cast<std::size_t>(threads));
@@ -133,6 +141,8 @@ RunResult runCity(const std::vector<CityBuilding>& city, std::size_t count, int 
     ResponseOptions options;
     options.precision = precision;
     options.floorDisplacements = histories;
+    if (bound > 0.0) options.maxHystereticError = bound;
+    if (boundOff) options.maxHystereticError = 1.0;
     // One time axis for the whole city: the largest delay plus the record.
     double maxDelay = 0.0;
     for (std::size_t i = 0; i < count; ++i) maxDelay = std::max(maxDelay, city[i].shaking.delaySeconds);
@@ -193,12 +203,90 @@ RunResult runCity(const std::vector<CityBuilding>& city, std::size_t count, int 
     total.stats.steps += r.stats.steps;
     total.stats.newtonIterations += r.stats.newtonIterations;
     total.stats.nonConvergedSteps += r.stats.nonConvergedSteps;
+    total.stats.refinedSteps += r.stats.refinedSteps;
+    total.stats.splitSteps += r.stats.splitSteps;
     for (std::size_t k = 0; k < 5; ++k) total.damage[k] += r.damage[k];
     total.maxDrift = std::max(total.maxDrift, r.maxDrift);
     total.historyFloats += r.historyFloats;
   }
   total.storeySteps = static_cast<double>(total.storeys) * static_cast<double>(record.size()) * 2.0;
   return total;
+}
+
+// Relative errors of the peaks of `sample` buildings against a converged solve (see --accuracy).
+void reportAccuracy(const std::vector<CityBuilding>& city, std::size_t sample, const GroundMotion& record,
+                    double bound) {
+  std::vector<ShearBuilding> modelsX;
+  std::vector<ShearBuilding> modelsY;
+  std::vector<BuildingShaking> shaking;
+  BuildingModelOptions yOptions;
+  yOptions.periodFactor = 1.1;
+  const std::size_t stride = std::max<std::size_t>(1, city.size() / std::max<std::size_t>(1, sample));
+  for (std::size_t i = 0; i < city.size() && modelsX.size() < sample; i += stride) {
+    auto x = buildingModelFromAttributes(city[i].attributes);
+    auto y = buildingModelFromAttributes(city[i].attributes, yOptions);
+    if (!x || !y) continue;
+    modelsX.push_back(std::move(x).value());
+    modelsY.push_back(std::move(y).value());
+    shaking.push_back(city[i].shaking);
+  }
+  auto solveAll = [&](const ResponseOptions& o, SolverStats& stats) {
+    std::vector<BuildingResponse> out(modelsX.size());
+    ResponseSolver solver(o);
+    const Status s = solver.solve(
+        modelsX, shaking, record, &record, [&](std::size_t b, const BuildingResponse& r) { out[b] = r; }, modelsY);
+    if (!s) {
+      std::fprintf(stderr, "bench_seismic: %s\n", s.error().c_str());
+      std::exit(1);
+    }
+    stats = solver.stats();
+    return out;
+  };
+  ResponseOptions base;
+  base.floorDisplacements = false;
+  base.driftRatios = false;
+  ResponseOptions converged = base;
+  converged.precision = Precision::Double;
+  converged.fixedSubsteps = 64;
+  SolverStats convergedStats;
+  const auto reference = solveAll(converged, convergedStats);
+  std::printf("accuracy: %zu buildings (X and Y) against 64 equal sub-steps in double precision\n", modelsX.size());
+  std::printf("%6s %9s %8s %8s  %-26s %-26s %-26s\n", "bound", "precision", "Msteps", "Msolves",
+              "base shear % med/p99/max", "roof % med/p99/max", "drift % med/p99/max");
+  for (const bool off : {true, false}) {
+    ResponseOptions o = base;
+    if (bound > 0.0) o.maxHystereticError = bound;
+    if (off) o.maxHystereticError = 1.0;
+    SolverStats stats;
+    const auto result = solveAll(o, stats);
+    std::array<std::vector<double>, 3> errors;
+    auto add = [&](const DirectionResponse& d, const DirectionResponse& r) {
+      auto relative = [](double value, double exact) {
+        return exact > 0.0 ? 100.0 * std::fabs(value - exact) / exact : 0.0;
+      };
+      errors[0].push_back(relative(d.peakBaseShearN, r.peakBaseShearN));
+      errors[1].push_back(relative(d.peakRoofDisplacementM, r.peakRoofDisplacementM));
+      const double drift = *std::max_element(d.peakDriftM.begin(), d.peakDriftM.end());
+      const double exact = *std::max_element(r.peakDriftM.begin(), r.peakDriftM.end());
+      errors[2].push_back(relative(drift, exact));
+    };
+    for (std::size_t b = 0; b < result.size(); ++b) {
+      add(result[b].x, reference[b].x);
+      add(result[b].y, reference[b].y);
+    }
+    std::printf("%6s %9s %8.2f %8.2f ", off ? "off" : "on", "float", static_cast<double>(stats.steps) / 1e6,
+                static_cast<double>(stats.newtonIterations) / 1e6);
+    for (auto& e : errors) {
+      std::sort(e.begin(), e.end());
+      const auto at = [&](double q) { return e[static_cast<std::size_t>(q * static_cast<double>(e.size() - 1))]; };
+      char cell[64];
+      std::snprintf(cell, sizeof cell, "%.3f / %.3f / %.3f", at(0.5), at(0.99), e.back());
+      std::printf(" %-26s", cell);
+    }
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+  std::printf("\n");
 }
 
 std::vector<std::size_t> parseCounts(const char* text) {
@@ -223,6 +311,9 @@ int main(int argc, char** argv) {
   std::vector<Precision> precisions = {Precision::Float};
   bool histories = true;
   std::size_t tile = 1000;
+  bool compareBound = false;
+  double bound = 0.0;  // 0: the default
+  std::size_t accuracySample = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const bool hasValue = i + 1 < argc;
@@ -237,12 +328,18 @@ int main(int argc, char** argv) {
                                  : std::vector<Precision>{Precision::Float};
     } else if (a == "--no-histories") {
       histories = false;
+    } else if (a == "--bound" && hasValue) {
+      bound = std::atof(argv[++i]);
+    } else if (a == "--accuracy" && hasValue) {
+      accuracySample = static_cast<std::size_t>(std::atoll(argv[++i]));
+    } else if (a == "--compare-bound") {
+      compareBound = true;
     } else if (a == "--tile" && hasValue) {
       tile = std::max<std::size_t>(1, static_cast<std::size_t>(std::atoll(argv[++i])));
     } else {
       std::fprintf(stderr,
                    "usage: bench_seismic [--buildings N[,N...]] [--threads T] [--precision float|double|both] "
-                   "[--no-histories] [--tile N]\n");
+                   "[--no-histories] [--tile N] [--compare-bound] [--bound E] [--accuracy N]\n");
       return 2;
     }
   }
@@ -265,28 +362,38 @@ int main(int argc, char** argv) {
               record->name.c_str(), record->size(), record->timeStepS);
   std::printf("city: %zu buildings, mean %.2f storeys, tallest %zu, %zu above 30 storeys; %d threads, tiles of %zu\n\n",
               largest, static_cast<double>(storeyTotal) / static_cast<double>(largest), tallest, over30, threads, tile);
-  std::printf("%9s %9s %10s %8s %8s %8s %11s %14s %14s %11s %8s %10s %9s  %s\n", "buildings", "precision", "histories",
-              "wall s", "cpu s", "models s", "buildings/s", "storey-steps/s", "per cpu-second", "solves/step",
-              "unconv.", "floats MiB", "VmHWM MiB", "damage none/slight/moderate/extensive/complete");
+  if (accuracySample > 0) reportAccuracy(city, accuracySample, *record, bound);
+  std::printf("%9s %9s %10s %6s %8s %8s %8s %11s %14s %14s %11s %11s %8s %10s %9s  %s\n", "buildings", "precision",
+              "histories", "bound", "wall s", "cpu s", "models s", "buildings/s", "storey-steps/s", "per cpu-second",
+              "solves/step", "Msteps", "unconv.", "floats MiB", "VmHWM MiB",
+              "damage none/slight/moderate/extensive/complete");
+  std::vector<bool> bounds = {false};
+  if (compareBound) bounds = {true, false};
   for (const Precision precision : precisions) {
     for (const std::size_t count : counts) {
-      const RunResult r = runCity(city, count, threads, precision, histories, tile, *record);
-      const double solvesPerStep =
-          r.stats.steps > 0 ? static_cast<double>(r.stats.newtonIterations) / static_cast<double>(r.stats.steps) : 0.0;
-      std::printf(
-          "%9zu %9s %10s %8.2f %8.2f %8.2f %11.0f %13.1fM %13.1fM %11.2f %8zu %10.0f %9.0f  %zu/%zu/%zu/%zu/%zu\n",
-          count, precision == Precision::Float ? "float" : "double", histories ? "streamed" : "off", r.wallS, r.cpuS,
-          r.modelS / threads, static_cast<double>(r.solved) / r.wallS, r.storeySteps / r.wallS / 1e6,
-          r.storeySteps / r.cpuS / 1e6, solvesPerStep, r.stats.nonConvergedSteps,
-          static_cast<double>(r.historyFloats) * 4.0 / (1024.0 * 1024.0), peakMemoryMiB(), r.damage[0], r.damage[1],
-          r.damage[2], r.damage[3], r.damage[4]);
-      std::fflush(stdout);
+      for (const bool boundOff : bounds) {
+        const RunResult r = runCity(city, count, threads, precision, histories, tile, *record, boundOff, bound);
+        const double solvesPerStep =
+            r.stats.steps > 0 ? static_cast<double>(r.stats.newtonIterations) / static_cast<double>(r.stats.steps)
+                              : 0.0;
+        std::printf(
+            "%9zu %9s %10s %6s %8.2f %8.2f %8.2f %11.0f %13.1fM %13.1fM %11.2f %11.2f %8zu %10.0f %9.0f  "
+            "%zu/%zu/%zu/%zu/%zu\n",
+            count, precision == Precision::Float ? "float" : "double", histories ? "streamed" : "off",
+            boundOff ? "off" : "on", r.wallS, r.cpuS, r.modelS / threads, static_cast<double>(r.solved) / r.wallS,
+            r.storeySteps / r.wallS / 1e6, r.storeySteps / r.cpuS / 1e6, solvesPerStep,
+            static_cast<double>(r.stats.steps) / 1e6, r.stats.nonConvergedSteps,
+            static_cast<double>(r.historyFloats) * 4.0 / (1024.0 * 1024.0), peakMemoryMiB(), r.damage[0], r.damage[1],
+            r.damage[2], r.damage[3], r.damage[4]);
+        std::fflush(stdout);
+      }
     }
   }
   std::printf(
       "\nstorey-steps/s = storeys x 4096 record steps x 2 directions / wall time (sub-steps, arrival skipping and\n"
       "the tail after the record not counted); per cpu-second: the same over the CPU time of all threads (wall\n"
       "time above cpu time / threads means other processes shared the cores); floats MiB = floor displacements\n"
-      "streamed to the sink and discarded tile by tile.\n");
+      "streamed to the sink and discarded tile by tile; bound: ResponseOptions::maxHystereticError off (1, sub-steps\n"
+      "from the periods alone) or on (the default); Msteps: system steps taken, millions.\n");
   return 0;
 }

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 namespace qv::seismic {
@@ -14,6 +15,54 @@ std::string formatDouble(double v) {
   char buffer[32];
   std::snprintf(buffer, sizeof buffer, "%.6g", v);
   return buffer;
+}
+
+// The relative-velocity response spectrum of a record at 5 % damping on a geometric grid of periods
+// (kSpectrumFirstPeriodS × kSpectrumRatio^j), by Newmark's average acceleration with steps of at most
+// T/10 on the record padded as in the solver (samples at t = k·dt from k = 0). Only batching uses it.
+constexpr double kSpectrumFirstPeriodS = 0.04;
+constexpr double kSpectrumRatio = 1.1;
+constexpr std::size_t kSpectrumPeriods = 64;  // to 0.04 · 1.1^63 = 16 s
+
+void velocitySpectrum(const std::vector<double>& padded, double dt, std::vector<double>& out) {
+  out.assign(kSpectrumPeriods, 0.0);
+  for (std::size_t j = 0; j < kSpectrumPeriods; ++j) {
+    const double period = kSpectrumFirstPeriodS * std::pow(kSpectrumRatio, static_cast<double>(j));
+    const double omega = 6.283185307179586 / period;
+    const double c = 2.0 * 0.05 * omega;
+    const double k = omega * omega;
+    const int steps = static_cast<int>(std::ceil(dt / (period / 10.0) - 1e-9));
+    const double h = dt / steps;
+    const double denominator = 1.0 + 0.5 * h * c + 0.25 * h * h * k;
+    double u = 0.0;
+    double v = 0.0;
+    double a = 0.0;
+    double peak = 0.0;
+    for (std::size_t s = 1; s < padded.size(); ++s) {
+      for (int m = 1; m <= steps; ++m) {
+        const double fraction = static_cast<double>(m) / steps;
+        const double ground = padded[s - 1] + fraction * (padded[s] - padded[s - 1]);
+        const double uStar = u + h * v + 0.25 * h * h * a;
+        const double vStar = v + 0.5 * h * a;
+        a = (-ground - c * vStar - k * uStar) / denominator;
+        u = uStar + 0.25 * h * h * a;
+        v = vStar + 0.5 * h * a;
+        peak = std::max(peak, std::fabs(v));
+      }
+    }
+    out[j] = peak;
+  }
+}
+
+// The spectrum at a period, linear in log(period) between grid points, clamped to the grid (0 for a
+// period that is not positive).
+double spectrumAt(const std::vector<double>& spectrum, double periodS) {
+  if (!(periodS > 0.0) || spectrum.size() != kSpectrumPeriods) return 0.0;
+  const double position = std::clamp(std::log(periodS / kSpectrumFirstPeriodS) / std::log(kSpectrumRatio), 0.0,
+                                     static_cast<double>(kSpectrumPeriods - 1));
+  const auto j = std::min(static_cast<std::size_t>(position), kSpectrumPeriods - 2);
+  const double fraction = position - static_cast<double>(j);
+  return spectrum[j] + fraction * (spectrum[j + 1] - spectrum[j]);
 }
 
 // One building direction to solve.
@@ -30,6 +79,7 @@ struct SystemRef {
   const double* padded = nullptr;  // 0, samples 1..N, 0, 0
   double lastPosition = 0.0;       // N + 1: the trailing zero
   bool squareRootUpdate = false;   // some storey has n = 2 (the n = 1 update needs no square root)
+  int refinementClass = 0;         // a priori levels of accuracy splitting (batching key, see solve())
 };
 
 // Explicit SIMD with the GCC/Clang vector extensions: generic 16-byte vectors (4 floats or 2
@@ -173,6 +223,7 @@ class BatchKernel {
 
     const double h = settings.dt / settings.substeps;
     preparedStep_ = 0.0;
+    startLevel_ = 0;
 
     double earliest = 1e300;
     active_ = 0;
@@ -188,7 +239,19 @@ class BatchKernel {
       if (static_cast<double>(f) * settings.dt <= earliest) continue;
       for (int s = 0; s < settings.substeps; ++s) {
         const double t0 = static_cast<double>(f - 1) * settings.dt + static_cast<double>(s) * h;
-        advance(lanes, n, t0, h, 0, settings, stats);
+        // With the hysteretic bound, a sub-step starts at the level of splitting the previous one
+        // ended at (one level coarser when every piece would have passed at twice its length), so
+        // a yield excursion does not pay a rejected coarse attempt at every sub-step.
+        deepestCommitted_ = 0;
+        largestCommittedRatio_ = 0.0;
+        const int pieces = 1 << startLevel_;
+        const double piece = h / static_cast<double>(pieces);
+        for (int p = 0; p < pieces; ++p)
+          advance(lanes, n, t0 + static_cast<double>(p) * piece, piece, startLevel_, settings, stats);
+        if (settings.maxHystereticError < 1.0) {
+          startLevel_ = deepestCommitted_;
+          if (startLevel_ > 0 && largestCommittedRatio_ <= 0.5) --startLevel_;
+        }
       }
       writeFrame(lanes, f, settings);
     }
@@ -204,10 +267,13 @@ class BatchKernel {
  private:
   Row<T>& row(std::size_t i, std::size_t k) { return rows_[i * K + k]; }
 
-  // Advances every lane from t0 by h. When some lane's Newton iterations do not converge, or its
-  // hysteretic update's estimated error exceeds the bound (hystereticErrorWithin), the step is not
-  // committed and is taken as two halves instead, recursively up to settings.maxSplits levels; at
+  // Advances every lane from t0 by h. When some lane's Newton iterations do not converge, the step is
+  // not committed and is taken as two halves instead, recursively up to settings.maxSplits levels; at
   // that depth it is accepted and each unconverged lane's step and relative residual are recorded.
+  // When the step converged but some lane's hysteretic update has an estimated error above the bound
+  // (hystereticErrorRatio), it is taken at once as the 2^L equal pieces the estimate asks for (it is
+  // proportional to the step: the smallest L with error / 2^L <= bound, within the levels left), each
+  // checked again, instead of halving and retrying level by level.
   void advance(const std::array<Lane, W>& lanes, std::size_t n, double t0, double h, int depth,
                const Settings& settings, SolverStats& stats) {
     if (h != preparedStep_) {
@@ -228,8 +294,15 @@ class BatchKernel {
     bool converged = true;
     for (std::size_t k = 0; k < K; ++k) converged = converged && allSet(ok[k]);
     const bool lastLevel = depth >= settings.maxSplits;
-    if (lastLevel || (converged && (settings.maxHystereticError >= 1.0 ||
-                                    hystereticErrorWithin(n, static_cast<T>(settings.maxHystereticError))))) {
+    int levels = 0;      // accuracy levels asked for
+    double ratio = 1.0;  // estimated error / bound (1 when not estimated)
+    if (converged && settings.maxHystereticError < 1.0) {
+      ratio = hystereticErrorRatio(n) / settings.maxHystereticError;
+      while (levels < settings.maxSplits - depth && ratio > static_cast<double>(1 << levels)) ++levels;
+    }
+    if (lastLevel || (converged && levels == 0)) {
+      deepestCommitted_ = std::max(deepestCommitted_, depth);
+      largestCommittedRatio_ = std::max(largestCommittedRatio_, ratio);
       if (!converged) {
         for (std::size_t l = 0; l < W; ++l) {
           if (lanes[l].system == nullptr || ok[l / kVectorLanes][l % kVectorLanes] != 0) continue;
@@ -243,18 +316,27 @@ class BatchKernel {
       return;
     }
     restoreForces(n);
-    ++(converged ? stats.refinedSteps : stats.splitSteps);
-    advance(lanes, n, t0, 0.5 * h, depth + 1, settings, stats);
-    advance(lanes, n, t0 + 0.5 * h, 0.5 * h, depth + 1, settings, stats);
+    if (!converged) {
+      ++stats.splitSteps;
+      advance(lanes, n, t0, 0.5 * h, depth + 1, settings, stats);
+      advance(lanes, n, t0 + 0.5 * h, 0.5 * h, depth + 1, settings, stats);
+      return;
+    }
+    ++stats.refinedSteps;
+    const int pieces = 1 << levels;
+    const double piece = h / static_cast<double>(pieces);
+    for (int p = 0; p < pieces; ++p)
+      advance(lanes, n, t0 + static_cast<double>(p) * piece, piece, depth + levels, settings, stats);
   }
 
-  // Whether every storey's estimated local error of the backward-Euler Bouc–Wen update, per unit
-  // change of ẑ, is within `bound`: ½ |x| ψ n |ẑ|^(n−1) with x = Δδ/dy and ψ = 1 when loading, γ̂ − β̂
-  // when unloading (the estimate of ReferenceSolver.cpp; linear and padding rows have 1/dy = 0).
-  bool hystereticErrorWithin(std::size_t n, T bound) {
+  // The largest estimated local error of the backward-Euler Bouc–Wen update, per unit change of ẑ,
+  // over the storeys and lanes of the batch: ½ |x| ψ n |ẑ|^(n−1) with x = Δδ/dy and ψ = 1 when
+  // loading, γ̂ − β̂ when unloading (the estimate of ReferenceSolver.cpp; linear and padding rows have
+  // 1/dy = 0). It is proportional to the step.
+  double hystereticErrorRatio(std::size_t n) {
     const V one = Math::splat(T(1));
+    V worst = Math::splat(T(0));
     for (std::size_t k = 0; k < K; ++k) {
-      V worst = Math::splat(T(0));
       for (std::size_t i = 0; i < n; ++i) {
         const Row<T>& r = row(i, k);
         const V x = r.dDrift * r.inverseYield;
@@ -262,9 +344,10 @@ class BatchKernel {
         const V power = r.oneMinusN + r.nIsTwo * (T(2) * Math::abs(r.zTrial));
         worst = Math::max(worst, Math::abs(x) * psi * power);
       }
-      if (!allSet(T(0.5) * worst <= bound)) return false;
     }
-    return true;
+    T largest = T(0);
+    for (std::size_t v = 0; v < kVectorLanes; ++v) largest = std::max(largest, worst[v]);
+    return 0.5 * static_cast<double>(largest);
   }
 
   // After a rejected attempt: the storey forces of the committed state (the next attempt's first
@@ -641,9 +724,12 @@ class BatchKernel {
   std::array<V, K> peakBase_{};
   std::size_t roofIndex_[W] = {};
   bool sharedRoof_ = true;
-  bool squareRoot_ = true;     // some lane has n = 2 storeys
-  double preparedStep_ = 0.0;  // the step prepareMatrix last used
-  std::size_t active_ = 0;     // lanes with a system
+  bool squareRoot_ = true;              // some lane has n = 2 storeys
+  double preparedStep_ = 0.0;           // the step prepareMatrix last used
+  int startLevel_ = 0;                  // levels of splitting a sub-step starts at (hysteretic bound)
+  int deepestCommitted_ = 0;            // of the current sub-step: the deepest level committed
+  double largestCommittedRatio_ = 0.0;  // and the largest error / bound committed
+  std::size_t active_ = 0;              // lanes with a system
   std::array<std::uint32_t, W> unconverged_{};
   std::array<float, W> worstResidual_{};
 };
@@ -659,8 +745,9 @@ struct ResponseSolver::Impl {
   BatchKernel<float> floatKernel;
   BatchKernel<double> doubleKernel;
   std::vector<SystemRef> systems;
-  std::vector<BuildingResponse> responses;    // one per building of the current batch, reused
-  std::array<std::vector<double>, 2> padded;  // the X and Y records with their zeros
+  std::vector<BuildingResponse> responses;     // one per building of the current batch, reused
+  std::array<std::vector<double>, 2> padded;   // the X and Y records with their zeros
+  std::array<std::vector<double>, 2> spectra;  // their velocity spectra (velocitySpectrum)
 
   template <typename Kernel, std::size_t W>
   void runBatches(Kernel& kernel, std::size_t frames, double dt, const ResponseSink& sink);
@@ -858,12 +945,54 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       systems.push_back(sys);
     }
   }
-  // Similar systems share a batch: by storeys (padding), then the kind of Bouc–Wen update, then delay
-  // (arrival skipping), keeping a building's X and Y adjacent so they land in the same batch (the
-  // lane count is even; X and Y models share their storey laws' exponents).
+  // A priori need of accuracy splitting, only to batch systems of similar need together (the batch
+  // takes the step of its most demanding lane; the bound itself is checked step by step). A storey's
+  // drift increment per step is estimated from the first mode: scale · Sv(T1) · Γ1 (φ_i − φ_(i−1)) · h
+  // with Sv the record's relative-velocity spectrum at 5 % damping, so the error estimate's ½ x becomes
+  // that over 2 dy_i; the class is log2 of its ratio to the bound in half levels. X and Y of a building
+  // share the larger class, so they stay adjacent.
+  const bool bounded = o.fixedSubsteps == 0 && o.maxHystereticError < 1.0;
+  if (bounded) {
+    for (int direction = 0; direction < (motionY != nullptr ? 2 : 1); ++direction) {
+      velocitySpectrum(impl_->padded[static_cast<std::size_t>(direction)],
+                       (direction == 0 ? motionX : *motionY).timeStepS,
+                       impl_->spectra[static_cast<std::size_t>(direction)]);
+    }
+    for (SystemRef& sys : systems) {
+      const ShearBuilding& model = *sys.model;
+      if (model.hysteresis.empty()) continue;
+      auto modes = computeModes(model, true);
+      if (!modes) return fail("building " + std::to_string(sys.building) + ": " + modes.error());
+      const std::size_t n = model.storeys();
+      double participation = 0.0;
+      for (std::size_t i = 0; i < n; ++i) participation += modes->shapes[i] * model.floorMassKg[i];
+      const double velocity = std::fabs(sys.scale) *
+                              spectrumAt(impl_->spectra[static_cast<std::size_t>(sys.direction)], modes->periodsS[0]) *
+                              std::fabs(participation);
+      const double h = dt / static_cast<double>(sys.substeps);
+      double ratio = 0.0;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double dy = model.hysteresis[i].yieldDisplacementM;
+        if (!std::isfinite(dy)) continue;
+        const double shapeDrift = modes->shapes[i] - (i > 0 ? modes->shapes[i - 1] : 0.0);
+        ratio = std::max(ratio, 0.5 * velocity * std::fabs(shapeDrift) * h / dy / o.maxHystereticError);
+      }
+      if (ratio > 1.0) sys.refinementClass = static_cast<int>(std::min(2.0 * std::log2(ratio), 40.0)) + 1;
+    }
+    for (std::size_t k = 1; k < systems.size(); ++k) {
+      if (systems[k].building != systems[k - 1].building) continue;
+      const int shared = std::max(systems[k].refinementClass, systems[k - 1].refinementClass);
+      systems[k].refinementClass = systems[k - 1].refinementClass = shared;
+    }
+  }
+  // Similar systems share a batch: by storeys (padding), then the kind of Bouc–Wen update, then the
+  // a priori need of accuracy splitting (with the hysteretic bound), then delay (arrival skipping), keeping a
+  // building's X and Y adjacent so they land in the same batch (the lane count is even; X and Y models share their
+  // storey laws' exponents).
   std::stable_sort(systems.begin(), systems.end(), [](const SystemRef& a, const SystemRef& b) {
     if (a.storeys != b.storeys) return a.storeys < b.storeys;
     if (a.squareRootUpdate != b.squareRootUpdate) return b.squareRootUpdate;
+    if (a.refinementClass != b.refinementClass) return a.refinementClass < b.refinementClass;
     if (a.delay != b.delay) return a.delay < b.delay;
     if (a.building != b.building) return a.building < b.building;
     return a.direction < b.direction;

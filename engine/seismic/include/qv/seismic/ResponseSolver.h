@@ -8,8 +8,9 @@
 // Newton iterations (the first linearised about the previous step, then the consistent tangent of the
 // closed-form implicit Bouc–Wen update, n in {1, 2}), each a Thomas solve of the tridiagonal
 // effective matrix across all lanes. Sub-steps per output step follow automaticSubsteps() (the
-// largest need of the batch); a step is halved, recursively, when a lane does not converge or when
-// the hysteretic update's error estimate exceeds ResponseOptions::maxHystereticError. Float batches converge to a
+// largest need of the batch); a step is halved, recursively, when a lane does not converge, and cut
+// into the pieces its error estimate asks for when the hysteretic update's error estimate exceeds
+// ResponseOptions::maxHystereticError in some lane. Float batches converge to a
 // residual of 1e-3 of the force terms (histories within ~1e-3 of the double reference), double batches to 1e-10.
 //
 // Contract: single-threaded; one ResponseSolver per thread (it owns its workspaces, which grow to the
@@ -62,11 +63,13 @@ struct ResponseOptions {
   /// a step still unconverged at the last level is accepted, counted and its residual recorded.
   int maxSplits = 4;
   /// With automatic sub-steps: a step whose Bouc–Wen update's estimated local error per unit change
-  /// of ẑ exceeds this in some storey of the batch is split the same way (ReferenceOptions::
-  /// maxHystereticError; >= 1: off). Off by default in the city path: splitting the whole batch's
-  /// step at kDefaultMaxHystereticError made the 100 000-building demo's solve 13 times slower
-  /// (446 s instead of 34 s of CPU); a per-lane or a priori choice is still to be done.
-  double maxHystereticError = 1.0;
+  /// of ẑ exceeds this in some storey of the batch is taken again as the 2^L equal pieces the estimate
+  /// asks for (it is proportional to the step), at most maxSplits levels in all (ReferenceOptions::
+  /// maxHystereticError; >= 1: off, sub-steps from the periods alone). Systems are batched by their a
+  /// priori need of such splitting (scaled peak ground velocity × step / yield drift), so a batch of
+  /// buildings that stay nearly elastic is not split for one that yields. The default keeps yielding
+  /// frames within 0.5 % of converged peaks (docs/seismic.md, "Sub-stepping").
+  double maxHystereticError = kDefaultMaxHystereticError;
 };
 
 struct DirectionResponse {
