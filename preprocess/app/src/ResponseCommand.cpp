@@ -19,7 +19,7 @@ const char* const kUsage =
     "                                | --epicentre LON,LAT,DEPTH_KM --magnitude M [--vs30 M_PER_S]\n"
     "                                  [--site-factor F]] [--wave-speed KM_PER_S] [--scale-by sa|pga]\n"
     "                               [--time-of-day night|day|commute] [--districts FILE.geojson]\n"
-    "                               [--threads N]\n"
+    "                               [--accurate-steps] [--threads N]\n"
     "  Analyses every building of the city as an MDOF shear building with Bouc-Wen storeys (X and Y)\n"
     "  under every record of the suite, and writes the response tiles, HAZUS damage probabilities and\n"
     "  consequences into DIR (new files first, the manifest last).\n"
@@ -36,7 +36,9 @@ const char* const kUsage =
     "                     building's first-mode period equals the target there (sa, the default), or\n"
     "                     to the target PGA (pga)\n"
     "  --time-of-day T    occupants present for the consequences (HAZUS; default day)\n"
-    "  --districts FILE   GeoJSON polygons with a \"name\": consequence totals per district\n";
+    "  --districts FILE   GeoJSON polygons with a \"name\": consequence totals per district\n"
+    "  --accurate-steps   split solver steps by the hysteretic error estimate: yielding buildings' peaks\n"
+    "                     within 0.5 % of converged, about 3 times the solve time\n";
 
 }  // namespace
 
@@ -106,6 +108,7 @@ int runResponse(const CommandArgs& argv) {
     options.timeOfDay = *t;
   }
   if (const auto v = args->value("districts")) options.districts = *v;
+  options.accurateSubsteps = args->has("accurate-steps");
   if (const auto dt = args->value("dt")) {
     const auto v = parseDouble(*dt);
     if (!v || !(*v > 0.0 && *v <= 1.0)) return usage("--dt must be a time step in seconds (0 < dt <= 1)");
