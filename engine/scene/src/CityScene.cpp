@@ -1,7 +1,6 @@
 #include "qv/scene/CityScene.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -15,10 +14,8 @@
 namespace qv {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+double msSince(const SceneClock& clock, double startSeconds) {
+  return (clock.nowSeconds() - startSeconds) * 1000.0;
 }
 
 // Rows of the GPU tables: capacity of the index spaces (the device grows textures on demand).
@@ -114,6 +111,7 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
       manifestUrl_(std::move(manifestUrl)),
       options_(options),
       onError_(std::move(onError)),
+      clock_(options.clock != nullptr ? *options.clock : steadyClock()),
       slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
       floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
   if (const std::string problem = dataUrlProblem(manifestUrl_); !problem.empty()) {
@@ -263,7 +261,7 @@ void CityScene::request(std::uint32_t node, double now) {
   ++inFlight_;
   const std::string url = resolveUrl(manifestUrl_, tileset_->nodes[node].file);
   t.request = fetcher_.fetch(
-      url, [this, node](FetchResponse r) { onTile(node, std::move(r), clock_); },
+      url, [this, node](FetchResponse r) { onTile(node, std::move(r), now_); },
       requestTimeout(options_, tileset_->nodes[node].bytes, t.attempts));
   // Its response summary travels alongside (it colours the tile's first frame): both downloads
   // overlap instead of the summary waiting for the tile to arrive and be decoded.
@@ -312,14 +310,14 @@ void CityScene::finishTile(std::uint32_t node) {
   t.bytes.clear();
   Result<CityTile> decoded = decodeCityTile(bytes, url);
   if (!decoded.ok()) {
-    failTile(node, decoded.error(), false, clock_);
+    failTile(node, decoded.error(), false, now_);
     return;
   }
   if (decoded->buildings.size() != n.buildings) {
     failTile(node,
              url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the manifest says " +
                  std::to_string(n.buildings),
-             false, clock_);
+             false, now_);
     return;
   }
   auto tile = std::make_unique<LoadedTile>();
@@ -364,7 +362,7 @@ void CityScene::finishTile(std::uint32_t node) {
   const auto count = static_cast<std::uint32_t>(d.buildings.size());
   const auto slotBase = slots_->allocate(std::max(count, 1u));
   if (!slotBase) {
-    failTile(node, "too many buildings loaded at once", true, clock_);
+    failTile(node, "too many buildings loaded at once", true, now_);
     return;
   }
   tile->slotBase = *slotBase;
@@ -492,7 +490,7 @@ void CityScene::requestSummary(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   const TileNode& n = tileset_->nodes[node];
   if (!n.response || t.summaryState == TileState::Loading || t.summaryState == TileState::Loaded) return;
-  if (t.summaryState == TileState::Failed && t.summaryRetryAt > clock_) return;
+  if (t.summaryState == TileState::Failed && t.summaryRetryAt > now_) return;
   t.summaryState = TileState::Loading;
   ++inFlight_;
   const std::string url = resolveUrl(manifestUrl_, n.response->summaryFile);
@@ -505,7 +503,7 @@ void CityScene::requestSummary(std::uint32_t node) {
         const TileNode& tn = tileset_->nodes[node];
         if (!r.ok() || r.bytes.size() != tn.response->summaryBytes || crc32(r.bytes) != tn.response->summaryCrc32) {
           rt.summaryState = TileState::Failed;
-          rt.summaryRetryAt = clock_ + backoffSeconds(++rt.summaryAttempts, true);
+          rt.summaryRetryAt = now_ + backoffSeconds(++rt.summaryAttempts, true);
           markNoResult(node);
           if (rt.summaryAttempts > 1) return;  // reported once
           onError_("Response summary " + url + " failed: " +
@@ -516,7 +514,7 @@ void CityScene::requestSummary(std::uint32_t node) {
         auto decoded = decodeResponseSummary(r.bytes, url);
         if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
           rt.summaryState = TileState::Failed;
-          rt.summaryRetryAt = clock_ + backoffSeconds(++rt.summaryAttempts, false);
+          rt.summaryRetryAt = now_ + backoffSeconds(++rt.summaryAttempts, false);
           markNoResult(node);
           if (rt.summaryAttempts > 1) return;
           onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
@@ -561,7 +559,7 @@ void CityScene::requestHistory(std::uint32_t node) {
   const TileNode& n = tileset_->nodes[node];
   if (!n.response || n.response->historyFile.empty()) return;
   if (t.historyState == TileState::Loading || t.historyState == TileState::Loaded) return;
-  if (t.historyState == TileState::Failed && t.historyRetryAt > clock_) return;
+  if (t.historyState == TileState::Failed && t.historyRetryAt > now_) return;
   t.historyState = TileState::Loading;
   ++inFlight_;
   const std::string url = resolveUrl(manifestUrl_, n.response->historyFile);
@@ -574,7 +572,7 @@ void CityScene::requestHistory(std::uint32_t node) {
         const TileNode& tn = tileset_->nodes[node];
         if (!r.ok() || r.bytes.size() != tn.response->historyBytes || crc32(r.bytes) != tn.response->historyCrc32) {
           rt.historyState = TileState::Failed;
-          rt.historyRetryAt = clock_ + backoffSeconds(++rt.historyAttempts, true);
+          rt.historyRetryAt = now_ + backoffSeconds(++rt.historyAttempts, true);
           if (rt.historyAttempts > 1) return;  // reported once
           onError_("Response history " + url + " failed: " +
                    (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
@@ -584,7 +582,7 @@ void CityScene::requestHistory(std::uint32_t node) {
         auto decoded = decodeResponseHistory(r.bytes, url);
         if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
           rt.historyState = TileState::Failed;
-          rt.historyRetryAt = clock_ + backoffSeconds(++rt.historyAttempts, false);
+          rt.historyRetryAt = now_ + backoffSeconds(++rt.historyAttempts, false);
           if (rt.historyAttempts > 1) return;
           onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
           return;
@@ -691,33 +689,32 @@ void CityScene::enforceMemoryBudget() {
 void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs& times, FrameCounts& counts,
                        std::vector<DrawItem>& items) {
   ++frame_;
-  const auto frameStart = Clock::now();
+  const double frameStart = clock_.nowSeconds();
   fetcher_.poll();
   if (!tileset_) {
     settled_ = manifestFailed_;
     return;
   }
-  clock_ = static_cast<double>(std::chrono::duration<double>(frameStart.time_since_epoch()).count());
+  now_ = frameStart;
 
   // Decode and mesh what arrived, within the time budget (at least one tile per frame), before
   // choosing tiles: a tile decoded now lets its children be requested in this same frame. When
   // frames are slow anyway (a software renderer drawing a million triangles), the budget grows
   // with the frame interval, so loading is not held back by drawing.
-  auto t0 = Clock::now();
-  const double intervalMs =
-      lastUpdate_ ? std::chrono::duration<double, std::milli>(frameStart - *lastUpdate_).count() : 0.0;
+  double t0 = clock_.nowSeconds();
+  const double intervalMs = lastUpdate_ ? (frameStart - *lastUpdate_) * 1000.0 : 0.0;
   lastUpdate_ = frameStart;
   const double budgetMs = std::max(options_.workBudgetMs, std::min(0.5 * intervalMs, 200.0));
   while (!decodeQueue_.empty()) {
     const std::uint32_t node = decodeQueue_.front();
     decodeQueue_.erase(decodeQueue_.begin());
     finishTile(node);
-    if (msSince(t0) > budgetMs) break;
+    if (msSince(clock_, t0) > budgetMs) break;
   }
-  const double streamingMs = msSince(t0);
+  const double streamingMs = msSince(clock_, t0);
 
   // LOD: which tiles to draw and to load.
-  t0 = Clock::now();
+  t0 = clock_.nowSeconds();
   TileSelectorOptions selectorOptions;
   selectorOptions.maxScreenSpaceError = options_.maxScreenSpaceError;
   selectorOptions.maxDrawTiles = options_.maxDrawTiles;
@@ -737,13 +734,13 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   for (std::uint32_t i : selection_.wanted) tiles_[i]->lastUsed = frame_;
   for (std::uint32_t i : selection_.wanted) {
     if (inFlight_ >= options_.maxRequestsInFlight) break;
-    if (states_[i] == TileState::Unloaded) request(i, clock_);
+    if (states_[i] == TileState::Unloaded) request(i, now_);
   }
   // The selected building's leaf, wherever the camera is (inspection needs its attributes and
   // history).
   for (std::uint32_t i : detailWanted_) {
     tiles_[i]->lastUsed = frame_;
-    if (states_[i] == TileState::Unloaded) request(i, clock_);
+    if (states_[i] == TileState::Unloaded) request(i, now_);
   }
   detailWanted_.erase(std::remove_if(detailWanted_.begin(), detailWanted_.end(),
                                      [&](std::uint32_t i) {
@@ -761,12 +758,12 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   }
   for (std::uint32_t i : selection_.used) {
     if (inFlight_ >= options_.maxRequestsInFlight) break;
-    if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= clock_) request(i, clock_);
+    if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= now_) request(i, now_);
   }
-  times.lod += msSince(t0);
+  times.lod += msSince(clock_, t0);
 
   // Cull: tile boxes first, then the buildings of partly visible tiles.
-  t0 = Clock::now();
+  t0 = clock_.nowSeconds();
   const Frustum& frustum = view.frustum();
   std::uint32_t visibleBuildings = 0;
   for (std::uint32_t i : selection_.draw) {
@@ -817,18 +814,18 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     }
   }
   counts.buildingsVisible += visibleBuildings;
-  times.cull += msSince(t0);
+  times.cull += msSince(clock_, t0);
 
   // Animate.
-  t0 = Clock::now();
+  t0 = clock_.nowSeconds();
   animate(view.eye(), timeSeconds, counts);
-  times.animate += msSince(t0);
-  t0 = Clock::now();
+  times.animate += msSince(clock_, t0);
+  t0 = clock_.nowSeconds();
   enforceMemoryBudget();
-  const double evictMs = msSince(t0);
+  const double evictMs = msSince(clock_, t0);
 
   // Upload the changed rows of the building table and the whole used floor table.
-  t0 = Clock::now();
+  t0 = clock_.nowSeconds();
   if (dirtyFirst_ < dirtyEnd_) {
     dirtyEnd_ = std::min<std::uint32_t>(dirtyEnd_, static_cast<std::uint32_t>(buildingRows_.size()));
     device_.writeBuildings(dirtyFirst_, std::span(buildingRows_).subspan(dirtyFirst_, dirtyEnd_ - dirtyFirst_));
@@ -839,7 +836,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     device_.writeFloors(
         0, std::span(floorRows_).first(std::min<std::size_t>(floorRows_.size(), floorSlots_->highWater())));
   }
-  times.upload += msSince(t0) + streamingMs + evictMs;
+  times.upload += msSince(clock_, t0) + streamingMs + evictMs;
 
   // Buildings available for drawing: every building of each maximal loaded subtree.
   std::uint64_t loaded = 0;
@@ -1353,7 +1350,7 @@ void CityScene::fetchCityFile(CityFileLoad& load, const CityFile& file, const st
         if (!problem.empty()) {
           // Retried with backoff, as tiles are (the server may recover); reported once.
           load.state = TileState::Failed;
-          load.retryAt = clock_ + backoffSeconds(++load.attempts, transient);
+          load.retryAt = now_ + backoffSeconds(++load.attempts, transient);
           if (load.attempts == 1) onError_(problem);
           return;
         }
@@ -1369,7 +1366,7 @@ void CityScene::fetchCityFile(CityFileLoad& load, const CityFile& file, const st
 
 void CityScene::retryCityFiles() {
   for (CityFileLoad* load : {&search_, &citySummaryLoad_}) {
-    if (load->state == TileState::Failed && load->retryAt <= clock_) load->state = TileState::Unloaded;
+    if (load->state == TileState::Failed && load->retryAt <= now_) load->state = TileState::Unloaded;
   }
   if (search_.attempts > 0 && search_.state == TileState::Unloaded) requestSearchIndex();
   // The response summary in the index's order follows the index (it is useless without it).

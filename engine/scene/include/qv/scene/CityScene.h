@@ -9,7 +9,6 @@
 #pragma once
 
 #include <array>
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -27,6 +26,7 @@
 #include "qv/scene/Fetcher.h"
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
+#include "qv/scene/SceneClock.h"
 
 namespace qv {
 
@@ -50,6 +50,9 @@ struct CitySceneOptions {
   /// The deployment's data origin policy: a city from an origin it does not allow is refused
   /// before any request (qv::dataOriginProblem).
   DataOriginPolicy origin;
+  /// The time retries, the decode budget and frame timings are measured in; nullptr: steadyClock().
+  /// Not owned; must outlive the scene.
+  SceneClock* clock = nullptr;
 };
 
 struct TileCounts {
@@ -219,8 +222,9 @@ class CityScene {
   std::vector<std::uint32_t> decodeQueue_;
   std::uint32_t inFlight_ = 0;
   std::uint64_t frame_ = 0;
-  double clock_ = 0.0;                                               // seconds since creation (for retries)
-  std::optional<std::chrono::steady_clock::time_point> lastUpdate_;  // the previous frame's start
+  SceneClock& clock_;
+  double now_ = 0.0;                  // clock_ at this frame's start, seconds (for retries)
+  std::optional<double> lastUpdate_;  // the previous frame's start, seconds
   TileSelection selection_;
   /// Per node, the bytes it holds once loaded (tile data, mesh, summary): measured when it last
   /// loaded, else estimated from its file size at the ratio measured so far for its kind (coarse
