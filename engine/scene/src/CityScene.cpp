@@ -6,9 +6,10 @@
 #include <cstring>
 #include <unordered_map>
 
+#include "qv/anim/FloorDisplacements.h"
+#include "qv/anim/HistorySampling.h"
 #include "qv/core/Crc32.h"
 #include "qv/core/RangeAllocator.h"
-#include "qv/scene/FloorDisplacements.h"
 #include "qv/spatial/BoxTree.h"
 
 namespace qv {
@@ -919,37 +920,9 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   // lets the processor overlap with others; WebAssembly has no prefetch). The second pass turns
   // modal coordinates into floor displacements from the packed shapes.
   const std::size_t count = animated_.size();
-  modal_.resize(count * 16);
+  modal_.resize(count * 2 * kMaxHistoryModes);
   for (std::size_t j = 0; j < count; ++j) {
-    AnimatedSampler& sampler = samplers_[j];
-    float* out = modal_.data() + j * 16;
-    if (sampler.sampleCount == 0) continue;
-    const HistoryTap tap = historyTap(sampler.startSeconds, sampler.sampleRateHz, sampler.sampleCount, timeSeconds);
-    const std::uint32_t wanted[4] = {tap.i0, tap.i1, tap.i2, tap.i3};
-    if (!std::equal(wanted, wanted + 4, sampler.window)) {
-      SampleWindow& w = windows_[j];
-      SampleWindow fresh;
-      for (int slot = 0; slot < 4; ++slot) {
-        const std::uint32_t i = wanted[slot];
-        const auto kept = std::find(sampler.window, sampler.window + 4, i);
-        if (kept != sampler.window + 4) {
-          const auto from = static_cast<std::size_t>(kept - sampler.window);
-          std::copy_n(w.x + from * 8, 8, fresh.x + slot * 8);
-          std::copy_n(w.y + from * 8, 8, fresh.y + slot * 8);
-        } else {
-          std::copy_n(sampler.x + std::size_t{i} * sampler.modesX, sampler.modesX, fresh.x + slot * 8);
-          std::copy_n(sampler.y + std::size_t{i} * sampler.modesY, sampler.modesY, fresh.y + slot * 8);
-        }
-      }
-      w = fresh;
-      std::copy(wanted, wanted + 4, sampler.window);
-    }
-    const SampleWindow& w = windows_[j];
-    const HistoryTap local{0, 1, 2, 3, tap.w0, tap.w1, tap.w2, tap.w3};  // the window's rows, 8 apart
-    const float* scalesX = samplerArena_.data() + sampler.arenaOffset;
-    const float* scalesY = scalesX + sampler.modesX + std::size_t{sampler.floors} * sampler.modesX;
-    modalCoordinates(w.x, 8, scalesX, local, out, sampler.modesX);
-    modalCoordinates(w.y, 8, scalesY, local, out + 8, sampler.modesY);
+    windowedModalCoordinates(samplers_[j].stream, timeSeconds, windows_[j], modal_.data() + j * 2 * kMaxHistoryModes);
   }
   for (std::size_t j = 0; j < count; ++j) {
     const Animated& a = *animated_[j];
@@ -957,15 +930,15 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     FloorGpuRecord* rows = floorRows_.data() + a.floorBase;
     const std::size_t floors = std::min<std::size_t>(sampler.floors, a.rows - 1);
     rows[0].dxMeters = rows[0].dyMeters = 0.0f;
-    if (sampler.sampleCount == 0 || floors == 0) {
+    if (sampler.stream.sampleCount == 0 || floors == 0) {
       for (std::size_t k = 1; k < a.rows; ++k) rows[k].dxMeters = rows[k].dyMeters = 0.0f;
     } else {
       // The packed arena holds scales x, shapes x, scales y, shapes y.
-      const std::size_t mx = sampler.modesX, my = sampler.modesY;
+      const std::size_t mx = sampler.stream.modesX, my = sampler.stream.modesY;
       const float* shapesX = samplerArena_.data() + sampler.arenaOffset + mx;
       const float* shapesY = shapesX + std::size_t{sampler.floors} * mx + my;
-      const float* cx = modal_.data() + j * 16;
-      const float* cy = cx + 8;
+      const float* cx = modal_.data() + j * 2 * kMaxHistoryModes;
+      const float* cy = cx + kMaxHistoryModes;
       floorDisplacements(shapesX, cx, mx, shapesY, cy, my, floors, rows + 1);
     }
     if (!a.peaksWritten) {
@@ -1073,20 +1046,26 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
     if (tiles_[animated_[j]->ref.node]->loaded->meshOf(animated_[j]->ref.index) != nullptr) ++modelsAnimated_;
     const BuildingHistory& h = tiles_[animated_[j]->ref.node]->history->buildings[animated_[j]->ref.index];
     AnimatedSampler& sampler = samplers_[j];
-    sampler.x = h.x.coordinates.data();
-    sampler.y = h.y.coordinates.data();
-    sampler.startSeconds = h.startSeconds;
-    sampler.sampleRateHz = h.sampleRateHz;
-    sampler.sampleCount = h.sampleCount;
+    sampler.stream.x = h.x.coordinates.data();
+    sampler.stream.y = h.y.coordinates.data();
+    sampler.stream.startSeconds = h.startSeconds;
+    sampler.stream.sampleRateHz = h.sampleRateHz;
+    sampler.stream.sampleCount = h.sampleCount;
+    sampler.stream.modesX = h.x.modes;
+    sampler.stream.modesY = h.y.modes;
     sampler.floors = h.floors;
-    sampler.modesX = h.x.modes;
-    sampler.modesY = h.y.modes;
     sampler.arenaOffset = static_cast<std::uint32_t>(samplerArena_.size());
-    std::fill(sampler.window, sampler.window + 4, UINT32_MAX);  // nothing in its window yet
+    windows_[j] = SampleWindow{};  // nothing in its window yet
     for (const HistoryDirection* d : {&h.x, &h.y}) {
       samplerArena_.insert(samplerArena_.end(), d->scales.begin(), d->scales.end());
       samplerArena_.insert(samplerArena_.end(), d->shapes.begin(), d->shapes.end());
     }
+  }
+  // The arena is complete: its scales can be pointed at.
+  for (AnimatedSampler& sampler : samplers_) {
+    sampler.stream.scalesX = samplerArena_.data() + sampler.arenaOffset;
+    sampler.stream.scalesY =
+        sampler.stream.scalesX + sampler.stream.modesX + std::size_t{sampler.floors} * sampler.stream.modesX;
   }
 }
 

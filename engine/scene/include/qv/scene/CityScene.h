@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "qv/anim/HistorySampling.h"
 #include "qv/format/CityTile.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/format/SearchIndex.h"
@@ -247,20 +248,9 @@ class CityScene {
   /// What sampling one animated building needs, packed when the buildings are chosen (the
   /// pointers stay valid until the next choice: any change of residency triggers one first).
   struct AnimatedSampler {
-    const std::int16_t* x = nullptr;  // coordinates, time-major (HistoryDirection)
-    const std::int16_t* y = nullptr;
-    float startSeconds = 0.0f;
-    float sampleRateHz = 0.0f;
-    std::uint32_t sampleCount = 0;
+    HistoryStream stream;           // its scales point into samplerArena_
     std::uint32_t arenaOffset = 0;  // scales x, shapes x, scales y, shapes y in samplerArena_
     std::uint16_t floors = 0;
-    std::uint8_t modesX = 0, modesY = 0;
-    std::uint32_t window[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // samples in its window
-  };
-  /// The coordinates of the four samples an animated building interpolates (rows of 8, x and y).
-  struct SampleWindow {
-    std::int16_t x[32] = {};
-    std::int16_t y[32] = {};
   };
   std::vector<SampleWindow> windows_;      // of animated_, same order
   std::vector<AnimatedSampler> samplers_;  // of animated_, same order
