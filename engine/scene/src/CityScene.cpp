@@ -10,6 +10,7 @@
 #include "qv/anim/HistorySampling.h"
 #include "qv/core/Crc32.h"
 #include "qv/core/RangeAllocator.h"
+#include "qv/scene/TileMeshBuilder.h"
 #include "qv/spatial/BoxTree.h"
 
 namespace qv {
@@ -51,23 +52,12 @@ std::uint32_t requestTimeout(const CitySceneOptions& options, std::uint64_t byte
 
 }  // namespace
 
-struct CityScene::LoadedTile {
-  CityTile data;
-  std::unordered_map<std::string, std::uint32_t> idIndex;  // building id -> index in the file
-  BoxTree tree;
-  std::vector<std::uint32_t> positionOf;  // building index -> position in tree.order()
+struct CityScene::LoadedTile : TileContent {
+  explicit LoadedTile(TileContent content) : TileContent(std::move(content)) {}
   MeshHandle mesh;
   std::uint32_t slotBase = 0;
   std::uint64_t cpuBytes = 0;
   std::uint64_t gpuBytes = 0;
-  glm::vec3 origin{0.0f};
-  std::vector<std::int32_t> meshIndex;  // building index -> index in data.meshes, or -1 (LOD1)
-
-  [[nodiscard]] const TileMesh* meshOf(std::uint32_t building) const {
-    return building < meshIndex.size() && meshIndex[building] >= 0
-               ? &data.meshes[static_cast<std::size_t>(meshIndex[building])]
-               : nullptr;
-  }
 };
 
 struct CityScene::TileRuntime {
@@ -321,46 +311,8 @@ void CityScene::finishTile(std::uint32_t node) {
              false, now_);
     return;
   }
-  auto tile = std::make_unique<LoadedTile>();
-  tile->data = std::move(decoded).value();
-  CityTile& d = tile->data;
-  tile->origin = glm::vec3(static_cast<float>(d.originX), static_cast<float>(d.originY), 0.0f);
-
-  // LOD2 models (MESH section), by building: drawn instead of the building's prisms, the skinned
-  // mesh in leaves and the simplified far mesh in coarse tiles.
-  tile->meshIndex.assign(d.buildings.size(), -1);
-  for (std::size_t k = 0; k < d.meshes.size(); ++k) {
-    if (d.meshes[k].building < d.buildings.size()) tile->meshIndex[d.meshes[k].building] = static_cast<std::int32_t>(k);
-  }
-  auto meshOf = [&tile](std::size_t b) { return tile->meshOf(static_cast<std::uint32_t>(b)); };
-
-  // Boxes per building in the city frame, then the BoxTree's Morton order for slots and mesh.
-  std::vector<Box> boxes(d.buildings.size());
-  for (std::size_t b = 0; b < d.buildings.size(); ++b) {
-    const TileBuilding& tb = d.buildings[b];
-    Box box;
-    for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
-      const TilePart& part = d.parts[p];
-      for (std::uint32_t v = part.firstVertex; v < part.firstVertex + part.vertexCount; ++v) {
-        box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.minHeightM);
-        box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.heightM);
-      }
-    }
-    if (const TileMesh* m = meshOf(b)) {
-      const float ground = tb.attributes.minHeightM;
-      for (const glm::vec3& q : d.coarse ? m->farPositions : m->positions)
-        box.expand(q.x + tile->origin.x, q.y + tile->origin.y, q.z + ground);
-    }
-    boxes[b] = box;
-  }
-  tile->tree.build(boxes);
-  const auto& order = tile->tree.order();
-  tile->idIndex.reserve(d.buildings.size());
-  for (std::uint32_t b = 0; b < d.buildings.size(); ++b) tile->idIndex.emplace(d.buildings[b].attributes.id, b);
-  tile->positionOf.resize(order.size());
-  for (std::uint32_t p = 0; p < order.size(); ++p) tile->positionOf[order[p]] = p;
-
-  const auto count = static_cast<std::uint32_t>(d.buildings.size());
+  auto tile = std::make_unique<LoadedTile>(indexTile(std::move(decoded).value()));
+  const auto count = tile->buildingCount();
   const auto slotBase = slots_->allocate(std::max(count, 1u));
   if (!slotBase) {
     failTile(node, "too many buildings loaded at once", true, now_);
@@ -368,95 +320,12 @@ void CityScene::finishTile(std::uint32_t node) {
   }
   tile->slotBase = *slotBase;
   if (buildingRows_.size() < slots_->highWater()) buildingRows_.resize(slots_->highWater());
-
-  // The merged mesh: one vertex ring per floor level for leaves, plain prisms for coarse tiles.
-  MeshData mesh;
-  std::vector<float> levels;
-  std::vector<std::uint32_t> ringEnds, roof, meshIndices;
-  std::vector<std::uint8_t> meshKinds;
-  for (std::uint32_t p = 0; p < order.size(); ++p) {
-    const TileBuilding& tb = d.buildings[order[p]];
-    const BuildingAttributes& a = tb.attributes;
-    const float storeyHeight = std::max(a.storeyHeightM(), 0.5f);
-    BuildingGpuRecord& row = buildingRows_[tile->slotBase + p];
-    row = BuildingGpuRecord{};
-    row.storeyHeightMeters = storeyHeight;
-    row.storeys = static_cast<float>(a.storeys);
-    row.baseZ = a.minHeightM;
-    // Results on their way: plain (not hatched as "no result") until the summary arrives.
-    if (tileset_->nodes[node].response) row.damageState = kDamagePending;
-    const TileMesh* model = meshOf(order[p]);
-    if (model != nullptr) {
-      // The LOD2 model. Its vertices lie on the floor planes it was re-meshed at (one bone per
-      // floor level): the vertex shader blends the displacements of the floors below and above
-      // each vertex by height, which are the bone weights the model stores. Its LOD1 extrusion
-      // follows (below), marked as the fallback the shader draws instead when LOD2 is switched off.
-      const std::size_t first = mesh.vertices.size();
-      const std::size_t firstTriangle = mesh.triangleCount();
-      TriangleMeshInput in;
-      in.offset = glm::vec3(0.0f, 0.0f, a.minHeightM);
-      in.slot = tile->slotBase + p;
-      if (d.coarse) {
-        meshIndices.assign(model->farTriangles.begin(), model->farTriangles.end());
-        in.positions = model->farPositions;
-        in.triangles = meshIndices;
-        appendTriangleMesh(mesh, in);
-      } else {
-        meshKinds.clear();
-        constexpr std::uint8_t kKinds[kMeshSurfaceKinds] = {kWall, kRoof, kGround, kKindFromNormal};
-        for (std::size_t k = 0; k < kMeshSurfaceKinds; ++k)
-          meshKinds.insert(meshKinds.end(), model->trianglesPerKind[k], kKinds[k]);
-        in.positions = model->positions;
-        in.triangles = model->triangles;
-        in.kinds = meshKinds;
-        appendTriangleMesh(mesh, in);
-      }
-      for (std::size_t v = first; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindModel;
-      mesh.modelTriangles += mesh.triangleCount() - firstTriangle;
-    }
-    const std::size_t firstExtruded = mesh.vertices.size();
-    const std::size_t firstExtrudedTriangle = mesh.triangleCount();
-    for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
-      const TilePart& part = d.parts[pi];
-      levels.clear();
-      if (!d.coarse) {
-        for (int k = 1; k < a.storeys && k < 1000; ++k) {
-          const float z = a.minHeightM + static_cast<float>(k) * storeyHeight;
-          if (z > part.minHeightM + 0.01f && z < part.heightM - 0.01f) levels.push_back(z);
-        }
-      }
-      ringEnds.clear();
-      std::uint32_t end = 0;
-      for (std::uint32_t r = part.firstRing; r < part.firstRing + part.ringCount; ++r) {
-        end += d.ringVertexCounts[r];
-        ringEnds.push_back(end);
-      }
-      roof.assign(d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle) * 3,
-                  d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle + part.triangleCount) * 3);
-      ExtrusionInput in;
-      in.points = std::span<const glm::vec2>(d.vertices).subspan(part.firstVertex, part.vertexCount);
-      in.ringEnds = ringEnds;
-      in.roofTriangles = roof;
-      in.baseZ = part.minHeightM;
-      in.topZ = part.heightM;
-      in.levels = levels;
-      in.slot = tile->slotBase + p;
-      appendExtrusion(mesh, in);
-    }
-    if (model != nullptr) {
-      for (std::size_t v = firstExtruded; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindFallback;
-      mesh.fallbackTriangles += mesh.triangleCount() - firstExtrudedTriangle;
-    }
-  }
+  initialBuildingRows(*tile, tileset_->nodes[node].response.has_value(),
+                      std::span(buildingRows_).subspan(tile->slotBase, count));
+  const MeshData mesh = buildTileMesh(*tile, tile->slotBase);
   tile->mesh = device_.createMesh(mesh);
-  tile->gpuBytes = mesh.vertices.size() * sizeof(BuildingVertex) + mesh.indices.size() * sizeof(std::uint32_t);
-  tile->cpuBytes = d.vertices.size() * sizeof(glm::vec2) + d.roofTriangles.size() * 2 + d.ringVertexCounts.size() * 2 +
-                   d.parts.size() * sizeof(TilePart) + d.buildings.size() * (sizeof(TileBuilding) + 64) +
-                   boxes.size() * (sizeof(Box) * 2 + 12) + tile->meshIndex.size() * 4;
-  for (const TileMesh& m : d.meshes) {
-    tile->cpuBytes += sizeof(TileMesh) + m.positions.size() * (sizeof(glm::vec3) + 5) + m.triangles.size() * 4 +
-                      m.farPositions.size() * sizeof(glm::vec3) + m.farTriangles.size() * 2;
-  }
+  tile->gpuBytes = meshGpuBytes(mesh);
+  tile->cpuBytes = tileCpuBytes(*tile);
   writeBuildingRows(tile->slotBase, count);
   {
     const int kind = tileset_->nodes[node].children.empty() ? 0 : 1;
