@@ -25,29 +25,9 @@ constexpr std::uint32_t kMaxBuildingSlots = 1u << 21;
 constexpr std::uint32_t kMaxFloorRows = 1u << 22;
 constexpr std::uint32_t kNotAnimated = UINT32_MAX;
 
-std::string hex32(std::uint32_t v) {
-  char buffer[16];
-  std::snprintf(buffer, sizeof buffer, "%08x", v);
-  return buffer;
-}
-
-// Exponential backoff after the n-th failure (n >= 1): 1 s doubling to 30 s; a permanent error
-// (404, bad data) waits longest, since only a fixed server brings it back.
-double backoffSeconds(int failures, bool transient) {
-  return transient ? std::min(30.0, std::pow(2.0, std::min(std::max(failures, 1) - 1, 5))) : 30.0;
-}
-
-// HTTP statuses worth retrying soon: the server or the network may recover.
-bool transientStatus(int status) {
-  return status == 0 || status == 408 || status == 429 || status >= 500;
-}
-
-// The time limit of a request for a file of `bytes` (CitySceneOptions::requestTimeoutMs).
-std::uint32_t requestTimeout(const CitySceneOptions& options, std::uint64_t bytes, int failures) {
-  const double rate = std::max<double>(options.slowestBytesPerSecond, 1.0);
-  const double ms = (static_cast<double>(options.requestTimeoutMs) + static_cast<double>(bytes) * 1000.0 / rate) *
-                    static_cast<double>(1 << std::clamp(failures, 0, 3));
-  return static_cast<std::uint32_t>(std::min(ms, 30.0 * 60.0 * 1000.0));
+// The loader's options from the scene's (which the viewer may change between frames).
+FileLoaderOptions loaderOptions(const CitySceneOptions& options) {
+  return {options.maxRequestsInFlight, options.requestTimeoutMs, options.slowestBytesPerSecond};
 }
 
 }  // namespace
@@ -61,25 +41,16 @@ struct CityScene::LoadedTile : TileContent {
 };
 
 struct CityScene::TileRuntime {
-  Fetcher::RequestId request = 0;
+  FileLoad tile;                    // the tile's file; its state is the node's
   std::vector<std::uint8_t> bytes;  // arrived, waiting to be decoded
   std::unique_ptr<LoadedTile> loaded;
   std::uint64_t lastUsed = 0;
-  int attempts = 0;
-  double retryAt = 0.0;
-  bool errorShown = false;
   std::vector<IndexRange> visible;  // this frame's culling result (positions)
 
-  TileState summaryState = TileState::Unloaded;
-  Fetcher::RequestId summaryRequest = 0;
+  FileLoad summaryLoad;
   std::unique_ptr<ResponseSummaryTile> summary;
-  int summaryAttempts = 0;  // failures so far: retried with backoff, as tiles are
-  double summaryRetryAt = 0.0;
-  TileState historyState = TileState::Unloaded;
-  Fetcher::RequestId historyRequest = 0;
+  FileLoad historyLoad;
   std::unique_ptr<ResponseHistoryTile> history;
-  int historyAttempts = 0;
-  double historyRetryAt = 0.0;
   std::uint64_t historyBytes = 0;
   std::uint64_t historyUsed = 0;
   /// Per building of the loaded tile: its index in animated_, or kNotAnimated.
@@ -103,20 +74,21 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
       options_(options),
       onError_(std::move(onError)),
       clock_(options.clock != nullptr ? *options.clock : steadyClock()),
+      loader_(fetcher_, clock_, [this](const LoadError& e) { onError_(e); }),
       slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
       floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
   if (const std::string problem = dataUrlProblem(manifestUrl_); !problem.empty()) {
     manifestFailed_ = true;  // refused before any request: settled, with the message
-    onError_("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
+    reportCityError("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
     return;
   }
   if (const std::string problem = dataOriginProblem(options_.origin); !problem.empty()) {
     manifestFailed_ = true;  // refused before any request, as above
-    onError_(problem);
+    reportCityError(problem);
     return;
   }
-  ++inFlight_;
-  manifestRequest_ = fetcher_.fetch(
+  loader_.options() = loaderOptions(options_);
+  manifestRequest_ = loader_.fetch(
       manifestUrl_, [this](FetchResponse r) { onManifest(std::move(r)); }, options_.requestTimeoutMs);
 }
 
@@ -124,31 +96,35 @@ CityScene::~CityScene() {
   if (manifestRequest_ != 0) fetcher_.cancel(manifestRequest_);
   for (const auto& t : tiles_) {
     if (t && t->loaded && t->loaded->mesh) device_.destroyMesh(t->loaded->mesh);
-    if (t && t->request != 0) fetcher_.cancel(t->request);
-    if (t && t->summaryRequest != 0) fetcher_.cancel(t->summaryRequest);
-    if (t && t->historyRequest != 0) fetcher_.cancel(t->historyRequest);
+    if (!t) continue;
+    for (FileLoad* load : {&t->tile, &t->summaryLoad, &t->historyLoad}) loader_.cancel(*load);
   }
+  loader_.cancel(search_);
+  loader_.cancel(citySummaryLoad_);
+}
+
+void CityScene::reportCityError(std::string message) {
+  onError_(LoadError{FileKind::Manifest, {}, std::move(message)});
 }
 
 void CityScene::onManifest(FetchResponse response) {
-  --inFlight_;
   manifestRequest_ = 0;
   if (!response.ok()) {
     manifestFailed_ = true;
-    std::string why = response.status == 0 ? response.error : "HTTP " + std::to_string(response.status);
+    std::string why = responseProblem(response);
     if (response.status == 0 && isAbsoluteHttpUrl(manifestUrl_)) {
       why +=
           " (a server on another site must also allow this page to read its files: "
           "Access-Control-Allow-Origin)";
     }
-    onError_("The city could not be loaded from " + manifestUrl_ + ": " + why);
+    reportCityError("The city could not be loaded from " + manifestUrl_ + ": " + why);
     return;
   }
   const std::string_view text(reinterpret_cast<const char*>(response.bytes.data()), response.bytes.size());
   Result<Tileset> parsed = parseTileset(text, manifestUrl_);
   if (!parsed.ok()) {
     manifestFailed_ = true;
-    onError_("The city could not be loaded: " + parsed.error());
+    reportCityError("The city could not be loaded: " + parsed.error());
     return;
   }
   tileset_ = std::move(parsed).value();
@@ -159,7 +135,7 @@ void CityScene::onManifest(FetchResponse response) {
   nodeBytesMeasured_.assign(tileset_->nodes.size(), false);
   wasLoaded_ = std::make_unique<bool[]>(tileset_->nodes.size());
   if (tileset_->responseOutOfDate()) {
-    onError_(
+    reportCityError(
         "The response results are older than the buildings of this city (run quakeview-prep response "
         "again); colours and motion may not match the buildings.");
   }
@@ -185,22 +161,22 @@ CameraState CityScene::overviewCamera(double fovDeg) const {
 
 TileCounts CityScene::tileCounts() const {
   TileCounts c;
-  for (std::size_t i = 0; i < states_.size(); ++i) {
-    if (states_[i] == TileState::Loaded)
+  for (const auto& t : tiles_) {
+    if (t->tile.state == TileState::Loaded)
       ++c.loaded;
-    else if (states_[i] == TileState::Failed)
+    else if (t->tile.state == TileState::Failed)
       ++c.failed;
-    else if (states_[i] == TileState::Loading)
+    else if (t->tile.state == TileState::Loading)
       ++c.pending;
     // Response tiers on their way count too: the view is not complete without them.
-    if (tiles_[i]->summaryState == TileState::Loading) ++c.pending;
-    if (tiles_[i]->historyState == TileState::Loading) ++c.pending;
+    if (t->summaryLoad.state == TileState::Loading) ++c.pending;
+    if (t->historyLoad.state == TileState::Loading) ++c.pending;
   }
   if (search_.state == TileState::Loading) ++c.pending;
   if (citySummaryLoad_.state == TileState::Loading) ++c.pending;
   // Tiles the view wants but has not requested yet (the request limit) are pending as well.
   for (std::uint32_t i : selection_.wanted) {
-    if (states_[i] == TileState::Unloaded) ++c.pending;
+    if (tiles_[i]->tile.state == TileState::Unloaded) ++c.pending;
   }
   return c;
 }
@@ -233,7 +209,7 @@ void CityScene::updateNodeBytes() {
                    : kDefaultRatio[k];
   }
   for (std::uint32_t i = 0; i < nodeBytes_.size(); ++i) {
-    if (states_[i] == TileState::Loaded) {
+    if (tiles_[i]->tile.state == TileState::Loaded) {
       // Histories come and go with the animation radius: the tile's own bytes, measured.
       nodeBytes_[i] = tileBytes(i) - tiles_[i]->historyBytes;
       nodeBytesMeasured_[i] = true;
@@ -245,77 +221,60 @@ void CityScene::updateNodeBytes() {
   }
 }
 
-void CityScene::request(std::uint32_t node, double now) {
-  TileRuntime& t = *tiles_[node];
-  if (t.retryAt > now) return;
-  states_[node] = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, tileset_->nodes[node].file);
-  t.request = fetcher_.fetch(
-      url, [this, node](FetchResponse r) { onTile(node, std::move(r), now_); },
-      requestTimeout(options_, tileset_->nodes[node].bytes, t.attempts));
+FileSpec CityScene::tileSpec(std::uint32_t node) const {
+  const TileNode& n = tileset_->nodes[node];
+  return FileSpec{FileKind::Tile, resolveUrl(manifestUrl_, n.file), n.bytes, n.crc32, n.key()};
+}
+
+FileSpec CityScene::summarySpec(std::uint32_t node) const {
+  const TileResponseFiles& r = *tileset_->nodes[node].response;
+  return FileSpec{
+      FileKind::ResponseSummary, resolveUrl(manifestUrl_, r.summaryFile), r.summaryBytes, r.summaryCrc32, {}};
+}
+
+FileSpec CityScene::historySpec(std::uint32_t node) const {
+  const TileResponseFiles& r = *tileset_->nodes[node].response;
+  return FileSpec{
+      FileKind::ResponseHistory, resolveUrl(manifestUrl_, r.historyFile), r.historyBytes, r.historyCrc32, {}};
+}
+
+void CityScene::request(std::uint32_t node) {
+  // Verified bytes wait for the frame's decoding budget (finishTile).
+  const bool started =
+      loader_.start(tiles_[node]->tile, tileSpec(node), [this, node](std::vector<std::uint8_t>& bytes) {
+        tiles_[node]->bytes = std::move(bytes);
+        decodeQueue_.push_back(node);
+        return Verdict::later();
+      });
   // Its response summary travels alongside (it colours the tile's first frame): both downloads
   // overlap instead of the summary waiting for the tile to arrive and be decoded.
-  requestSummary(node);
-}
-
-void CityScene::failTile(std::uint32_t node, const std::string& message, bool transient, double now) {
-  TileRuntime& t = *tiles_[node];
-  ++t.attempts;
-  t.retryAt = now + backoffSeconds(t.attempts, transient);
-  states_[node] = TileState::Failed;
-  if (!t.errorShown) {
-    t.errorShown = true;
-    onError_("Tile " + tileset_->nodes[node].key() + " failed: " + message);
-  }
-}
-
-void CityScene::onTile(std::uint32_t node, FetchResponse response, double now) {
-  --inFlight_;
-  TileRuntime& t = *tiles_[node];
-  t.request = 0;
-  const TileNode& n = tileset_->nodes[node];
-  const std::string url = resolveUrl(manifestUrl_, n.file);
-  if (!response.ok()) {
-    const std::string why = response.status == 0 ? response.error : "HTTP " + std::to_string(response.status);
-    failTile(node, url + ": " + why, transientStatus(response.status), now);
-    return;
-  }
-  if (response.bytes.size() != n.bytes || crc32(response.bytes) != n.crc32) {
-    failTile(node,
-             url + ": " + std::to_string(response.bytes.size()) + " bytes with CRC-32 " + hex32(crc32(response.bytes)) +
-                 ", the manifest says " + std::to_string(n.bytes) + " bytes, " + hex32(n.crc32) +
-                 " (truncated, corrupt or stale)",
-             true, now);
-    return;
-  }
-  t.bytes = std::move(response.bytes);
-  decodeQueue_.push_back(node);
+  if (started) requestSummary(node);
 }
 
 void CityScene::finishTile(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   const TileNode& n = tileset_->nodes[node];
-  const std::string url = resolveUrl(manifestUrl_, n.file);
+  const FileSpec spec = tileSpec(node);
+  const std::string& url = spec.url;
   std::vector<std::uint8_t> bytes = std::move(t.bytes);
   t.bytes.clear();
   Result<CityTile> decoded = decodeCityTile(bytes, url);
   if (!decoded.ok()) {
-    failTile(node, decoded.error(), false, now_);
+    loader_.fail(t.tile, spec, decoded.error(), false);
     return;
   }
   if (decoded->buildings.size() != n.buildings) {
-    failTile(node,
-             url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the manifest says " +
-                 std::to_string(n.buildings),
-             false, now_);
+    loader_.fail(t.tile, spec,
+                 url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the manifest says " +
+                     std::to_string(n.buildings),
+                 false);
     return;
   }
   auto tile = std::make_unique<LoadedTile>(indexTile(std::move(decoded).value()));
   const auto count = tile->buildingCount();
   const auto slotBase = slots_->allocate(std::max(count, 1u));
   if (!slotBase) {
-    failTile(node, "too many buildings loaded at once", true, now_);
+    loader_.fail(t.tile, spec, "too many buildings loaded at once", true);
     return;
   }
   tile->slotBase = *slotBase;
@@ -335,18 +294,12 @@ void CityScene::finishTile(std::uint32_t node) {
   t.loaded = std::move(tile);
   ++residencyGeneration_;
   t.lastUsed = frame_;
-  t.attempts = 0;
-  if (t.errorShown) {
-    // It failed before and has now arrived: its error no longer stands.
-    t.errorShown = false;
-    if (onResolved_) onResolved_("Tile " + tileset_->nodes[node].key() + " failed");
-  }
-  states_[node] = TileState::Loaded;
+  loader_.succeed(t.tile, spec);  // an error it had shown is withdrawn
   applyFlags(node);
   // The summary was requested with the tile and may be here already (or may have failed).
   if (t.summary)
     applySummary(node);
-  else if (t.summaryState == TileState::Failed)
+  else if (t.summaryLoad.state == TileState::Failed)
     markNoResult(node);
   if (tileset_->nodes[node].response) requestSummary(node);
 }
@@ -357,49 +310,21 @@ void CityScene::writeBuildingRows(std::uint32_t first, std::uint32_t count) {
 }
 
 void CityScene::requestSummary(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
-  const TileNode& n = tileset_->nodes[node];
-  if (!n.response || t.summaryState == TileState::Loading || t.summaryState == TileState::Loaded) return;
-  if (t.summaryState == TileState::Failed && t.summaryRetryAt > now_) return;
-  t.summaryState = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, n.response->summaryFile);
-  t.summaryRequest = fetcher_.fetch(
-      url,
-      [this, node, url](FetchResponse r) {
-        --inFlight_;
-        TileRuntime& rt = *tiles_[node];
-        rt.summaryRequest = 0;
-        const TileNode& tn = tileset_->nodes[node];
-        if (!r.ok() || r.bytes.size() != tn.response->summaryBytes || crc32(r.bytes) != tn.response->summaryCrc32) {
-          rt.summaryState = TileState::Failed;
-          rt.summaryRetryAt = now_ + backoffSeconds(++rt.summaryAttempts, true);
-          markNoResult(node);
-          if (rt.summaryAttempts > 1) return;  // reported once
-          onError_("Response summary " + url + " failed: " +
-                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                            : std::string("size or checksum differs from the manifest")));
-          return;
+  if (!tileset_->nodes[node].response) return;
+  const FileSpec spec = summarySpec(node);
+  loader_.start(
+      tiles_[node]->summaryLoad, spec,
+      [this, node, url = spec.url](std::vector<std::uint8_t>& bytes) {
+        auto decoded = decodeResponseSummary(bytes, url);
+        if (!decoded.ok()) return Verdict::rejected(decoded.error(), false);
+        if (decoded->buildings.size() != tileset_->nodes[node].buildings) {
+          return Verdict::rejected(url + ": building count differs from the city tile", false);
         }
-        auto decoded = decodeResponseSummary(r.bytes, url);
-        if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
-          rt.summaryState = TileState::Failed;
-          rt.summaryRetryAt = now_ + backoffSeconds(++rt.summaryAttempts, false);
-          markNoResult(node);
-          if (rt.summaryAttempts > 1) return;
-          onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
-          return;
-        }
-        rt.summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
-        rt.summaryState = TileState::Loaded;
-        if (rt.summaryAttempts > 0 && onResolved_) {
-          onResolved_("Response summary " + url + " failed");
-          onResolved_(url + ":");
-        }
-        rt.summaryAttempts = 0;
+        tiles_[node]->summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
         applySummary(node);
+        return Verdict::loaded();
       },
-      requestTimeout(options_, n.response->summaryBytes, t.summaryAttempts));
+      [this, node] { markNoResult(node); });  // its buildings are hatched: no result
 }
 
 void CityScene::markNoResult(std::uint32_t node) {
@@ -425,54 +350,26 @@ void CityScene::applySummary(std::uint32_t node) {
 }
 
 void CityScene::requestHistory(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
   const TileNode& n = tileset_->nodes[node];
   if (!n.response || n.response->historyFile.empty()) return;
-  if (t.historyState == TileState::Loading || t.historyState == TileState::Loaded) return;
-  if (t.historyState == TileState::Failed && t.historyRetryAt > now_) return;
-  t.historyState = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, n.response->historyFile);
-  t.historyRequest = fetcher_.fetch(
-      url,
-      [this, node, url](FetchResponse r) {
-        --inFlight_;
-        TileRuntime& rt = *tiles_[node];
-        rt.historyRequest = 0;
-        const TileNode& tn = tileset_->nodes[node];
-        if (!r.ok() || r.bytes.size() != tn.response->historyBytes || crc32(r.bytes) != tn.response->historyCrc32) {
-          rt.historyState = TileState::Failed;
-          rt.historyRetryAt = now_ + backoffSeconds(++rt.historyAttempts, true);
-          if (rt.historyAttempts > 1) return;  // reported once
-          onError_("Response history " + url + " failed: " +
-                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                            : std::string("size or checksum differs from the manifest")));
-          return;
-        }
-        auto decoded = decodeResponseHistory(r.bytes, url);
-        if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
-          rt.historyState = TileState::Failed;
-          rt.historyRetryAt = now_ + backoffSeconds(++rt.historyAttempts, false);
-          if (rt.historyAttempts > 1) return;
-          onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
-          return;
-        }
-        rt.history = std::make_unique<ResponseHistoryTile>(std::move(decoded).value());
-        if (rt.historyAttempts > 0 && onResolved_) {
-          onResolved_("Response history " + url + " failed");
-          onResolved_(url + ":");
-        }
-        rt.historyAttempts = 0;
-        std::uint64_t bytes = 0;
-        for (const BuildingHistory& h : rt.history->buildings) {
-          bytes += sizeof(BuildingHistory) + (h.x.coordinates.size() + h.y.coordinates.size()) * 2 +
-                   (h.x.shapes.size() + h.y.shapes.size()) * 4;
-        }
-        rt.historyBytes = bytes;
-        rt.historyState = TileState::Loaded;
-        ++residencyGeneration_;
-      },
-      requestTimeout(options_, n.response->historyBytes, t.historyAttempts));
+  const FileSpec spec = historySpec(node);
+  loader_.start(tiles_[node]->historyLoad, spec, [this, node, url = spec.url](std::vector<std::uint8_t>& bytes) {
+    auto decoded = decodeResponseHistory(bytes, url);
+    if (!decoded.ok()) return Verdict::rejected(decoded.error(), false);
+    if (decoded->buildings.size() != tileset_->nodes[node].buildings) {
+      return Verdict::rejected(url + ": building count differs from the city tile", false);
+    }
+    TileRuntime& t = *tiles_[node];
+    t.history = std::make_unique<ResponseHistoryTile>(std::move(decoded).value());
+    std::uint64_t historyBytes = 0;
+    for (const BuildingHistory& h : t.history->buildings) {
+      historyBytes += sizeof(BuildingHistory) + (h.x.coordinates.size() + h.y.coordinates.size()) * 2 +
+                      (h.x.shapes.size() + h.y.shapes.size()) * 4;
+    }
+    t.historyBytes = historyBytes;
+    ++residencyGeneration_;
+    return Verdict::loaded();
+  });
 }
 
 void CityScene::reindexAnimated() {
@@ -504,11 +401,11 @@ void CityScene::evict(std::uint32_t node) {
     t.loaded.reset();
   }
   t.summary.reset();
-  t.summaryState = TileState::Unloaded;
+  t.summaryLoad.state = TileState::Unloaded;
   t.history.reset();
   t.historyBytes = 0;
-  t.historyState = TileState::Unloaded;
-  states_[node] = TileState::Unloaded;
+  t.historyLoad.state = TileState::Unloaded;
+  t.tile.state = TileState::Unloaded;
 }
 
 void CityScene::enforceMemoryBudget() {
@@ -523,7 +420,7 @@ void CityScene::enforceMemoryBudget() {
       tiles_[i]->history.reset();
       ++residencyGeneration_;
       tiles_[i]->historyBytes = 0;
-      tiles_[i]->historyState = TileState::Unloaded;
+      tiles_[i]->historyLoad.state = TileState::Unloaded;
       if (total <= options_.memoryBudgetBytes) return;
     }
     if (tiles_[i]->loaded && tiles_[i]->lastUsed < frame_) candidates.push_back(i);
@@ -560,12 +457,12 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
                        std::vector<DrawItem>& items) {
   ++frame_;
   const double frameStart = clock_.nowSeconds();
+  loader_.options() = loaderOptions(options_);
   fetcher_.poll();
   if (!tileset_) {
     settled_ = manifestFailed_;
     return;
   }
-  now_ = frameStart;
 
   // Decode and mesh what arrived, within the time budget (at least one tile per frame), before
   // choosing tiles: a tile decoded now lets its children be requested in this same frame. When
@@ -599,36 +496,38 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   selectorOptions.wasLoaded = std::span<const bool>(wasLoaded_.get(), nodeBytes_.size());
   selectorOptions.memoryBudgetBytes =
       std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, searchBytes_ + histories)});
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) states_[i] = tiles_[i]->tile.state;
   selectTiles(*tileset_, states_, view, selectorOptions, selection_);
   for (std::uint32_t i : selection_.used) tiles_[i]->lastUsed = frame_;
   for (std::uint32_t i : selection_.wanted) tiles_[i]->lastUsed = frame_;
   for (std::uint32_t i : selection_.wanted) {
-    if (inFlight_ >= options_.maxRequestsInFlight) break;
-    if (states_[i] == TileState::Unloaded) request(i, now_);
+    if (!loader_.hasRoom()) break;
+    if (tiles_[i]->tile.state == TileState::Unloaded) request(i);
   }
   // The selected building's leaf, wherever the camera is (inspection needs its attributes and
   // history).
   for (std::uint32_t i : detailWanted_) {
     tiles_[i]->lastUsed = frame_;
-    if (states_[i] == TileState::Unloaded) request(i, now_);
+    if (tiles_[i]->tile.state == TileState::Unloaded) request(i);
   }
   detailWanted_.erase(std::remove_if(detailWanted_.begin(), detailWanted_.end(),
                                      [&](std::uint32_t i) {
-                                       return states_[i] == TileState::Loaded || states_[i] == TileState::Failed;
+                                       const TileState state = tiles_[i]->tile.state;
+                                       return state == TileState::Loaded || state == TileState::Failed;
                                      }),
                       detailWanted_.end());
   // Once the view has everything it asked for, the search index comes in the background (names
   // and addresses for search, the inspection window and exports).
-  if (inFlight_ == 0 && decodeQueue_.empty()) requestSearchIndex();
+  if (loader_.inFlight() == 0 && decodeQueue_.empty()) requestSearchIndex();
   retryCityFiles();
   // Failed tiles (and their response summaries) the view still uses are retried with backoff
   // (the server may recover).
   for (std::uint32_t i : selection_.used) {
-    if (tiles_[i]->summaryState == TileState::Failed && tiles_[i]->loaded) requestSummary(i);
+    if (tiles_[i]->summaryLoad.state == TileState::Failed && tiles_[i]->loaded) requestSummary(i);
   }
   for (std::uint32_t i : selection_.used) {
-    if (inFlight_ >= options_.maxRequestsInFlight) break;
-    if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= now_) request(i, now_);
+    if (!loader_.hasRoom()) break;
+    if (tiles_[i]->tile.state == TileState::Failed) request(i);  // once its backoff has passed
   }
   times.lod += msSince(clock_, t0);
 
@@ -714,7 +613,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   while (!stack.empty()) {
     const std::uint32_t i = stack.back();
     stack.pop_back();
-    if (states_[i] == TileState::Loaded) {
+    if (tiles_[i]->tile.state == TileState::Loaded) {
       loaded += tileset_->nodes[i].subtreeBuildings;
       continue;
     }
@@ -724,10 +623,10 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
 
   bool responsesReady = true;
   for (std::uint32_t i : selection_.draw) {
-    if (tiles_[i]->summaryState == TileState::Loading) responsesReady = false;
+    if (tiles_[i]->summaryLoad.state == TileState::Loading) responsesReady = false;
   }
   for (const auto& t : tiles_) {
-    if (t->historyState == TileState::Loading) responsesReady = false;
+    if (t->historyLoad.state == TileState::Loading) responsesReady = false;
   }
   settled_ = selection_.complete() && decodeQueue_.empty() && responsesReady;
 }
@@ -768,7 +667,7 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
       if (static_cast<double>(tileDistance) > static_cast<double>(radius)) continue;
       requestHistory(i);
       t.historyUsed = frame_;
-      if (t.historyState != TileState::Loaded) continue;
+      if (t.historyLoad.state != TileState::Loaded) continue;
       inRadius.push_back(i);
       mix(i);
     }
@@ -1100,9 +999,9 @@ std::optional<BuildingSeries> CityScene::selectionSeries(std::size_t samples) {
   if (!ref) return std::nullopt;
   TileRuntime& t = *tiles_[ref->node];
   if (t.loaded->data.coarse) return std::nullopt;  // the leaf is on its way
-  if (t.historyState == TileState::Unloaded || t.historyState == TileState::Failed) requestHistory(ref->node);
+  requestHistory(ref->node);                       // when not loaded or loading (and any backoff has passed)
   t.historyUsed = frame_;
-  if (t.historyState != TileState::Loaded || ref->index >= t.history->buildings.size()) return std::nullopt;
+  if (t.historyLoad.state != TileState::Loaded || ref->index >= t.history->buildings.size()) return std::nullopt;
   const BuildingHistory& h = t.history->buildings[ref->index];
   const BuildingAttributes& a = t.loaded->data.buildings[ref->index].attributes;
   if (h.floors == 0) return std::nullopt;
@@ -1174,56 +1073,25 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
   return hit;
 }
 
-void CityScene::fetchCityFile(CityFileLoad& load, const CityFile& file, const std::string& label,
+void CityScene::fetchCityFile(FileLoad& load, FileKind kind, const CityFile& file,
                               std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept) {
-  if (load.state != TileState::Unloaded) return;
-  load.state = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, file.file);
-  fetcher_.fetch(
-      url,
-      [this, &load, file, label, url, accept = std::move(accept)](FetchResponse r) {
-        --inFlight_;
-        std::string problem;
-        bool transient = true;
-        if (!r.ok() || r.bytes.size() != file.bytes || crc32(r.bytes) != file.crc32) {
-          problem = label + " " + url + " failed: " +
-                    (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                             : std::string("size or checksum differs from the manifest"));
-          transient = !r.ok() ? transientStatus(r.status) : true;
-        } else {
-          problem = accept(r.bytes, url);
-          transient = false;
-        }
-        if (!problem.empty()) {
-          // Retried with backoff, as tiles are (the server may recover); reported once.
-          load.state = TileState::Failed;
-          load.retryAt = now_ + backoffSeconds(++load.attempts, transient);
-          if (load.attempts == 1) onError_(problem);
-          return;
-        }
-        load.state = TileState::Loaded;
-        if (load.attempts > 0 && onResolved_) {
-          onResolved_(label + " " + url + " failed");
-          onResolved_(url + ":");
-        }
-        load.attempts = 0;
-      },
-      requestTimeout(options_, file.bytes, load.attempts));
+  const FileSpec spec{kind, resolveUrl(manifestUrl_, file.file), file.bytes, file.crc32, {}};
+  loader_.start(load, spec, [url = spec.url, accept = std::move(accept)](std::vector<std::uint8_t>& bytes) {
+    std::string problem = accept(bytes, url);
+    return problem.empty() ? Verdict::loaded() : Verdict::rejected(std::move(problem), false);
+  });
 }
 
 void CityScene::retryCityFiles() {
-  for (CityFileLoad* load : {&search_, &citySummaryLoad_}) {
-    if (load->state == TileState::Failed && load->retryAt <= now_) load->state = TileState::Unloaded;
-  }
-  if (search_.attempts > 0 && search_.state == TileState::Unloaded) requestSearchIndex();
+  // Retried with backoff, as tiles are (the server may recover).
+  if (search_.failures > 0 && loader_.due(search_)) requestSearchIndex();
   // The response summary in the index's order follows the index (it is useless without it).
   requestCitySummary();
 }
 
 void CityScene::requestSearchIndex() {
   if (!tileset_ || !tileset_->search) return;
-  fetchCityFile(search_, *tileset_->search, "Search index",
+  fetchCityFile(search_, FileKind::SearchIndex, *tileset_->search,
                 [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
                   auto decoded = decodeSearchIndex(bytes, url);
                   if (!decoded.ok()) return decoded.error();
@@ -1252,10 +1120,10 @@ void CityScene::requestSearchIndex() {
 
 void CityScene::requestCitySummary() {
   if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
-      search_.state != TileState::Loaded || citySummaryLoad_.state != TileState::Unloaded) {
+      search_.state != TileState::Loaded) {
     return;
   }
-  fetchCityFile(citySummaryLoad_, *tileset_->response->summaryIndex, "Response summary",
+  fetchCityFile(citySummaryLoad_, FileKind::CitySummary, *tileset_->response->summaryIndex,
                 [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
                   auto decoded = decodeResponseSummary(bytes, url);
                   if (!decoded.ok()) return decoded.error();

@@ -25,6 +25,7 @@
 #include "qv/lod/TileSelector.h"
 #include "qv/scene/BuildingInfo.h"
 #include "qv/scene/Fetcher.h"
+#include "qv/scene/FileLoader.h"
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
 #include "qv/scene/SceneClock.h"
@@ -107,14 +108,16 @@ struct BuildingRef {
 
 class CityScene {
  public:
-  using ErrorSink = std::function<void(const std::string&)>;
+  /// Receives every error: files that failed (keyed by their URL) and problems of the city as a
+  /// whole (an empty key: they stand).
+  using ErrorSink = std::function<void(const LoadError&)>;
 
   /// Starts loading `manifestUrl` (tileset.json); tiles are resolved relative to it.
   CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifestUrl, CitySceneOptions options,
             ErrorSink onError);
-  /// Called with the start of an earlier error message once what failed has recovered (a tile
-  /// that loads after failing), so the viewer can withdraw it.
-  void setResolvedSink(ErrorSink sink) { onResolved_ = std::move(sink); }
+  /// Called with the key of an earlier error once what failed has recovered (a tile that loads
+  /// after failing), so the viewer can withdraw it.
+  void setResolvedSink(FileLoader::ResolvedSink sink) { loader_.setResolvedSink(std::move(sink)); }
   ~CityScene();
   CityScene(const CityScene&) = delete;
   CityScene& operator=(const CityScene&) = delete;
@@ -185,24 +188,25 @@ class CityScene {
   struct Animated;
 
   void onManifest(FetchResponse response);
-  void request(std::uint32_t node, double now);
-  void onTile(std::uint32_t node, FetchResponse response, double now);
+  void reportCityError(std::string message);
+  [[nodiscard]] FileSpec tileSpec(std::uint32_t node) const;
+  [[nodiscard]] FileSpec summarySpec(std::uint32_t node) const;
+  [[nodiscard]] FileSpec historySpec(std::uint32_t node) const;
+  void request(std::uint32_t node);     // the tile (when due) and its summary
   void finishTile(std::uint32_t node);  // decode + mesh (time-budgeted)
-  void failTile(std::uint32_t node, const std::string& message, bool transient, double now);
   void evict(std::uint32_t node);
+  /// After animated_ changed order: each tile's building -> entry map.
   void reindexAnimated();
-  void markNoResult(std::uint32_t node);  ///< its summary failed: hatch its buildings  ///< after animated_ changed
-                                          ///< order: each tile's building -> entry map
+  void markNoResult(std::uint32_t node);  // its summary failed: hatch its buildings
   void requestSummary(std::uint32_t node);
   void requestHistory(std::uint32_t node);
   void applySummary(std::uint32_t node);
   void writeBuildingRows(std::uint32_t first, std::uint32_t count);
-  void enforceMemoryBudget();
+  void enforceMemoryBudget();           // evicts what this frame did not use, least recently used first
   void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
   void applyFlagsEverywhere();
   void requestSearchIndex();
-  [[nodiscard]] BuildingListEntry listEntry(
-      std::uint32_t index) const;  // of the root tile  // evicts what this frame did not use, least recently used first
+  [[nodiscard]] BuildingListEntry listEntry(std::uint32_t index) const;  // of the search index
   void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
   /// Chooses the animated buildings (nearest first, up to the cap) among the visible buildings of
   /// `tiles` (within the radius, histories loaded), keeping the floor rows of those that stay.
@@ -213,18 +217,16 @@ class CityScene {
   std::string manifestUrl_;
   CitySceneOptions options_;
   ErrorSink onError_;
-  ErrorSink onResolved_;
   Fetcher::RequestId manifestRequest_ = 0;
   std::optional<Tileset> tileset_;
   bool manifestFailed_ = false;
   bool settled_ = false;
   std::vector<std::unique_ptr<TileRuntime>> tiles_;
-  std::vector<TileState> states_;
+  std::vector<TileState> states_;  // the tiles' states as the selector reads them (copied each frame)
   std::vector<std::uint32_t> decodeQueue_;
-  std::uint32_t inFlight_ = 0;
   std::uint64_t frame_ = 0;
   SceneClock& clock_;
-  double now_ = 0.0;                  // clock_ at this frame's start, seconds (for retries)
+  FileLoader loader_;                 // every file after the manifest, and the in-flight limit
   std::optional<double> lastUpdate_;  // the previous frame's start, seconds
   TileSelection selection_;
   /// Per node, the bytes it holds once loaded (tile data, mesh, summary): measured when it last
@@ -268,21 +270,15 @@ class CityScene {
   bool showLod1_ = true;
   bool showLod2_ = true;
   [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
-  /// A city-wide file (the search index, the response summary in its order): fetched once, retried
-  /// with backoff after a failure.
-  struct CityFileLoad {
-    TileState state = TileState::Unloaded;
-    int attempts = 0;  // failures so far
-    double retryAt = 0.0;
-  };
-  /// Fetches `file` into `load`; `accept` decodes and keeps the bytes or returns what is wrong.
-  void fetchCityFile(CityFileLoad& load, const CityFile& file, const std::string& label,
+  /// Fetches a city-wide file (the search index, the response summary in its order) into `load`
+  /// once it is due; `accept` decodes and keeps the bytes or returns what is wrong.
+  void fetchCityFile(FileLoad& load, FileKind kind, const CityFile& file,
                      std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept);
   void retryCityFiles();
-  CityFileLoad search_;
+  FileLoad search_;
   std::vector<SearchEntry> searchIndex_;
   std::uint64_t searchBytes_ = 0;  // heap held by the index and its summary (estimate)
-  CityFileLoad citySummaryLoad_;
+  FileLoad citySummaryLoad_;
   std::optional<ResponseSummaryTile> citySummary_;  // the response, in the index's order
   void requestCitySummary();
   [[nodiscard]] const BuildingResponse* cityResponse(std::uint32_t index) const;
