@@ -75,6 +75,7 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
       onError_(std::move(onError)),
       clock_(options.clock != nullptr ? *options.clock : steadyClock()),
       loader_(fetcher_, clock_, [this](const LoadError& e) { onError_(e); }),
+      index_(loader_, manifestUrl_),
       slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
       floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
   if (const std::string problem = dataUrlProblem(manifestUrl_); !problem.empty()) {
@@ -99,8 +100,6 @@ CityScene::~CityScene() {
     if (!t) continue;
     for (FileLoad* load : {&t->tile, &t->summaryLoad, &t->historyLoad}) loader_.cancel(*load);
   }
-  loader_.cancel(search_);
-  loader_.cancel(citySummaryLoad_);
 }
 
 void CityScene::reportCityError(std::string message) {
@@ -128,6 +127,7 @@ void CityScene::onManifest(FetchResponse response) {
     return;
   }
   tileset_ = std::move(parsed).value();
+  index_.open(*tileset_);
   tiles_.resize(tileset_->nodes.size());
   for (auto& t : tiles_) t = std::make_unique<TileRuntime>();
   states_.assign(tileset_->nodes.size(), TileState::Unloaded);
@@ -172,8 +172,7 @@ TileCounts CityScene::tileCounts() const {
     if (t->summaryLoad.state == TileState::Loading) ++c.pending;
     if (t->historyLoad.state == TileState::Loading) ++c.pending;
   }
-  if (search_.state == TileState::Loading) ++c.pending;
-  if (citySummaryLoad_.state == TileState::Loading) ++c.pending;
+  c.pending += index_.pendingFiles();
   // Tiles the view wants but has not requested yet (the request limit) are pending as well.
   for (std::uint32_t i : selection_.wanted) {
     if (tiles_[i]->tile.state == TileState::Unloaded) ++c.pending;
@@ -192,7 +191,7 @@ std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
 }
 
 std::uint64_t CityScene::memoryBytes() const {
-  std::uint64_t total = searchBytes_;
+  std::uint64_t total = index_.bytes();
   for (std::uint32_t i = 0; i < tiles_.size(); ++i) total += tileBytes(i);
   return total;
 }
@@ -495,7 +494,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   selectorOptions.nodeBytes = nodeBytes_;
   selectorOptions.wasLoaded = std::span<const bool>(wasLoaded_.get(), nodeBytes_.size());
   selectorOptions.memoryBudgetBytes =
-      std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, searchBytes_ + histories)});
+      std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, index_.bytes() + histories)});
   for (std::uint32_t i = 0; i < tiles_.size(); ++i) states_[i] = tiles_[i]->tile.state;
   selectTiles(*tileset_, states_, view, selectorOptions, selection_);
   for (std::uint32_t i : selection_.used) tiles_[i]->lastUsed = frame_;
@@ -518,8 +517,8 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
                       detailWanted_.end());
   // Once the view has everything it asked for, the search index comes in the background (names
   // and addresses for search, the inspection window and exports).
-  if (loader_.inFlight() == 0 && decodeQueue_.empty()) requestSearchIndex();
-  retryCityFiles();
+  if (loader_.inFlight() == 0 && decodeQueue_.empty()) index_.request();
+  index_.retry();
   // Failed tiles (and their response summaries) the view still uses are retried with backoff
   // (the server may recover).
   for (std::uint32_t i : selection_.used) {
@@ -850,16 +849,6 @@ void setFlag(BuildingGpuRecord& row, unsigned bit, bool on) {
 
 }  // namespace
 
-bool BuildingFilters::passes(Importance importance, std::string_view buildingUse, const BuildingResponse* r) const {
-  if (criticalOnly && importance != Importance::Critical) return false;
-  if (!use.empty() && buildingUse != use) return false;
-  if (minDamage >= 0) {
-    if (r == nullptr || r->damage == DamageState::NoResult) return false;
-    if (static_cast<int>(r->damage) < minDamage) return false;
-  }
-  return true;
-}
-
 void CityScene::applyFlags(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   if (!t.loaded) return;
@@ -955,18 +944,10 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
   return info;
 }
 
-const SearchEntry* CityScene::indexEntry(std::string_view id) const {
-  if (search_.state != TileState::Loaded) return nullptr;
-  for (const SearchEntry& e : searchIndex_) {
-    if (e.id == id) return &e;
-  }
-  return nullptr;
-}
-
 bool CityScene::select(const std::string& id) {
   if (id == selected_) return true;
   const auto ref = id.empty() || !tileset_ ? std::nullopt : find(id);
-  const SearchEntry* entry = id.empty() || ref ? nullptr : indexEntry(id);
+  const SearchEntry* entry = id.empty() || ref ? nullptr : index_.entry(id);
   if (!id.empty() && !ref && entry == nullptr) return false;
   selected_ = id;
   series_.reset();
@@ -1073,144 +1054,24 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
   return hit;
 }
 
-void CityScene::fetchCityFile(FileLoad& load, FileKind kind, const CityFile& file,
-                              std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept) {
-  const FileSpec spec{kind, resolveUrl(manifestUrl_, file.file), file.bytes, file.crc32, {}};
-  loader_.start(load, spec, [url = spec.url, accept = std::move(accept)](std::vector<std::uint8_t>& bytes) {
-    std::string problem = accept(bytes, url);
-    return problem.empty() ? Verdict::loaded() : Verdict::rejected(std::move(problem), false);
-  });
-}
+// The city index's side (CityIndex): search and lists load the index on first use.
 
-void CityScene::retryCityFiles() {
-  // Retried with backoff, as tiles are (the server may recover).
-  if (search_.failures > 0 && loader_.due(search_)) requestSearchIndex();
-  // The response summary in the index's order follows the index (it is useless without it).
-  requestCitySummary();
-}
-
-void CityScene::requestSearchIndex() {
-  if (!tileset_ || !tileset_->search) return;
-  fetchCityFile(search_, FileKind::SearchIndex, *tileset_->search,
-                [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
-                  auto decoded = decodeSearchIndex(bytes, url);
-                  if (!decoded.ok()) return decoded.error();
-                  if (decoded->size() != tileset_->buildings) {
-                    return url + ": " + std::to_string(decoded->size()) +
-                           " entries, but the manifest says the city has " + std::to_string(tileset_->buildings) +
-                           " buildings";
-                  }
-                  for (std::size_t i = 0; i < decoded->size(); ++i) {
-                    const std::uint32_t leaf = (*decoded)[i].leaf;
-                    if (leaf >= tileset_->nodes.size() || !tileset_->nodes[leaf].children.empty()) {
-                      return url + ": entry " + std::to_string(i) + " names tile " + std::to_string(leaf) +
-                             ", which is not a leaf of this city";
-                    }
-                  }
-                  searchIndex_ = std::move(decoded).value();
-                  searchBytes_ = searchIndex_.size() * sizeof(SearchEntry);
-                  for (const SearchEntry& e : searchIndex_) {
-                    for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
-                      if (text->size() >= sizeof(std::string)) searchBytes_ += text->size() + 1;
-                    }
-                  }
-                  return {};
-                });
-}
-
-void CityScene::requestCitySummary() {
-  if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
-      search_.state != TileState::Loaded) {
-    return;
-  }
-  fetchCityFile(citySummaryLoad_, FileKind::CitySummary, *tileset_->response->summaryIndex,
-                [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
-                  auto decoded = decodeResponseSummary(bytes, url);
-                  if (!decoded.ok()) return decoded.error();
-                  if (decoded->buildings.size() != searchIndex_.size()) {
-                    return url + ": " + std::to_string(decoded->buildings.size()) +
-                           " buildings, the search index has " + std::to_string(searchIndex_.size());
-                  }
-                  citySummary_ = std::move(decoded).value();
-                  searchBytes_ += citySummary_->buildings.size() * sizeof(BuildingResponse) +
-                                  citySummary_->storeyPeakDrift.size() * sizeof(float);
-                  return {};
-                });
-}
-
-bool CityScene::searchIndexSettled() const {
-  if (!tileset_) return manifestFailed_;
-  if (!tileset_->search || search_.state == TileState::Failed) return true;
-  if (search_.state != TileState::Loaded) return false;
-  const bool summaryExpected = tileset_->response && tileset_->response->summaryIndex && !tileset_->responseOutOfDate();
-  return !summaryExpected || citySummaryLoad_.state == TileState::Loaded || citySummaryLoad_.state == TileState::Failed;
-}
-
-const BuildingResponse* CityScene::cityResponse(std::uint32_t index) const {
-  return citySummary_ && index < citySummary_->buildings.size() ? &citySummary_->buildings[index] : nullptr;
-}
-
-BuildingListEntry CityScene::listEntry(std::uint32_t index) const {
-  const SearchEntry& s = searchIndex_[index];
-  BuildingListEntry e;
-  e.id = s.id;
-  e.name = s.name;
-  e.address = s.address;
-  e.use = s.use;
-  e.importance = s.importance;
-  e.heightM = s.heightM;
-  e.storeys = s.storeys;
-  e.x = s.x;
-  e.y = s.y;
-  if (const BuildingResponse* r = cityResponse(index)) {
-    e.damage = r->damage;
-    e.peakDriftRatio = r->peakDriftRatio;
-    e.peakRoofDisplacementM = r->peakRoofDisplacementM;
-    e.pgaG = r->pgaG;
-  }
-  return e;
+const SearchEntry* CityScene::indexEntry(std::string_view id) const {
+  return index_.entry(id);
 }
 
 std::vector<BuildingListEntry> CityScene::search(std::string_view query, std::size_t limit) {
-  std::vector<BuildingListEntry> out;
-  requestSearchIndex();
-  if (search_.state != TileState::Loaded) return out;
-  for (std::uint32_t i = 0; i < searchIndex_.size() && out.size() < limit; ++i) {
-    const SearchEntry& e = searchIndex_[i];
-    if (matchesQuery(e.id, query) || matchesQuery(e.name, query) || matchesQuery(e.address, query)) {
-      out.push_back(listEntry(i));
-    }
-  }
-  return out;
+  index_.request();
+  return index_.search(query, limit);
 }
 
 std::vector<BuildingListEntry> CityScene::filteredList(std::size_t limit, std::size_t* total) {
-  std::vector<BuildingListEntry> out;
-  if (total != nullptr) *total = 0;
-  requestSearchIndex();
-  if (search_.state != TileState::Loaded) return out;
-  struct Key {
-    int damage;
-    float drift;
-    std::uint32_t index;
-  };
-  std::vector<Key> keys;
-  for (std::uint32_t i = 0; i < searchIndex_.size(); ++i) {
-    const BuildingResponse* r = cityResponse(i);
-    if (!filters_.passes(searchIndex_[i].importance, searchIndex_[i].use, r)) continue;
-    const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
-    keys.push_back({damage, r != nullptr ? r->peakDriftRatio : 0.0f, i});
-  }
-  if (total != nullptr) *total = keys.size();
-  const std::size_t n = std::min(limit, keys.size());
-  std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
-                    [](const Key& a, const Key& b) {
-                      if (a.damage != b.damage) return a.damage > b.damage;
-                      if (a.drift != b.drift) return a.drift > b.drift;
-                      return a.index < b.index;
-                    });
-  for (std::size_t k = 0; k < n; ++k) out.push_back(listEntry(keys[k].index));
-  return out;
+  index_.request();
+  return index_.filteredList(filters_, limit, total);
+}
+
+bool CityScene::searchIndexSettled() const {
+  return tileset_ ? index_.settled() : manifestFailed_;
 }
 
 }  // namespace qv

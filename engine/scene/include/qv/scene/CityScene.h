@@ -19,11 +19,11 @@
 #include "qv/anim/HistorySampling.h"
 #include "qv/format/CityTile.h"
 #include "qv/format/ResponseTile.h"
-#include "qv/format/SearchIndex.h"
 #include "qv/format/Tileset.h"
 #include "qv/geometry/OrbitCamera.h"
 #include "qv/lod/TileSelector.h"
 #include "qv/scene/BuildingInfo.h"
+#include "qv/scene/CityIndex.h"
 #include "qv/scene/Fetcher.h"
 #include "qv/scene/FileLoader.h"
 #include "qv/scene/FrameStats.h"
@@ -61,35 +61,6 @@ struct TileCounts {
   std::uint32_t loaded = 0;
   std::uint32_t pending = 0;  ///< wanted by the view and not loaded yet (tiles and response tiers)
   std::uint32_t failed = 0;
-};
-
-/// Which buildings are shown at full strength; the others are dimmed.
-struct BuildingFilters {
-  int minDamage = -1;         ///< -1: any; 0..4: damage state at least this (none .. complete)
-  std::string use;            ///< empty: any; else the normalized use ("hospital", "school", ...)
-  bool criticalOnly = false;  ///< only critical facilities
-  [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly; }
-  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const {
-    return passes(a.importance, a.use, r);
-  }
-  [[nodiscard]] bool passes(Importance importance, std::string_view use, const BuildingResponse* r) const;
-  friend bool operator==(const BuildingFilters&, const BuildingFilters&) = default;
-};
-
-/// One row of the city-wide list of (filtered) buildings.
-struct BuildingListEntry {
-  std::string id;
-  std::string name;  ///< from the search index when loaded, else empty
-  std::string address;
-  std::string use;
-  Importance importance = Importance::General;
-  DamageState damage = DamageState::NoResult;
-  float peakDriftRatio = 0.0f;
-  float peakRoofDisplacementM = 0.0f;
-  float pgaG = 0.0f;
-  float heightM = 0.0f;
-  std::uint16_t storeys = 0;
-  double x = 0.0, y = 0.0;  ///< centroid, metres in the city frame
 };
 
 /// Time series of one building for plots: `samples` values evenly spaced over [0, duration].
@@ -173,7 +144,7 @@ class CityScene {
   /// Buildings passing the filters, most damaged first (then by peak drift), at most `limit`;
   /// `total` receives how many pass in all.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(std::size_t limit, std::size_t* total = nullptr);
-  [[nodiscard]] bool searchIndexLoaded() const { return search_.state == TileState::Loaded; }
+  [[nodiscard]] bool searchIndexLoaded() const { return index_.loaded(); }
   /// The search index (and the response summary in its order) has loaded or failed, or the city has none.
   [[nodiscard]] bool searchIndexSettled() const;
   /// Damage states (none .. complete, no result) of the buildings in view, from the last frame.
@@ -205,8 +176,6 @@ class CityScene {
   void enforceMemoryBudget();           // evicts what this frame did not use, least recently used first
   void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
   void applyFlagsEverywhere();
-  void requestSearchIndex();
-  [[nodiscard]] BuildingListEntry listEntry(std::uint32_t index) const;  // of the search index
   void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
   /// Chooses the animated buildings (nearest first, up to the cap) among the visible buildings of
   /// `tiles` (within the radius, histories loaded), keeping the floor rows of those that stay.
@@ -227,6 +196,7 @@ class CityScene {
   std::uint64_t frame_ = 0;
   SceneClock& clock_;
   FileLoader loader_;                 // every file after the manifest, and the in-flight limit
+  CityIndex index_;                   // the search index and the response summary in its order
   std::optional<double> lastUpdate_;  // the previous frame's start, seconds
   TileSelection selection_;
   /// Per node, the bytes it holds once loaded (tile data, mesh, summary): measured when it last
@@ -270,18 +240,6 @@ class CityScene {
   bool showLod1_ = true;
   bool showLod2_ = true;
   [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
-  /// Fetches a city-wide file (the search index, the response summary in its order) into `load`
-  /// once it is due; `accept` decodes and keeps the bytes or returns what is wrong.
-  void fetchCityFile(FileLoad& load, FileKind kind, const CityFile& file,
-                     std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept);
-  void retryCityFiles();
-  FileLoad search_;
-  std::vector<SearchEntry> searchIndex_;
-  std::uint64_t searchBytes_ = 0;  // heap held by the index and its summary (estimate)
-  FileLoad citySummaryLoad_;
-  std::optional<ResponseSummaryTile> citySummary_;  // the response, in the index's order
-  void requestCitySummary();
-  [[nodiscard]] const BuildingResponse* cityResponse(std::uint32_t index) const;
   std::array<std::uint64_t, 6> damageInView_{};
   std::uint64_t viewSignature_ = 0;  // visible sets and summaries behind damageInView_
   std::string seriesFor_;
