@@ -9,7 +9,7 @@
 #include "qv/anim/FloorDisplacements.h"
 #include "qv/anim/HistorySampling.h"
 #include "qv/core/Crc32.h"
-#include "qv/core/RangeAllocator.h"
+#include "qv/scene/BuildingTable.h"
 #include "qv/scene/TileMeshBuilder.h"
 #include "qv/spatial/BoxTree.h"
 
@@ -21,8 +21,6 @@ double msSince(const SceneClock& clock, double startSeconds) {
 }
 
 // Rows of the GPU tables: capacity of the index spaces (the device grows textures on demand).
-constexpr std::uint32_t kMaxBuildingSlots = 1u << 21;
-constexpr std::uint32_t kMaxFloorRows = 1u << 22;
 constexpr std::uint32_t kNotAnimated = UINT32_MAX;
 
 // The loader's options from the scene's (which the viewer may change between frames).
@@ -75,9 +73,7 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
       onError_(std::move(onError)),
       clock_(options.clock != nullptr ? *options.clock : steadyClock()),
       loader_(fetcher_, clock_, [this](const LoadError& e) { onError_(e); }),
-      index_(loader_, manifestUrl_),
-      slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
-      floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
+      index_(loader_, manifestUrl_) {
   if (const std::string problem = dataUrlProblem(manifestUrl_); !problem.empty()) {
     manifestFailed_ = true;  // refused before any request: settled, with the message
     reportCityError("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
@@ -271,20 +267,17 @@ void CityScene::finishTile(std::uint32_t node) {
   }
   auto tile = std::make_unique<LoadedTile>(indexTile(std::move(decoded).value()));
   const auto count = tile->buildingCount();
-  const auto slotBase = slots_->allocate(std::max(count, 1u));
+  const auto slotBase = table_.reserveBuildings(count);
   if (!slotBase) {
     loader_.fail(t.tile, spec, "too many buildings loaded at once", true);
     return;
   }
   tile->slotBase = *slotBase;
-  if (buildingRows_.size() < slots_->highWater()) buildingRows_.resize(slots_->highWater());
-  initialBuildingRows(*tile, tileset_->nodes[node].response.has_value(),
-                      std::span(buildingRows_).subspan(tile->slotBase, count));
+  initialBuildingRows(*tile, tileset_->nodes[node].response.has_value(), table_.edit(tile->slotBase, count));
   const MeshData mesh = buildTileMesh(*tile, tile->slotBase);
   tile->mesh = device_.createMesh(mesh);
   tile->gpuBytes = meshGpuBytes(mesh);
   tile->cpuBytes = tileCpuBytes(*tile);
-  writeBuildingRows(tile->slotBase, count);
   {
     const int kind = tileset_->nodes[node].children.empty() ? 0 : 1;
     residentOfFile_[kind] += tile->cpuBytes + tile->gpuBytes;
@@ -301,11 +294,6 @@ void CityScene::finishTile(std::uint32_t node) {
   else if (t.summaryLoad.state == TileState::Failed)
     markNoResult(node);
   if (tileset_->nodes[node].response) requestSummary(node);
-}
-
-void CityScene::writeBuildingRows(std::uint32_t first, std::uint32_t count) {
-  dirtyFirst_ = std::min(dirtyFirst_, first);
-  dirtyEnd_ = std::max(dirtyEnd_, first + count);
 }
 
 void CityScene::requestSummary(std::uint32_t node) {
@@ -330,8 +318,7 @@ void CityScene::markNoResult(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   if (!t.loaded) return;
   const LoadedTile& tile = *t.loaded;
-  for (std::uint32_t p = 0; p < tile.positionOf.size(); ++p) buildingRows_[tile.slotBase + p].damageState = -1.0f;
-  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+  for (BuildingGpuRecord& row : table_.edit(tile.slotBase, tile.buildingCount())) row.damageState = -1.0f;
 }
 
 void CityScene::applySummary(std::uint32_t node) {
@@ -340,11 +327,11 @@ void CityScene::applySummary(std::uint32_t node) {
   const LoadedTile& tile = *t.loaded;
   for (std::size_t b = 0; b < t.summary->buildings.size() && b < tile.positionOf.size(); ++b) {
     const BuildingResponse& r = t.summary->buildings[b];
-    BuildingGpuRecord& row = buildingRows_[tile.slotBase + tile.positionOf[b]];
+    BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
     row.peakValue = r.peakDriftRatio;
     row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
   }
-  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+  table_.changed(tile.slotBase, tile.buildingCount());
   applyFlags(node);  // damage filters need the summary
 }
 
@@ -387,7 +374,7 @@ void CityScene::evict(std::uint32_t node) {
     // Buildings of this tile stop animating first (they hold floor rows).
     for (auto& a : animated_) {
       if (a && a->ref.node == node) {
-        floorSlots_->release(a->floorBase, a->rows);
+        table_.releaseFloors(a->floorBase, a->rows);
         a.reset();
       }
     }
@@ -395,8 +382,7 @@ void CityScene::evict(std::uint32_t node) {
     t.animatedIndex.clear();
     reindexAnimated();
     if (t.loaded->mesh) device_.destroyMesh(t.loaded->mesh);
-    slots_->release(t.loaded->slotBase,
-                    std::max<std::uint32_t>(1, static_cast<std::uint32_t>(t.loaded->positionOf.size())));
+    table_.releaseBuildings(t.loaded->slotBase, t.loaded->buildingCount());
     t.loaded.reset();
   }
   t.summary.reset();
@@ -594,16 +580,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
 
   // Upload the changed rows of the building table and the whole used floor table.
   t0 = clock_.nowSeconds();
-  if (dirtyFirst_ < dirtyEnd_) {
-    dirtyEnd_ = std::min<std::uint32_t>(dirtyEnd_, static_cast<std::uint32_t>(buildingRows_.size()));
-    device_.writeBuildings(dirtyFirst_, std::span(buildingRows_).subspan(dirtyFirst_, dirtyEnd_ - dirtyFirst_));
-  }
-  dirtyFirst_ = UINT32_MAX;
-  dirtyEnd_ = 0;
-  if (!animated_.empty()) {
-    device_.writeFloors(
-        0, std::span(floorRows_).first(std::min<std::size_t>(floorRows_.size(), floorSlots_->highWater())));
-  }
+  table_.upload(device_, !animated_.empty());
   times.upload += msSince(clock_, t0) + streamingMs + evictMs;
 
   // Buildings available for drawing: every building of each maximal loaded subtree.
@@ -676,7 +653,6 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
     animationSignature_ = signature;
     chooseAnimated(eye, inRadius);
   }
-  if (floorRows_.size() < floorSlots_->highWater()) floorRows_.resize(floorSlots_->highWater());
 
   // Every animated building's floors at this time, straight into its rows of the floor table,
   // in two passes. What the sampling needs was packed in animation order when the buildings were
@@ -694,7 +670,7 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   for (std::size_t j = 0; j < count; ++j) {
     const Animated& a = *animated_[j];
     const AnimatedSampler& sampler = samplers_[j];
-    FloorGpuRecord* rows = floorRows_.data() + a.floorBase;
+    FloorGpuRecord* rows = table_.floors(a.floorBase, a.rows).data();
     const std::size_t floors = std::min<std::size_t>(sampler.floors, a.rows - 1);
     rows[0].dxMeters = rows[0].dyMeters = 0.0f;
     if (sampler.stream.sampleCount == 0 || floors == 0) {
@@ -773,7 +749,7 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
       continue;
     }
     const std::uint32_t rows = tile.data.buildings[c.index].attributes.storeys + 1u;
-    const auto base = floorSlots_->allocate(rows);
+    const auto base = table_.reserveFloors(rows);
     if (!base) break;
     auto a = std::make_unique<Animated>();
     a->ref = {c.node, c.index};
@@ -781,8 +757,7 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
     a->floorBase = *base;
     a->rows = rows;
     a->choice = choice_;
-    buildingRows_[a->slot].floorBase = static_cast<float>(*base);
-    writeBuildingRows(a->slot, 1);
+    table_.edit(a->slot, 1)[0].floorBase = static_cast<float>(*base);
     t.animatedIndex[c.index] = static_cast<std::uint32_t>(animated_.size());
     animated_.push_back(std::move(a));
   }
@@ -791,11 +766,10 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
     if (a->choice == choice_) continue;
     TileRuntime& t = *tiles_[a->ref.node];
     if (t.loaded) {
-      buildingRows_[a->slot].floorBase = -1.0f;
-      writeBuildingRows(a->slot, 1);
+      table_.edit(a->slot, 1)[0].floorBase = -1.0f;
     }
     if (a->ref.index < t.animatedIndex.size()) t.animatedIndex[a->ref.index] = kNotAnimated;
-    floorSlots_->release(a->floorBase, a->rows);
+    table_.releaseFloors(a->floorBase, a->rows);
     a.reset();
     released = true;
   }
@@ -839,30 +813,20 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
 // ---------------------------------------------------------------------------------------------
 // Selection, filters, picking, search.
 
-namespace {
-
-void setFlag(BuildingGpuRecord& row, unsigned bit, bool on) {
-  auto flags = static_cast<unsigned>(row.flags);
-  flags = on ? (flags | bit) : (flags & ~bit);
-  row.flags = static_cast<float>(flags);
-}
-
-}  // namespace
-
 void CityScene::applyFlags(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   if (!t.loaded) return;
   const LoadedTile& tile = *t.loaded;
   const bool filtering = filters_.active();
   for (std::uint32_t b = 0; b < tile.data.buildings.size(); ++b) {
-    BuildingGpuRecord& row = buildingRows_[tile.slotBase + tile.positionOf[b]];
+    BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
     const BuildingAttributes& a = tile.data.buildings[b].attributes;
     const BuildingResponse* r = t.summary && b < t.summary->buildings.size() ? &t.summary->buildings[b] : nullptr;
-    setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
-    setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r));
-    setFlag(row, kFlagHidden, hiddenByLod(a.lod));
+    BuildingTable::setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
+    BuildingTable::setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r));
+    BuildingTable::setFlag(row, kFlagHidden, hiddenByLod(a.lod));
   }
-  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+  table_.changed(tile.slotBase, tile.buildingCount());
 }
 
 void CityScene::applyFlagsEverywhere() {

@@ -23,6 +23,7 @@
 #include "qv/geometry/OrbitCamera.h"
 #include "qv/lod/TileSelector.h"
 #include "qv/scene/BuildingInfo.h"
+#include "qv/scene/BuildingTable.h"
 #include "qv/scene/CityIndex.h"
 #include "qv/scene/Fetcher.h"
 #include "qv/scene/FileLoader.h"
@@ -172,7 +173,6 @@ class CityScene {
   void requestSummary(std::uint32_t node);
   void requestHistory(std::uint32_t node);
   void applySummary(std::uint32_t node);
-  void writeBuildingRows(std::uint32_t first, std::uint32_t count);
   void enforceMemoryBudget();           // evicts what this frame did not use, least recently used first
   void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
   void applyFlagsEverywhere();
@@ -211,11 +211,7 @@ class CityScene {
   [[nodiscard]] std::uint64_t tileBytes(std::uint32_t node) const;  // a loaded tile's resident bytes
 
   // GPU tables and their CPU mirrors.
-  std::vector<BuildingGpuRecord> buildingRows_;
-  std::uint32_t dirtyFirst_ = UINT32_MAX, dirtyEnd_ = 0;
-  std::vector<FloorGpuRecord> floorRows_;
-  std::unique_ptr<class RangeAllocator> slots_;
-  std::unique_ptr<class RangeAllocator> floorSlots_;
+  BuildingTable table_;
   std::vector<std::unique_ptr<Animated>> animated_;
   /// What sampling one animated building needs, packed when the buildings are chosen (the
   /// pointers stay valid until the next choice: any change of residency triggers one first).
