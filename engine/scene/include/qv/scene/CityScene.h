@@ -176,6 +176,13 @@ class CityScene {
   void enforceMemoryBudget();           // evicts what this frame did not use, least recently used first
   void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
   void applyFlagsEverywhere();
+  // The steps of a frame (update), in order.
+  void decodeArrived(double frameStart);                                     // decode and mesh within the work budget
+  void selectAndRequest(const CameraView& view);                             // choose tiles; request, retry
+  std::uint32_t cull(const Frustum& frustum, std::vector<DrawItem>& items);  // visible buildings
+  void countDamageInView();                                                  // when the visible sets changed
+  [[nodiscard]] std::uint64_t loadedBuildings() const;
+  [[nodiscard]] bool responsesReady() const;  // no summary of a drawn tile, no history on its way
   void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
   /// Chooses the animated buildings (nearest first, up to the cap) among the visible buildings of
   /// `tiles` (within the radius, histories loaded), keeping the floor rows of those that stay.
