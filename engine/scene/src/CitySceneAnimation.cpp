@@ -20,6 +20,18 @@ void CityScene::reindexAnimated() {
 }
 
 void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts) {
+  const std::uint64_t signature = findAnimationTiles(eye);
+  if (signature != animationSignature_ || animated_.empty() != animationTiles_.empty() ||
+      samplers_.size() != animated_.size()) {
+    animationSignature_ = signature;
+    chooseAnimated(eye, animationTiles_);
+  }
+  sampleFloors(timeSeconds);
+  counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
+  counts.modelsAnimated += modelsAnimated_;
+}
+
+std::uint64_t CityScene::findAnimationTiles(const glm::vec3& eye) {
   const float radius = options_.animationRadiusM;
   // The tiles within the radius keep (or fetch) their histories this frame. What they animate is
   // chosen again only when something it depends on changed: the eye, the radius, the cap, a
@@ -60,12 +72,10 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
       mix(i);
     }
   }
-  if (signature != animationSignature_ || animated_.empty() != inRadius.empty() ||
-      samplers_.size() != animated_.size()) {
-    animationSignature_ = signature;
-    chooseAnimated(eye, inRadius);
-  }
+  return signature;
+}
 
+void CityScene::sampleFloors(double timeSeconds) {
   // Every animated building's floors at this time, straight into its rows of the floor table,
   // in two passes. What the sampling needs was packed in animation order when the buildings were
   // chosen (read as one stream); only the coordinates around t are scattered over the heap. The
@@ -110,16 +120,17 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
       }
     }
   }
-  counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
-  counts.modelsAnimated += modelsAnimated_;
 }
 
 void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles) {
+  keepAnimated(animationCandidates(eye, tiles));
+  packSamplers();
+}
+
+std::vector<CityScene::AnimationCandidate> CityScene::animationCandidates(
+    const glm::vec3& eye, const std::vector<std::uint32_t>& tiles) const {
+  using Candidate = AnimationCandidate;
   const float radius = options_.animationRadiusM;
-  struct Candidate {
-    float distance2;
-    std::uint32_t node, index, position;
-  };
   std::vector<Candidate> candidates;
   const double r2 = static_cast<double>(radius) * radius;
   for (std::uint32_t i : tiles) {
@@ -146,7 +157,11 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
                      [](const Candidate& a, const Candidate& b) { return a.distance2 < b.distance2; });
     candidates.resize(options_.maxAnimatedBuildings);
   }
+  return candidates;
+}
 
+void CityScene::keepAnimated(const std::vector<AnimationCandidate>& candidates) {
+  using Candidate = AnimationCandidate;
   // Keep the floor rows of buildings that stay animated; release the rest; allocate the new.
   // (Each tile maps its buildings to their entries in animated_: no hashing.)
   ++choice_;
@@ -189,6 +204,9 @@ void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint
     animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
     reindexAnimated();
   }
+}
+
+void CityScene::packSamplers() {
   // Their histories, in the same order, for the sampling loop (valid until the next choice: any
   // change of residency changes the signature, and the choice is made again before sampling).
   samplers_.resize(animated_.size());

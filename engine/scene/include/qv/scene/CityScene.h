@@ -187,6 +187,22 @@ class CityScene {
   /// Chooses the animated buildings (nearest first, up to the cap) among the visible buildings of
   /// `tiles` (within the radius, histories loaded), keeping the floor rows of those that stay.
   void chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles);
+  /// The drawn leaves within the radius whose histories are loaded (requesting the others) into
+  /// animationTiles_; returns the signature of what the choice of animated buildings depends on.
+  std::uint64_t findAnimationTiles(const glm::vec3& eye);
+  struct AnimationCandidate {
+    float distance2;  // from the eye, m²
+    std::uint32_t node, index, position;
+  };
+  /// Visible buildings of `tiles` within the radius, the nearest up to the cap.
+  [[nodiscard]] std::vector<AnimationCandidate> animationCandidates(const glm::vec3& eye,
+                                                                    const std::vector<std::uint32_t>& tiles) const;
+  /// Makes `candidates` the animated buildings: keeps the floor rows of those that stay.
+  void keepAnimated(const std::vector<AnimationCandidate>& candidates);
+  /// What the sampling loop reads, packed in animation order.
+  void packSamplers();
+  /// Every animated building's floor rows at this time.
+  void sampleFloors(double timeSeconds);
 
   RenderDevice& device_;
   Fetcher& fetcher_;
