@@ -91,7 +91,6 @@ void CityScene::onManifest(FetchResponse response) {
   for (auto& t : tiles_) t = std::make_unique<TileRuntime>();
   states_.assign(tileset_->nodes.size(), TileState::Unloaded);
   nodeBytes_.assign(tileset_->nodes.size(), 0);
-  nodeBytesMeasured_.assign(tileset_->nodes.size(), false);
   wasLoaded_ = std::make_unique<bool[]>(tileset_->nodes.size());
   if (tileset_->responseOutOfDate()) {
     reportCityError(

@@ -38,9 +38,9 @@ void CityScene::updateNodeBytes() {
     if (tiles_[i]->tile.state == TileState::Loaded) {
       // Histories come and go with the animation radius: the tile's own bytes, measured.
       nodeBytes_[i] = tileBytes(i) - tiles_[i]->historyBytes;
-      nodeBytesMeasured_[i] = true;
+      tiles_[i]->bytesMeasured = true;
       wasLoaded_[i] = true;
-    } else if (!nodeBytesMeasured_[i]) {
+    } else if (!tiles_[i]->bytesMeasured) {
       const TileNode& n = tileset_->nodes[i];
       nodeBytes_[i] = static_cast<std::uint64_t>(static_cast<double>(n.bytes) * ratio[n.children.empty() ? 0 : 1]);
     }

@@ -26,6 +26,7 @@ struct CityScene::TileRuntime {
   std::vector<std::uint8_t> bytes;  // arrived, waiting to be decoded
   std::unique_ptr<LoadedTile> loaded;
   std::uint64_t lastUsed = 0;
+  bool bytesMeasured = false;       // nodeBytes_ holds what it measured when it last loaded
   std::vector<IndexRange> visible;  // this frame's culling result (positions)
 
   FileLoad summaryLoad;

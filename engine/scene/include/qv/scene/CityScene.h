@@ -226,7 +226,6 @@ class CityScene {
   /// loaded, else estimated from its file size at the ratio measured so far for its kind (coarse
   /// or leaf). The selector keeps the tiles drawn and wanted within the budget with these.
   std::vector<std::uint64_t> nodeBytes_;
-  std::vector<bool> nodeBytesMeasured_;
   std::unique_ptr<bool[]> wasLoaded_;         // per node: loaded at some time (a span needs contiguous bools)
   std::uint64_t residentOfFile_[2] = {0, 0};  // [leaf, coarse]: resident bytes of the tiles loaded so far
   std::uint64_t fileOfResident_[2] = {0, 0};  // their file bytes
