@@ -1,11 +1,9 @@
 #include <catch2/catch.hpp>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <map>
 #include <set>
-#include <thread>
 
 #include "MiniCity.h"
 #include "qv/scene/NullRenderDevice.h"
@@ -102,13 +100,14 @@ void runFrames(Viewer& viewer, int frames, double dt = 1.0 / 60.0) {
   for (int i = 0; i < frames; ++i) viewer.frame(dt);
 }
 
-// Runs frames in real time (retries wait on the wall clock) until `done` or `limitSeconds` pass.
+// Runs frames 50 ms apart on the scene's fake clock (retries wait on it) until `done` or
+// `limitSeconds` of that clock pass.
 template <typename Done>
-void runFramesUntil(Viewer& viewer, double limitSeconds, Done done) {
-  const auto start = std::chrono::steady_clock::now();
-  while (!done() && std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count() < limitSeconds) {
+void runFramesUntil(Viewer& viewer, FakeClock& clock, double limitSeconds, Done done) {
+  const double start = clock.nowSeconds();
+  while (!done() && clock.nowSeconds() - start < limitSeconds) {
     viewer.frame(1.0 / 60.0);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    clock.advance(0.05);
   }
 }
 
@@ -117,11 +116,13 @@ struct SceneRig {
   MiniCity city;
   FakeFetcher fetcher;
   RecordingDevice device;
+  FakeClock clock;  // the scene's time: only runFramesUntil moves it
   Viewer viewer{device};
   explicit SceneRig(MiniCity c = MiniCity()) : city(std::move(c)) { city.serve(fetcher); }
   /// Opens the city in a 1280 x 720 viewport, animating within `animationRadiusM` of the eye.
   void open(float animationRadiusM, CitySceneOptions options = {}) {
     options.animationRadiusM = animationRadiusM;
+    options.clock = &clock;
     viewer.openCity("city/tileset.json", fetcher, options);
     viewer.setViewport(1280, 720, 1280.0, 720.0);
   }
@@ -583,9 +584,13 @@ TEST_CASE("A search index and city-wide response that fail are retried with back
   const double firstLimitMs = defaults.requestTimeoutMs + indexBytes * 1000.0 / defaults.slowestBytesPerSecond;
   CHECK(rig.fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(firstLimitMs));
 
-  // The server still fails: retried after a backoff (one second of real time after the first
-  // failure), reported once.
-  runFramesUntil(viewer, 5.0, [&] { return rig.fetcher.count("city/search.qvi") > firstTries; });
+  // The server still fails: retried after a backoff (one second after the first failure), reported
+  // once. Not before the second has passed, however many frames run.
+  runFrames(viewer, 30);
+  rig.clock.advance(0.9);
+  runFrames(viewer, 30);
+  CHECK(rig.fetcher.count("city/search.qvi") == firstTries);
+  runFramesUntil(viewer, rig.clock, 5.0, [&] { return rig.fetcher.count("city/search.qvi") > firstTries; });
   CHECK(rig.fetcher.count("city/search.qvi") > firstTries);
   CHECK(rig.fetcher.lastTimeoutMs.at("city/search.qvi") == static_cast<std::uint32_t>(2 * firstLimitMs));
   CHECK(viewer.errors().size() == 1);
@@ -593,9 +598,9 @@ TEST_CASE("A search index and city-wide response that fail are retried with back
   // The server recovers but the response summary in the index's order fails now.
   rig.fetcher.statusOverride.erase("city/search.qvi");
   rig.fetcher.statusOverride["city/response/index.qvs"] = 500;
-  runFramesUntil(viewer, 10.0, [&] { return viewer.city()->searchIndexLoaded(); });
+  runFramesUntil(viewer, rig.clock, 10.0, [&] { return viewer.city()->searchIndexLoaded(); });
   REQUIRE(viewer.city()->searchIndexLoaded());
-  runFramesUntil(viewer, 10.0, [&] {
+  runFramesUntil(viewer, rig.clock, 10.0, [&] {
     return viewer.errors().size() == 1 && viewer.errors()[0].find("index.qvs") != std::string::npos;
   });
   std::size_t total = 0;
@@ -606,7 +611,7 @@ TEST_CASE("A search index and city-wide response that fail are retried with back
 
   // Once the summary comes back too, the list carries the damage and no error remains.
   rig.fetcher.statusOverride.clear();
-  runFramesUntil(viewer, 10.0, [&] { return viewer.errors().empty(); });
+  runFramesUntil(viewer, rig.clock, 10.0, [&] { return viewer.errors().empty(); });
   CHECK(viewer.errors().empty());
   list = viewer.city()->filteredList(1000, &total);
   REQUIRE(list.size() == 64);

@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "qv/scene/Bench.h"
-#include "qv/scene/FloorDisplacements.h"
 #include "qv/scene/NullRenderDevice.h"
 #include "qv/scene/Viewer.h"
 
@@ -119,36 +118,4 @@ TEST_CASE("The benchmark's low pass crosses the densest area, not a tiny leaf at
   }
   CHECK(nearestCore < 60.0);
   CHECK(nearestCorner > 400.0);
-}
-
-TEST_CASE("Floor displacements from modal coordinates equal the plain dot products for every mode count",
-          "[scene][animator]") {
-  // Shapes and coordinates with distinct values, for 0 … 8 modes in each direction (the unrolled
-  // kernels up to 6, the general loop beyond).
-  constexpr std::size_t kFloors = 7;
-  std::vector<float> shapesX(kFloors * 8), shapesY(kFloors * 8), cx(8), cy(8);
-  for (std::size_t i = 0; i < shapesX.size(); ++i) {
-    shapesX[i] = 0.01f * static_cast<float>(i % 13) - 0.05f;
-    shapesY[i] = 0.02f * static_cast<float>(i % 7) + 0.01f;
-  }
-  for (std::size_t k = 0; k < 8; ++k) {
-    cx[k] = 1.5f - 0.4f * static_cast<float>(k);
-    cy[k] = 0.3f * static_cast<float>(k) - 0.7f;
-  }
-  for (std::size_t mx = 0; mx <= 8; ++mx) {
-    for (std::size_t my = 0; my <= 8; ++my) {
-      CAPTURE(mx, my);
-      std::vector<FloorGpuRecord> rows(kFloors + 1);
-      rows[kFloors].dxMeters = 42.0f;  // beyond the floors: untouched
-      floorDisplacements(shapesX.data(), cx.data(), mx, shapesY.data(), cy.data(), my, kFloors, rows.data());
-      for (std::size_t f = 0; f < kFloors; ++f) {
-        double x = 0.0, y = 0.0;
-        for (std::size_t k = 0; k < mx; ++k) x += static_cast<double>(shapesX[f * mx + k]) * cx[k];
-        for (std::size_t k = 0; k < my; ++k) y += static_cast<double>(shapesY[f * my + k]) * cy[k];
-        CHECK(rows[f].dxMeters == Approx(x).margin(1e-6));
-        CHECK(rows[f].dyMeters == Approx(y).margin(1e-6));
-      }
-      CHECK(rows[kFloors].dxMeters == 42.0f);
-    }
-  }
 }

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <optional>
 
+#include "qv/anim/HistorySampling.h"
 #include "qv/core/ByteIO.h"
 #include "qv/core/Crc32.h"
 
@@ -20,6 +21,7 @@ constexpr std::uint8_t kFlagApproximate = 1;
 constexpr std::uint32_t kMaxBuildings = 1u << 20;
 constexpr std::uint32_t kMaxFloors = 500;
 constexpr std::uint8_t kMaxModes = 8;
+static_assert(kMaxModes == kMaxHistoryModes);
 constexpr std::uint32_t kMaxSamples = 1u << 20;
 
 std::uint32_t tag(const char (&t)[5]) {
@@ -588,40 +590,6 @@ Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> 
   }
   if (!r.ok()) return Error{prefix + "section HIST: " + r.error()};
   return tile;
-}
-
-HistoryTap historyTap(float startSeconds, float sampleRateHz, std::uint32_t sampleCount, double t) {
-  const double position =
-      std::clamp((t - static_cast<double>(startSeconds)) * sampleRateHz, 0.0, static_cast<double>(sampleCount - 1));
-  HistoryTap tap;
-  tap.i1 = static_cast<std::uint32_t>(position);
-  const std::uint32_t last = sampleCount - 1;
-  tap.i0 = tap.i1 > 0 ? tap.i1 - 1 : 0;
-  tap.i2 = std::min(tap.i1 + 1, last);
-  tap.i3 = std::min(tap.i1 + 2, last);
-  // Uniform Catmull-Rom weights (the cubic through the four nearest samples' tangents): with 8
-  // samples a period it stays within 1 % of a sinusoid, where straight lines need 25.
-  const auto u = static_cast<float>(position - tap.i1);
-  const float u2 = u * u, u3 = u2 * u;
-  tap.w0 = 0.5f * (-u3 + 2.0f * u2 - u);
-  tap.w1 = 0.5f * (3.0f * u3 - 5.0f * u2 + 2.0f);
-  tap.w2 = 0.5f * (-3.0f * u3 + 4.0f * u2 + u);
-  tap.w3 = 0.5f * (u3 - u2);
-  return tap;
-}
-
-void modalCoordinates(const std::int16_t* coordinates, std::size_t rowStride, const float* scales,
-                      const HistoryTap& tap, float* out, std::size_t modes) {
-  if (modes == SIZE_MAX) modes = rowStride;
-  const std::int16_t* q0 = coordinates + std::size_t{tap.i0} * rowStride;
-  const std::int16_t* q1 = coordinates + std::size_t{tap.i1} * rowStride;
-  const std::int16_t* q2 = coordinates + std::size_t{tap.i2} * rowStride;
-  const std::int16_t* q3 = coordinates + std::size_t{tap.i3} * rowStride;
-  for (std::size_t k = 0; k < std::min<std::size_t>(modes, kMaxModes); ++k) {
-    out[k] = (tap.w0 * static_cast<float>(q0[k]) + tap.w1 * static_cast<float>(q1[k]) +
-              tap.w2 * static_cast<float>(q2[k]) + tap.w3 * static_cast<float>(q3[k])) *
-             scales[k];
-  }
 }
 
 void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX, std::span<float> floorsY) {

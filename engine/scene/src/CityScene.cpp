@@ -1,111 +1,31 @@
 #include "qv/scene/CityScene.h"
 
+#include "CitySceneState.h"
+
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <unordered_map>
 
 #include "qv/core/Crc32.h"
-#include "qv/core/RangeAllocator.h"
-#include "qv/scene/FloorDisplacements.h"
+#include "qv/scene/BuildingTable.h"
+#include "qv/scene/TileMeshBuilder.h"
 #include "qv/spatial/BoxTree.h"
 
 namespace qv {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-double msSince(Clock::time_point start) {
-  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+double msSince(const SceneClock& clock, double startSeconds) {
+  return (clock.nowSeconds() - startSeconds) * 1000.0;
 }
 
-// Rows of the GPU tables: capacity of the index spaces (the device grows textures on demand).
-constexpr std::uint32_t kMaxBuildingSlots = 1u << 21;
-constexpr std::uint32_t kMaxFloorRows = 1u << 22;
-constexpr std::uint32_t kNotAnimated = UINT32_MAX;
-
-std::string hex32(std::uint32_t v) {
-  char buffer[16];
-  std::snprintf(buffer, sizeof buffer, "%08x", v);
-  return buffer;
-}
-
-// Exponential backoff after the n-th failure (n >= 1): 1 s doubling to 30 s; a permanent error
-// (404, bad data) waits longest, since only a fixed server brings it back.
-double backoffSeconds(int failures, bool transient) {
-  return transient ? std::min(30.0, std::pow(2.0, std::min(std::max(failures, 1) - 1, 5))) : 30.0;
-}
-
-// HTTP statuses worth retrying soon: the server or the network may recover.
-bool transientStatus(int status) {
-  return status == 0 || status == 408 || status == 429 || status >= 500;
-}
-
-// The time limit of a request for a file of `bytes` (CitySceneOptions::requestTimeoutMs).
-std::uint32_t requestTimeout(const CitySceneOptions& options, std::uint64_t bytes, int failures) {
-  const double rate = std::max<double>(options.slowestBytesPerSecond, 1.0);
-  const double ms = (static_cast<double>(options.requestTimeoutMs) + static_cast<double>(bytes) * 1000.0 / rate) *
-                    static_cast<double>(1 << std::clamp(failures, 0, 3));
-  return static_cast<std::uint32_t>(std::min(ms, 30.0 * 60.0 * 1000.0));
+// The loader's options from the scene's (which the viewer may change between frames).
+FileLoaderOptions loaderOptions(const CitySceneOptions& options) {
+  return {options.maxRequestsInFlight, options.requestTimeoutMs, options.slowestBytesPerSecond};
 }
 
 }  // namespace
-
-struct CityScene::LoadedTile {
-  CityTile data;
-  std::unordered_map<std::string, std::uint32_t> idIndex;  // building id -> index in the file
-  BoxTree tree;
-  std::vector<std::uint32_t> positionOf;  // building index -> position in tree.order()
-  MeshHandle mesh;
-  std::uint32_t slotBase = 0;
-  std::uint64_t cpuBytes = 0;
-  std::uint64_t gpuBytes = 0;
-  glm::vec3 origin{0.0f};
-  std::vector<std::int32_t> meshIndex;  // building index -> index in data.meshes, or -1 (LOD1)
-
-  [[nodiscard]] const TileMesh* meshOf(std::uint32_t building) const {
-    return building < meshIndex.size() && meshIndex[building] >= 0
-               ? &data.meshes[static_cast<std::size_t>(meshIndex[building])]
-               : nullptr;
-  }
-};
-
-struct CityScene::TileRuntime {
-  Fetcher::RequestId request = 0;
-  std::vector<std::uint8_t> bytes;  // arrived, waiting to be decoded
-  std::unique_ptr<LoadedTile> loaded;
-  std::uint64_t lastUsed = 0;
-  int attempts = 0;
-  double retryAt = 0.0;
-  bool errorShown = false;
-  std::vector<IndexRange> visible;  // this frame's culling result (positions)
-
-  TileState summaryState = TileState::Unloaded;
-  Fetcher::RequestId summaryRequest = 0;
-  std::unique_ptr<ResponseSummaryTile> summary;
-  int summaryAttempts = 0;  // failures so far: retried with backoff, as tiles are
-  double summaryRetryAt = 0.0;
-  TileState historyState = TileState::Unloaded;
-  Fetcher::RequestId historyRequest = 0;
-  std::unique_ptr<ResponseHistoryTile> history;
-  int historyAttempts = 0;
-  double historyRetryAt = 0.0;
-  std::uint64_t historyBytes = 0;
-  std::uint64_t historyUsed = 0;
-  /// Per building of the loaded tile: its index in animated_, or kNotAnimated.
-  std::vector<std::uint32_t> animatedIndex;
-};
-
-struct CityScene::Animated {
-  BuildingRef ref;
-  std::uint32_t slot = 0;
-  std::uint32_t floorBase = 0;
-  std::uint32_t rows = 0;     // storeys + 1
-  std::uint64_t choice = 0;   // the last choice (chooseAnimated) that kept it
-  bool peaksWritten = false;  // its peak drifts are in its floor rows
-};
 
 CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifestUrl, CitySceneOptions options,
                      ErrorSink onError)
@@ -114,20 +34,21 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
       manifestUrl_(std::move(manifestUrl)),
       options_(options),
       onError_(std::move(onError)),
-      slots_(std::make_unique<RangeAllocator>(kMaxBuildingSlots)),
-      floorSlots_(std::make_unique<RangeAllocator>(kMaxFloorRows)) {
+      clock_(options.clock != nullptr ? *options.clock : steadyClock()),
+      loader_(fetcher_, clock_, [this](const LoadError& e) { onError_(e); }),
+      index_(loader_, manifestUrl_) {
   if (const std::string problem = dataUrlProblem(manifestUrl_); !problem.empty()) {
     manifestFailed_ = true;  // refused before any request: settled, with the message
-    onError_("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
+    reportCityError("The city could not be loaded from " + manifestUrl_.substr(0, 200) + ": " + problem);
     return;
   }
   if (const std::string problem = dataOriginProblem(options_.origin); !problem.empty()) {
     manifestFailed_ = true;  // refused before any request, as above
-    onError_(problem);
+    reportCityError(problem);
     return;
   }
-  ++inFlight_;
-  manifestRequest_ = fetcher_.fetch(
+  loader_.options() = loaderOptions(options_);
+  manifestRequest_ = loader_.fetch(
       manifestUrl_, [this](FetchResponse r) { onManifest(std::move(r)); }, options_.requestTimeoutMs);
 }
 
@@ -135,42 +56,44 @@ CityScene::~CityScene() {
   if (manifestRequest_ != 0) fetcher_.cancel(manifestRequest_);
   for (const auto& t : tiles_) {
     if (t && t->loaded && t->loaded->mesh) device_.destroyMesh(t->loaded->mesh);
-    if (t && t->request != 0) fetcher_.cancel(t->request);
-    if (t && t->summaryRequest != 0) fetcher_.cancel(t->summaryRequest);
-    if (t && t->historyRequest != 0) fetcher_.cancel(t->historyRequest);
+    if (!t) continue;
+    for (FileLoad* load : {&t->tile, &t->summaryLoad, &t->historyLoad}) loader_.cancel(*load);
   }
 }
 
+void CityScene::reportCityError(std::string message) {
+  onError_(LoadError{FileKind::Manifest, {}, std::move(message)});
+}
+
 void CityScene::onManifest(FetchResponse response) {
-  --inFlight_;
   manifestRequest_ = 0;
   if (!response.ok()) {
     manifestFailed_ = true;
-    std::string why = response.status == 0 ? response.error : "HTTP " + std::to_string(response.status);
+    std::string why = responseProblem(response);
     if (response.status == 0 && isAbsoluteHttpUrl(manifestUrl_)) {
       why +=
           " (a server on another site must also allow this page to read its files: "
           "Access-Control-Allow-Origin)";
     }
-    onError_("The city could not be loaded from " + manifestUrl_ + ": " + why);
+    reportCityError("The city could not be loaded from " + manifestUrl_ + ": " + why);
     return;
   }
   const std::string_view text(reinterpret_cast<const char*>(response.bytes.data()), response.bytes.size());
   Result<Tileset> parsed = parseTileset(text, manifestUrl_);
   if (!parsed.ok()) {
     manifestFailed_ = true;
-    onError_("The city could not be loaded: " + parsed.error());
+    reportCityError("The city could not be loaded: " + parsed.error());
     return;
   }
   tileset_ = std::move(parsed).value();
+  index_.open(*tileset_);
   tiles_.resize(tileset_->nodes.size());
   for (auto& t : tiles_) t = std::make_unique<TileRuntime>();
   states_.assign(tileset_->nodes.size(), TileState::Unloaded);
   nodeBytes_.assign(tileset_->nodes.size(), 0);
-  nodeBytesMeasured_.assign(tileset_->nodes.size(), false);
   wasLoaded_ = std::make_unique<bool[]>(tileset_->nodes.size());
   if (tileset_->responseOutOfDate()) {
-    onError_(
+    reportCityError(
         "The response results are older than the buildings of this city (run quakeview-prep response "
         "again); colours and motion may not match the buildings.");
   }
@@ -196,269 +119,87 @@ CameraState CityScene::overviewCamera(double fovDeg) const {
 
 TileCounts CityScene::tileCounts() const {
   TileCounts c;
-  for (std::size_t i = 0; i < states_.size(); ++i) {
-    if (states_[i] == TileState::Loaded)
+  for (const auto& t : tiles_) {
+    if (t->tile.state == TileState::Loaded)
       ++c.loaded;
-    else if (states_[i] == TileState::Failed)
+    else if (t->tile.state == TileState::Failed)
       ++c.failed;
-    else if (states_[i] == TileState::Loading)
+    else if (t->tile.state == TileState::Loading)
       ++c.pending;
     // Response tiers on their way count too: the view is not complete without them.
-    if (tiles_[i]->summaryState == TileState::Loading) ++c.pending;
-    if (tiles_[i]->historyState == TileState::Loading) ++c.pending;
+    if (t->summaryLoad.state == TileState::Loading) ++c.pending;
+    if (t->historyLoad.state == TileState::Loading) ++c.pending;
   }
-  if (search_.state == TileState::Loading) ++c.pending;
-  if (citySummaryLoad_.state == TileState::Loading) ++c.pending;
+  c.pending += index_.pendingFiles();
   // Tiles the view wants but has not requested yet (the request limit) are pending as well.
   for (std::uint32_t i : selection_.wanted) {
-    if (states_[i] == TileState::Unloaded) ++c.pending;
+    if (tiles_[i]->tile.state == TileState::Unloaded) ++c.pending;
   }
   return c;
 }
 
-std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
-  const TileRuntime& t = *tiles_[node];
-  std::uint64_t total = t.bytes.size() + t.historyBytes;
-  if (t.loaded) total += t.loaded->cpuBytes + t.loaded->gpuBytes;
-  if (t.summary) {
-    total += t.summary->buildings.size() * sizeof(BuildingResponse) + t.summary->storeyPeakDrift.size() * sizeof(float);
-  }
-  return total;
+FileSpec CityScene::tileSpec(std::uint32_t node) const {
+  const TileNode& n = tileset_->nodes[node];
+  return FileSpec{FileKind::Tile, resolveUrl(manifestUrl_, n.file), n.bytes, n.crc32, n.key()};
 }
 
-std::uint64_t CityScene::memoryBytes() const {
-  std::uint64_t total = searchBytes_;
-  for (std::uint32_t i = 0; i < tiles_.size(); ++i) total += tileBytes(i);
-  return total;
+FileSpec CityScene::summarySpec(std::uint32_t node) const {
+  const TileResponseFiles& r = *tileset_->nodes[node].response;
+  return FileSpec{
+      FileKind::ResponseSummary, resolveUrl(manifestUrl_, r.summaryFile), r.summaryBytes, r.summaryCrc32, {}};
 }
 
-void CityScene::updateNodeBytes() {
-  // Resident bytes per file byte, as measured on the tiles loaded so far; before any, what the
-  // synthetic and OSM cities measure natively (coarse tiles about 9, leaves about 17: a leaf's
-  // mesh has a ring of vertices per floor).
-  constexpr double kDefaultRatio[2] = {17.0, 9.0};
-  double ratio[2];
-  for (int k = 0; k < 2; ++k) {
-    ratio[k] = fileOfResident_[k] > 0
-                   ? static_cast<double>(residentOfFile_[k]) / static_cast<double>(fileOfResident_[k])
-                   : kDefaultRatio[k];
-  }
-  for (std::uint32_t i = 0; i < nodeBytes_.size(); ++i) {
-    if (states_[i] == TileState::Loaded) {
-      // Histories come and go with the animation radius: the tile's own bytes, measured.
-      nodeBytes_[i] = tileBytes(i) - tiles_[i]->historyBytes;
-      nodeBytesMeasured_[i] = true;
-      wasLoaded_[i] = true;
-    } else if (!nodeBytesMeasured_[i]) {
-      const TileNode& n = tileset_->nodes[i];
-      nodeBytes_[i] = static_cast<std::uint64_t>(static_cast<double>(n.bytes) * ratio[n.children.empty() ? 0 : 1]);
-    }
-  }
+FileSpec CityScene::historySpec(std::uint32_t node) const {
+  const TileResponseFiles& r = *tileset_->nodes[node].response;
+  return FileSpec{
+      FileKind::ResponseHistory, resolveUrl(manifestUrl_, r.historyFile), r.historyBytes, r.historyCrc32, {}};
 }
 
-void CityScene::request(std::uint32_t node, double now) {
-  TileRuntime& t = *tiles_[node];
-  if (t.retryAt > now) return;
-  states_[node] = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, tileset_->nodes[node].file);
-  t.request = fetcher_.fetch(
-      url, [this, node](FetchResponse r) { onTile(node, std::move(r), clock_); },
-      requestTimeout(options_, tileset_->nodes[node].bytes, t.attempts));
+void CityScene::request(std::uint32_t node) {
+  // Verified bytes wait for the frame's decoding budget (finishTile).
+  const bool started =
+      loader_.start(tiles_[node]->tile, tileSpec(node), [this, node](std::vector<std::uint8_t>& bytes) {
+        tiles_[node]->bytes = std::move(bytes);
+        decodeQueue_.push_back(node);
+        return Verdict::later();
+      });
   // Its response summary travels alongside (it colours the tile's first frame): both downloads
   // overlap instead of the summary waiting for the tile to arrive and be decoded.
-  requestSummary(node);
-}
-
-void CityScene::failTile(std::uint32_t node, const std::string& message, bool transient, double now) {
-  TileRuntime& t = *tiles_[node];
-  ++t.attempts;
-  t.retryAt = now + backoffSeconds(t.attempts, transient);
-  states_[node] = TileState::Failed;
-  if (!t.errorShown) {
-    t.errorShown = true;
-    onError_("Tile " + tileset_->nodes[node].key() + " failed: " + message);
-  }
-}
-
-void CityScene::onTile(std::uint32_t node, FetchResponse response, double now) {
-  --inFlight_;
-  TileRuntime& t = *tiles_[node];
-  t.request = 0;
-  const TileNode& n = tileset_->nodes[node];
-  const std::string url = resolveUrl(manifestUrl_, n.file);
-  if (!response.ok()) {
-    const std::string why = response.status == 0 ? response.error : "HTTP " + std::to_string(response.status);
-    failTile(node, url + ": " + why, transientStatus(response.status), now);
-    return;
-  }
-  if (response.bytes.size() != n.bytes || crc32(response.bytes) != n.crc32) {
-    failTile(node,
-             url + ": " + std::to_string(response.bytes.size()) + " bytes with CRC-32 " + hex32(crc32(response.bytes)) +
-                 ", the manifest says " + std::to_string(n.bytes) + " bytes, " + hex32(n.crc32) +
-                 " (truncated, corrupt or stale)",
-             true, now);
-    return;
-  }
-  t.bytes = std::move(response.bytes);
-  decodeQueue_.push_back(node);
+  if (started) requestSummary(node);
 }
 
 void CityScene::finishTile(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   const TileNode& n = tileset_->nodes[node];
-  const std::string url = resolveUrl(manifestUrl_, n.file);
+  const FileSpec spec = tileSpec(node);
+  const std::string& url = spec.url;
   std::vector<std::uint8_t> bytes = std::move(t.bytes);
   t.bytes.clear();
   Result<CityTile> decoded = decodeCityTile(bytes, url);
   if (!decoded.ok()) {
-    failTile(node, decoded.error(), false, clock_);
+    loader_.fail(t.tile, spec, decoded.error(), false);
     return;
   }
   if (decoded->buildings.size() != n.buildings) {
-    failTile(node,
-             url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the manifest says " +
-                 std::to_string(n.buildings),
-             false, clock_);
+    loader_.fail(t.tile, spec,
+                 url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the manifest says " +
+                     std::to_string(n.buildings),
+                 false);
     return;
   }
-  auto tile = std::make_unique<LoadedTile>();
-  tile->data = std::move(decoded).value();
-  CityTile& d = tile->data;
-  tile->origin = glm::vec3(static_cast<float>(d.originX), static_cast<float>(d.originY), 0.0f);
-
-  // LOD2 models (MESH section), by building: drawn instead of the building's prisms, the skinned
-  // mesh in leaves and the simplified far mesh in coarse tiles.
-  tile->meshIndex.assign(d.buildings.size(), -1);
-  for (std::size_t k = 0; k < d.meshes.size(); ++k) {
-    if (d.meshes[k].building < d.buildings.size()) tile->meshIndex[d.meshes[k].building] = static_cast<std::int32_t>(k);
-  }
-  auto meshOf = [&tile](std::size_t b) { return tile->meshOf(static_cast<std::uint32_t>(b)); };
-
-  // Boxes per building in the city frame, then the BoxTree's Morton order for slots and mesh.
-  std::vector<Box> boxes(d.buildings.size());
-  for (std::size_t b = 0; b < d.buildings.size(); ++b) {
-    const TileBuilding& tb = d.buildings[b];
-    Box box;
-    for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
-      const TilePart& part = d.parts[p];
-      for (std::uint32_t v = part.firstVertex; v < part.firstVertex + part.vertexCount; ++v) {
-        box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.minHeightM);
-        box.expand(d.vertices[v].x + tile->origin.x, d.vertices[v].y + tile->origin.y, part.heightM);
-      }
-    }
-    if (const TileMesh* m = meshOf(b)) {
-      const float ground = tb.attributes.minHeightM;
-      for (const glm::vec3& q : d.coarse ? m->farPositions : m->positions)
-        box.expand(q.x + tile->origin.x, q.y + tile->origin.y, q.z + ground);
-    }
-    boxes[b] = box;
-  }
-  tile->tree.build(boxes);
-  const auto& order = tile->tree.order();
-  tile->idIndex.reserve(d.buildings.size());
-  for (std::uint32_t b = 0; b < d.buildings.size(); ++b) tile->idIndex.emplace(d.buildings[b].attributes.id, b);
-  tile->positionOf.resize(order.size());
-  for (std::uint32_t p = 0; p < order.size(); ++p) tile->positionOf[order[p]] = p;
-
-  const auto count = static_cast<std::uint32_t>(d.buildings.size());
-  const auto slotBase = slots_->allocate(std::max(count, 1u));
+  auto tile = std::make_unique<LoadedTile>(indexTile(std::move(decoded).value()));
+  const auto count = tile->buildingCount();
+  const auto slotBase = table_.reserveBuildings(count);
   if (!slotBase) {
-    failTile(node, "too many buildings loaded at once", true, clock_);
+    loader_.fail(t.tile, spec, "too many buildings loaded at once", true);
     return;
   }
   tile->slotBase = *slotBase;
-  if (buildingRows_.size() < slots_->highWater()) buildingRows_.resize(slots_->highWater());
-
-  // The merged mesh: one vertex ring per floor level for leaves, plain prisms for coarse tiles.
-  MeshData mesh;
-  std::vector<float> levels;
-  std::vector<std::uint32_t> ringEnds, roof, meshIndices;
-  std::vector<std::uint8_t> meshKinds;
-  for (std::uint32_t p = 0; p < order.size(); ++p) {
-    const TileBuilding& tb = d.buildings[order[p]];
-    const BuildingAttributes& a = tb.attributes;
-    const float storeyHeight = std::max(a.storeyHeightM(), 0.5f);
-    BuildingGpuRecord& row = buildingRows_[tile->slotBase + p];
-    row = BuildingGpuRecord{};
-    row.storeyHeightMeters = storeyHeight;
-    row.storeys = static_cast<float>(a.storeys);
-    row.baseZ = a.minHeightM;
-    // Results on their way: plain (not hatched as "no result") until the summary arrives.
-    if (tileset_->nodes[node].response) row.damageState = kDamagePending;
-    const TileMesh* model = meshOf(order[p]);
-    if (model != nullptr) {
-      // The LOD2 model. Its vertices lie on the floor planes it was re-meshed at (one bone per
-      // floor level): the vertex shader blends the displacements of the floors below and above
-      // each vertex by height, which are the bone weights the model stores. Its LOD1 extrusion
-      // follows (below), marked as the fallback the shader draws instead when LOD2 is switched off.
-      const std::size_t first = mesh.vertices.size();
-      const std::size_t firstTriangle = mesh.triangleCount();
-      TriangleMeshInput in;
-      in.offset = glm::vec3(0.0f, 0.0f, a.minHeightM);
-      in.slot = tile->slotBase + p;
-      if (d.coarse) {
-        meshIndices.assign(model->farTriangles.begin(), model->farTriangles.end());
-        in.positions = model->farPositions;
-        in.triangles = meshIndices;
-        appendTriangleMesh(mesh, in);
-      } else {
-        meshKinds.clear();
-        constexpr std::uint8_t kKinds[kMeshSurfaceKinds] = {kWall, kRoof, kGround, kKindFromNormal};
-        for (std::size_t k = 0; k < kMeshSurfaceKinds; ++k)
-          meshKinds.insert(meshKinds.end(), model->trianglesPerKind[k], kKinds[k]);
-        in.positions = model->positions;
-        in.triangles = model->triangles;
-        in.kinds = meshKinds;
-        appendTriangleMesh(mesh, in);
-      }
-      for (std::size_t v = first; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindModel;
-      mesh.modelTriangles += mesh.triangleCount() - firstTriangle;
-    }
-    const std::size_t firstExtruded = mesh.vertices.size();
-    const std::size_t firstExtrudedTriangle = mesh.triangleCount();
-    for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
-      const TilePart& part = d.parts[pi];
-      levels.clear();
-      if (!d.coarse) {
-        for (int k = 1; k < a.storeys && k < 1000; ++k) {
-          const float z = a.minHeightM + static_cast<float>(k) * storeyHeight;
-          if (z > part.minHeightM + 0.01f && z < part.heightM - 0.01f) levels.push_back(z);
-        }
-      }
-      ringEnds.clear();
-      std::uint32_t end = 0;
-      for (std::uint32_t r = part.firstRing; r < part.firstRing + part.ringCount; ++r) {
-        end += d.ringVertexCounts[r];
-        ringEnds.push_back(end);
-      }
-      roof.assign(d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle) * 3,
-                  d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle + part.triangleCount) * 3);
-      ExtrusionInput in;
-      in.points = std::span<const glm::vec2>(d.vertices).subspan(part.firstVertex, part.vertexCount);
-      in.ringEnds = ringEnds;
-      in.roofTriangles = roof;
-      in.baseZ = part.minHeightM;
-      in.topZ = part.heightM;
-      in.levels = levels;
-      in.slot = tile->slotBase + p;
-      appendExtrusion(mesh, in);
-    }
-    if (model != nullptr) {
-      for (std::size_t v = firstExtruded; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindFallback;
-      mesh.fallbackTriangles += mesh.triangleCount() - firstExtrudedTriangle;
-    }
-  }
+  initialBuildingRows(*tile, tileset_->nodes[node].response.has_value(), table_.edit(tile->slotBase, count));
+  const MeshData mesh = buildTileMesh(*tile, tile->slotBase);
   tile->mesh = device_.createMesh(mesh);
-  tile->gpuBytes = mesh.vertices.size() * sizeof(BuildingVertex) + mesh.indices.size() * sizeof(std::uint32_t);
-  tile->cpuBytes = d.vertices.size() * sizeof(glm::vec2) + d.roofTriangles.size() * 2 + d.ringVertexCounts.size() * 2 +
-                   d.parts.size() * sizeof(TilePart) + d.buildings.size() * (sizeof(TileBuilding) + 64) +
-                   boxes.size() * (sizeof(Box) * 2 + 12) + tile->meshIndex.size() * 4;
-  for (const TileMesh& m : d.meshes) {
-    tile->cpuBytes += sizeof(TileMesh) + m.positions.size() * (sizeof(glm::vec3) + 5) + m.triangles.size() * 4 +
-                      m.farPositions.size() * sizeof(glm::vec3) + m.farTriangles.size() * 2;
-  }
-  writeBuildingRows(tile->slotBase, count);
+  tile->gpuBytes = meshGpuBytes(mesh);
+  tile->cpuBytes = tileCpuBytes(*tile);
   {
     const int kind = tileset_->nodes[node].children.empty() ? 0 : 1;
     residentOfFile_[kind] += tile->cpuBytes + tile->gpuBytes;
@@ -467,79 +208,39 @@ void CityScene::finishTile(std::uint32_t node) {
   t.loaded = std::move(tile);
   ++residencyGeneration_;
   t.lastUsed = frame_;
-  t.attempts = 0;
-  if (t.errorShown) {
-    // It failed before and has now arrived: its error no longer stands.
-    t.errorShown = false;
-    if (onResolved_) onResolved_("Tile " + tileset_->nodes[node].key() + " failed");
-  }
-  states_[node] = TileState::Loaded;
+  loader_.succeed(t.tile, spec);  // an error it had shown is withdrawn
   applyFlags(node);
   // The summary was requested with the tile and may be here already (or may have failed).
   if (t.summary)
     applySummary(node);
-  else if (t.summaryState == TileState::Failed)
+  else if (t.summaryLoad.state == TileState::Failed)
     markNoResult(node);
   if (tileset_->nodes[node].response) requestSummary(node);
 }
 
-void CityScene::writeBuildingRows(std::uint32_t first, std::uint32_t count) {
-  dirtyFirst_ = std::min(dirtyFirst_, first);
-  dirtyEnd_ = std::max(dirtyEnd_, first + count);
-}
-
 void CityScene::requestSummary(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
-  const TileNode& n = tileset_->nodes[node];
-  if (!n.response || t.summaryState == TileState::Loading || t.summaryState == TileState::Loaded) return;
-  if (t.summaryState == TileState::Failed && t.summaryRetryAt > clock_) return;
-  t.summaryState = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, n.response->summaryFile);
-  t.summaryRequest = fetcher_.fetch(
-      url,
-      [this, node, url](FetchResponse r) {
-        --inFlight_;
-        TileRuntime& rt = *tiles_[node];
-        rt.summaryRequest = 0;
-        const TileNode& tn = tileset_->nodes[node];
-        if (!r.ok() || r.bytes.size() != tn.response->summaryBytes || crc32(r.bytes) != tn.response->summaryCrc32) {
-          rt.summaryState = TileState::Failed;
-          rt.summaryRetryAt = clock_ + backoffSeconds(++rt.summaryAttempts, true);
-          markNoResult(node);
-          if (rt.summaryAttempts > 1) return;  // reported once
-          onError_("Response summary " + url + " failed: " +
-                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                            : std::string("size or checksum differs from the manifest")));
-          return;
+  if (!tileset_->nodes[node].response) return;
+  const FileSpec spec = summarySpec(node);
+  loader_.start(
+      tiles_[node]->summaryLoad, spec,
+      [this, node, url = spec.url](std::vector<std::uint8_t>& bytes) {
+        auto decoded = decodeResponseSummary(bytes, url);
+        if (!decoded.ok()) return Verdict::rejected(decoded.error(), false);
+        if (decoded->buildings.size() != tileset_->nodes[node].buildings) {
+          return Verdict::rejected(url + ": building count differs from the city tile", false);
         }
-        auto decoded = decodeResponseSummary(r.bytes, url);
-        if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
-          rt.summaryState = TileState::Failed;
-          rt.summaryRetryAt = clock_ + backoffSeconds(++rt.summaryAttempts, false);
-          markNoResult(node);
-          if (rt.summaryAttempts > 1) return;
-          onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
-          return;
-        }
-        rt.summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
-        rt.summaryState = TileState::Loaded;
-        if (rt.summaryAttempts > 0 && onResolved_) {
-          onResolved_("Response summary " + url + " failed");
-          onResolved_(url + ":");
-        }
-        rt.summaryAttempts = 0;
+        tiles_[node]->summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
         applySummary(node);
+        return Verdict::loaded();
       },
-      requestTimeout(options_, n.response->summaryBytes, t.summaryAttempts));
+      [this, node] { markNoResult(node); });  // its buildings are hatched: no result
 }
 
 void CityScene::markNoResult(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   if (!t.loaded) return;
   const LoadedTile& tile = *t.loaded;
-  for (std::uint32_t p = 0; p < tile.positionOf.size(); ++p) buildingRows_[tile.slotBase + p].damageState = -1.0f;
-  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+  for (BuildingGpuRecord& row : table_.edit(tile.slotBase, tile.buildingCount())) row.damageState = -1.0f;
 }
 
 void CityScene::applySummary(std::uint32_t node) {
@@ -548,176 +249,95 @@ void CityScene::applySummary(std::uint32_t node) {
   const LoadedTile& tile = *t.loaded;
   for (std::size_t b = 0; b < t.summary->buildings.size() && b < tile.positionOf.size(); ++b) {
     const BuildingResponse& r = t.summary->buildings[b];
-    BuildingGpuRecord& row = buildingRows_[tile.slotBase + tile.positionOf[b]];
+    BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
     row.peakValue = r.peakDriftRatio;
     row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
   }
-  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
+  table_.changed(tile.slotBase, tile.buildingCount());
   applyFlags(node);  // damage filters need the summary
 }
 
 void CityScene::requestHistory(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
   const TileNode& n = tileset_->nodes[node];
   if (!n.response || n.response->historyFile.empty()) return;
-  if (t.historyState == TileState::Loading || t.historyState == TileState::Loaded) return;
-  if (t.historyState == TileState::Failed && t.historyRetryAt > clock_) return;
-  t.historyState = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, n.response->historyFile);
-  t.historyRequest = fetcher_.fetch(
-      url,
-      [this, node, url](FetchResponse r) {
-        --inFlight_;
-        TileRuntime& rt = *tiles_[node];
-        rt.historyRequest = 0;
-        const TileNode& tn = tileset_->nodes[node];
-        if (!r.ok() || r.bytes.size() != tn.response->historyBytes || crc32(r.bytes) != tn.response->historyCrc32) {
-          rt.historyState = TileState::Failed;
-          rt.historyRetryAt = clock_ + backoffSeconds(++rt.historyAttempts, true);
-          if (rt.historyAttempts > 1) return;  // reported once
-          onError_("Response history " + url + " failed: " +
-                   (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                            : std::string("size or checksum differs from the manifest")));
-          return;
-        }
-        auto decoded = decodeResponseHistory(r.bytes, url);
-        if (!decoded.ok() || decoded->buildings.size() != tn.buildings) {
-          rt.historyState = TileState::Failed;
-          rt.historyRetryAt = clock_ + backoffSeconds(++rt.historyAttempts, false);
-          if (rt.historyAttempts > 1) return;
-          onError_(decoded.ok() ? url + ": building count differs from the city tile" : decoded.error());
-          return;
-        }
-        rt.history = std::make_unique<ResponseHistoryTile>(std::move(decoded).value());
-        if (rt.historyAttempts > 0 && onResolved_) {
-          onResolved_("Response history " + url + " failed");
-          onResolved_(url + ":");
-        }
-        rt.historyAttempts = 0;
-        std::uint64_t bytes = 0;
-        for (const BuildingHistory& h : rt.history->buildings) {
-          bytes += sizeof(BuildingHistory) + (h.x.coordinates.size() + h.y.coordinates.size()) * 2 +
-                   (h.x.shapes.size() + h.y.shapes.size()) * 4;
-        }
-        rt.historyBytes = bytes;
-        rt.historyState = TileState::Loaded;
-        ++residencyGeneration_;
-      },
-      requestTimeout(options_, n.response->historyBytes, t.historyAttempts));
-}
-
-void CityScene::reindexAnimated() {
-  for (std::size_t k = 0; k < animated_.size(); ++k) {
-    TileRuntime& t = *tiles_[animated_[k]->ref.node];
-    if (animated_[k]->ref.index < t.animatedIndex.size()) {
-      t.animatedIndex[animated_[k]->ref.index] = static_cast<std::uint32_t>(k);
+  const FileSpec spec = historySpec(node);
+  loader_.start(tiles_[node]->historyLoad, spec, [this, node, url = spec.url](std::vector<std::uint8_t>& bytes) {
+    auto decoded = decodeResponseHistory(bytes, url);
+    if (!decoded.ok()) return Verdict::rejected(decoded.error(), false);
+    if (decoded->buildings.size() != tileset_->nodes[node].buildings) {
+      return Verdict::rejected(url + ": building count differs from the city tile", false);
     }
-  }
-}
-
-void CityScene::evict(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
-  ++residencyGeneration_;
-  if (t.loaded) {
-    // Buildings of this tile stop animating first (they hold floor rows).
-    for (auto& a : animated_) {
-      if (a && a->ref.node == node) {
-        floorSlots_->release(a->floorBase, a->rows);
-        a.reset();
-      }
+    TileRuntime& t = *tiles_[node];
+    t.history = std::make_unique<ResponseHistoryTile>(std::move(decoded).value());
+    std::uint64_t historyBytes = 0;
+    for (const BuildingHistory& h : t.history->buildings) {
+      historyBytes += sizeof(BuildingHistory) + (h.x.coordinates.size() + h.y.coordinates.size()) * 2 +
+                      (h.x.shapes.size() + h.y.shapes.size()) * 4;
     }
-    animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
-    t.animatedIndex.clear();
-    reindexAnimated();
-    if (t.loaded->mesh) device_.destroyMesh(t.loaded->mesh);
-    slots_->release(t.loaded->slotBase,
-                    std::max<std::uint32_t>(1, static_cast<std::uint32_t>(t.loaded->positionOf.size())));
-    t.loaded.reset();
-  }
-  t.summary.reset();
-  t.summaryState = TileState::Unloaded;
-  t.history.reset();
-  t.historyBytes = 0;
-  t.historyState = TileState::Unloaded;
-  states_[node] = TileState::Unloaded;
-}
-
-void CityScene::enforceMemoryBudget() {
-  std::uint64_t total = memoryBytes();
-  if (total <= options_.memoryBudgetBytes) return;
-  // Histories outside the animation radius go first (re-fetched when needed), then whole tiles,
-  // least recently used first; nothing the current frame uses is evicted.
-  std::vector<std::uint32_t> candidates;
-  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
-    if (tiles_[i]->history && tiles_[i]->historyUsed < frame_) {
-      total -= tiles_[i]->historyBytes;
-      tiles_[i]->history.reset();
-      ++residencyGeneration_;
-      tiles_[i]->historyBytes = 0;
-      tiles_[i]->historyState = TileState::Unloaded;
-      if (total <= options_.memoryBudgetBytes) return;
-    }
-    if (tiles_[i]->loaded && tiles_[i]->lastUsed < frame_) candidates.push_back(i);
-  }
-  std::sort(candidates.begin(), candidates.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return tiles_[a]->lastUsed < tiles_[b]->lastUsed; });
-  for (std::uint32_t i : candidates) {
-    if (total <= options_.memoryBudgetBytes) break;
-    const std::uint64_t bytes = tileBytes(i);
-    evict(i);
-    total -= std::min(total, bytes);
-  }
-  if (total <= options_.memoryBudgetBytes) return;
-  // Still over: the coarse tiles this frame replaced by their children, largest first. The
-  // selector passes through an evicted tile to its children instead of loading it again.
-  candidates.clear();
-  for (std::uint32_t i : selection_.replaced) {
-    if (tiles_[i]->loaded && std::find(detailWanted_.begin(), detailWanted_.end(), i) == detailWanted_.end())
-      candidates.push_back(i);
-  }
-  std::sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) {
-    const std::uint64_t ba = tileBytes(a), bb = tileBytes(b);
-    return ba != bb ? ba > bb : a < b;
+    t.historyBytes = historyBytes;
+    ++residencyGeneration_;
+    return Verdict::loaded();
   });
-  for (std::uint32_t i : candidates) {
-    if (total <= options_.memoryBudgetBytes) break;
-    const std::uint64_t bytes = tileBytes(i);
-    evict(i);
-    total -= std::min(total, bytes);
-  }
 }
 
 void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs& times, FrameCounts& counts,
                        std::vector<DrawItem>& items) {
   ++frame_;
-  const auto frameStart = Clock::now();
+  const double frameStart = clock_.nowSeconds();
+  loader_.options() = loaderOptions(options_);
   fetcher_.poll();
   if (!tileset_) {
     settled_ = manifestFailed_;
     return;
   }
-  clock_ = static_cast<double>(std::chrono::duration<double>(frameStart.time_since_epoch()).count());
+  double t0 = clock_.nowSeconds();
+  decodeArrived(frameStart);
+  const double streamingMs = msSince(clock_, t0);
 
+  t0 = clock_.nowSeconds();
+  selectAndRequest(view);
+  times.lod += msSince(clock_, t0);
+
+  t0 = clock_.nowSeconds();
+  counts.buildingsVisible += cull(view.frustum(), items);
+  countDamageInView();
+  times.cull += msSince(clock_, t0);
+
+  t0 = clock_.nowSeconds();
+  animate(view.eye(), timeSeconds, counts);
+  times.animate += msSince(clock_, t0);
+  t0 = clock_.nowSeconds();
+  enforceMemoryBudget();
+  const double evictMs = msSince(clock_, t0);
+
+  // Upload the changed rows of the building table and the whole used floor table.
+  t0 = clock_.nowSeconds();
+  table_.upload(device_, !animated_.empty());
+  times.upload += msSince(clock_, t0) + streamingMs + evictMs;
+
+  counts.buildingsLoaded += static_cast<std::uint32_t>(loadedBuildings());
+  settled_ = selection_.complete() && decodeQueue_.empty() && responsesReady();
+}
+
+void CityScene::decodeArrived(double frameStart) {
   // Decode and mesh what arrived, within the time budget (at least one tile per frame), before
   // choosing tiles: a tile decoded now lets its children be requested in this same frame. When
   // frames are slow anyway (a software renderer drawing a million triangles), the budget grows
   // with the frame interval, so loading is not held back by drawing.
-  auto t0 = Clock::now();
-  const double intervalMs =
-      lastUpdate_ ? std::chrono::duration<double, std::milli>(frameStart - *lastUpdate_).count() : 0.0;
+  const double t0 = clock_.nowSeconds();
+  const double intervalMs = lastUpdate_ ? (frameStart - *lastUpdate_) * 1000.0 : 0.0;
   lastUpdate_ = frameStart;
   const double budgetMs = std::max(options_.workBudgetMs, std::min(0.5 * intervalMs, 200.0));
   while (!decodeQueue_.empty()) {
     const std::uint32_t node = decodeQueue_.front();
     decodeQueue_.erase(decodeQueue_.begin());
     finishTile(node);
-    if (msSince(t0) > budgetMs) break;
+    if (msSince(clock_, t0) > budgetMs) break;
   }
-  const double streamingMs = msSince(t0);
+}
 
+void CityScene::selectAndRequest(const CameraView& view) {
   // LOD: which tiles to draw and to load.
-  t0 = Clock::now();
   TileSelectorOptions selectorOptions;
   selectorOptions.maxScreenSpaceError = options_.maxScreenSpaceError;
   selectorOptions.maxDrawTiles = options_.maxDrawTiles;
@@ -731,43 +351,44 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   selectorOptions.nodeBytes = nodeBytes_;
   selectorOptions.wasLoaded = std::span<const bool>(wasLoaded_.get(), nodeBytes_.size());
   selectorOptions.memoryBudgetBytes =
-      std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, searchBytes_ + histories)});
+      std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, index_.bytes() + histories)});
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) states_[i] = tiles_[i]->tile.state;
   selectTiles(*tileset_, states_, view, selectorOptions, selection_);
   for (std::uint32_t i : selection_.used) tiles_[i]->lastUsed = frame_;
   for (std::uint32_t i : selection_.wanted) tiles_[i]->lastUsed = frame_;
   for (std::uint32_t i : selection_.wanted) {
-    if (inFlight_ >= options_.maxRequestsInFlight) break;
-    if (states_[i] == TileState::Unloaded) request(i, clock_);
+    if (!loader_.hasRoom()) break;
+    if (tiles_[i]->tile.state == TileState::Unloaded) request(i);
   }
   // The selected building's leaf, wherever the camera is (inspection needs its attributes and
   // history).
   for (std::uint32_t i : detailWanted_) {
     tiles_[i]->lastUsed = frame_;
-    if (states_[i] == TileState::Unloaded) request(i, clock_);
+    if (tiles_[i]->tile.state == TileState::Unloaded) request(i);
   }
   detailWanted_.erase(std::remove_if(detailWanted_.begin(), detailWanted_.end(),
                                      [&](std::uint32_t i) {
-                                       return states_[i] == TileState::Loaded || states_[i] == TileState::Failed;
+                                       const TileState state = tiles_[i]->tile.state;
+                                       return state == TileState::Loaded || state == TileState::Failed;
                                      }),
                       detailWanted_.end());
   // Once the view has everything it asked for, the search index comes in the background (names
   // and addresses for search, the inspection window and exports).
-  if (inFlight_ == 0 && decodeQueue_.empty()) requestSearchIndex();
-  retryCityFiles();
+  if (loader_.inFlight() == 0 && decodeQueue_.empty()) index_.request();
+  index_.retry();
   // Failed tiles (and their response summaries) the view still uses are retried with backoff
   // (the server may recover).
   for (std::uint32_t i : selection_.used) {
-    if (tiles_[i]->summaryState == TileState::Failed && tiles_[i]->loaded) requestSummary(i);
+    if (tiles_[i]->summaryLoad.state == TileState::Failed && tiles_[i]->loaded) requestSummary(i);
   }
   for (std::uint32_t i : selection_.used) {
-    if (inFlight_ >= options_.maxRequestsInFlight) break;
-    if (states_[i] == TileState::Failed && tiles_[i]->retryAt <= clock_) request(i, clock_);
+    if (!loader_.hasRoom()) break;
+    if (tiles_[i]->tile.state == TileState::Failed) request(i);  // once its backoff has passed
   }
-  times.lod += msSince(t0);
+}
 
-  // Cull: tile boxes first, then the buildings of partly visible tiles.
-  t0 = Clock::now();
-  const Frustum& frustum = view.frustum();
+std::uint32_t CityScene::cull(const Frustum& frustum, std::vector<DrawItem>& items) {
+  // Tile boxes first, then the buildings of partly visible tiles.
   std::uint32_t visibleBuildings = 0;
   for (std::uint32_t i : selection_.draw) {
     TileRuntime& t = *tiles_[i];
@@ -783,6 +404,10 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     for (const IndexRange& r : t.visible) visibleBuildings += r.end - r.begin;
     items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin});
   }
+  return visibleBuildings;
+}
+
+void CityScene::countDamageInView() {
   // Damage states in view (for the panel), from the summaries of the drawn tiles: counted again
   // only when the visible sets or the summaries behind them changed.
   std::uint64_t viewSignature = 1469598103934665603ull;  // FNV-1a
@@ -816,688 +441,33 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
       }
     }
   }
-  counts.buildingsVisible += visibleBuildings;
-  times.cull += msSince(t0);
+}
 
-  // Animate.
-  t0 = Clock::now();
-  animate(view.eye(), timeSeconds, counts);
-  times.animate += msSince(t0);
-  t0 = Clock::now();
-  enforceMemoryBudget();
-  const double evictMs = msSince(t0);
-
-  // Upload the changed rows of the building table and the whole used floor table.
-  t0 = Clock::now();
-  if (dirtyFirst_ < dirtyEnd_) {
-    dirtyEnd_ = std::min<std::uint32_t>(dirtyEnd_, static_cast<std::uint32_t>(buildingRows_.size()));
-    device_.writeBuildings(dirtyFirst_, std::span(buildingRows_).subspan(dirtyFirst_, dirtyEnd_ - dirtyFirst_));
-  }
-  dirtyFirst_ = UINT32_MAX;
-  dirtyEnd_ = 0;
-  if (!animated_.empty()) {
-    device_.writeFloors(
-        0, std::span(floorRows_).first(std::min<std::size_t>(floorRows_.size(), floorSlots_->highWater())));
-  }
-  times.upload += msSince(t0) + streamingMs + evictMs;
-
+std::uint64_t CityScene::loadedBuildings() const {
   // Buildings available for drawing: every building of each maximal loaded subtree.
   std::uint64_t loaded = 0;
   std::vector<std::uint32_t> stack = {0};
   while (!stack.empty()) {
     const std::uint32_t i = stack.back();
     stack.pop_back();
-    if (states_[i] == TileState::Loaded) {
+    if (tiles_[i]->tile.state == TileState::Loaded) {
       loaded += tileset_->nodes[i].subtreeBuildings;
       continue;
     }
     for (std::uint32_t c : tileset_->nodes[i].children) stack.push_back(c);
   }
-  counts.buildingsLoaded += static_cast<std::uint32_t>(loaded);
+  return loaded;
+}
 
-  bool responsesReady = true;
+bool CityScene::responsesReady() const {
+  bool ready = true;
   for (std::uint32_t i : selection_.draw) {
-    if (tiles_[i]->summaryState == TileState::Loading) responsesReady = false;
+    if (tiles_[i]->summaryLoad.state == TileState::Loading) ready = false;
   }
   for (const auto& t : tiles_) {
-    if (t->historyState == TileState::Loading) responsesReady = false;
+    if (t->historyLoad.state == TileState::Loading) ready = false;
   }
-  settled_ = selection_.complete() && decodeQueue_.empty() && responsesReady;
-}
-
-void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts) {
-  const float radius = options_.animationRadiusM;
-  // The tiles within the radius keep (or fetch) their histories this frame. What they animate is
-  // chosen again only when something it depends on changed: the eye, the radius, the cap, a
-  // tile's residency or visible set. A still camera while playing costs only the sampling below.
-  std::uint64_t signature = 1469598103934665603ull;  // FNV-1a over the inputs of the choice
-  auto mix = [&signature](std::uint64_t v) {
-    signature ^= v;
-    signature *= 1099511628211ull;
-  };
-  auto bitsOf = [](float v) {
-    std::uint32_t b = 0;
-    std::memcpy(&b, &v, sizeof b);
-    return static_cast<std::uint64_t>(b);
-  };
-  mix(bitsOf(eye.x));
-  mix(bitsOf(eye.y));
-  mix(bitsOf(eye.z));
-  mix(bitsOf(radius));
-  mix(options_.maxAnimatedBuildings);
-  mix(residencyGeneration_);
-  mix(viewSignature_);  // the visible sets (culling) of every drawn tile
-  std::vector<std::uint32_t>& inRadius = animationTiles_;
-  inRadius.clear();
-  if (radius > 0.0f) {
-    for (std::uint32_t i : selection_.draw) {
-      TileRuntime& t = *tiles_[i];
-      const TileNode& n = tileset_->nodes[i];
-      if (!t.loaded || n.coarse || !n.response || n.response->historyFile.empty()) continue;
-      const float tileDistance =
-          std::max(0.0f, std::hypot(std::max({n.bounds.minX - eye.x, 0.0f, eye.x - n.bounds.maxX}),
-                                    std::max({n.bounds.minY - eye.y, 0.0f, eye.y - n.bounds.maxY}),
-                                    std::max(eye.z - n.maxHeightM, 0.0f)));
-      if (static_cast<double>(tileDistance) > static_cast<double>(radius)) continue;
-      requestHistory(i);
-      t.historyUsed = frame_;
-      if (t.historyState != TileState::Loaded) continue;
-      inRadius.push_back(i);
-      mix(i);
-    }
-  }
-  if (signature != animationSignature_ || animated_.empty() != inRadius.empty() ||
-      samplers_.size() != animated_.size()) {
-    animationSignature_ = signature;
-    chooseAnimated(eye, inRadius);
-  }
-  if (floorRows_.size() < floorSlots_->highWater()) floorRows_.resize(floorSlots_->highWater());
-
-  // Every animated building's floors at this time, straight into its rows of the floor table,
-  // in two passes. What the sampling needs was packed in animation order when the buildings were
-  // chosen (read as one stream); only the coordinates around t are scattered over the heap. The
-  // first pass turns them into modal coordinates. Each building keeps a window of the four
-  // samples it interpolates: from one frame to the next t moves by a fraction of a sample, so
-  // most frames reuse the window and the rest fetch one new sample (a cache miss the short loop
-  // lets the processor overlap with others; WebAssembly has no prefetch). The second pass turns
-  // modal coordinates into floor displacements from the packed shapes.
-  const std::size_t count = animated_.size();
-  modal_.resize(count * 16);
-  for (std::size_t j = 0; j < count; ++j) {
-    AnimatedSampler& sampler = samplers_[j];
-    float* out = modal_.data() + j * 16;
-    if (sampler.sampleCount == 0) continue;
-    const HistoryTap tap = historyTap(sampler.startSeconds, sampler.sampleRateHz, sampler.sampleCount, timeSeconds);
-    const std::uint32_t wanted[4] = {tap.i0, tap.i1, tap.i2, tap.i3};
-    if (!std::equal(wanted, wanted + 4, sampler.window)) {
-      SampleWindow& w = windows_[j];
-      SampleWindow fresh;
-      for (int slot = 0; slot < 4; ++slot) {
-        const std::uint32_t i = wanted[slot];
-        const auto kept = std::find(sampler.window, sampler.window + 4, i);
-        if (kept != sampler.window + 4) {
-          const auto from = static_cast<std::size_t>(kept - sampler.window);
-          std::copy_n(w.x + from * 8, 8, fresh.x + slot * 8);
-          std::copy_n(w.y + from * 8, 8, fresh.y + slot * 8);
-        } else {
-          std::copy_n(sampler.x + std::size_t{i} * sampler.modesX, sampler.modesX, fresh.x + slot * 8);
-          std::copy_n(sampler.y + std::size_t{i} * sampler.modesY, sampler.modesY, fresh.y + slot * 8);
-        }
-      }
-      w = fresh;
-      std::copy(wanted, wanted + 4, sampler.window);
-    }
-    const SampleWindow& w = windows_[j];
-    const HistoryTap local{0, 1, 2, 3, tap.w0, tap.w1, tap.w2, tap.w3};  // the window's rows, 8 apart
-    const float* scalesX = samplerArena_.data() + sampler.arenaOffset;
-    const float* scalesY = scalesX + sampler.modesX + std::size_t{sampler.floors} * sampler.modesX;
-    modalCoordinates(w.x, 8, scalesX, local, out, sampler.modesX);
-    modalCoordinates(w.y, 8, scalesY, local, out + 8, sampler.modesY);
-  }
-  for (std::size_t j = 0; j < count; ++j) {
-    const Animated& a = *animated_[j];
-    const AnimatedSampler& sampler = samplers_[j];
-    FloorGpuRecord* rows = floorRows_.data() + a.floorBase;
-    const std::size_t floors = std::min<std::size_t>(sampler.floors, a.rows - 1);
-    rows[0].dxMeters = rows[0].dyMeters = 0.0f;
-    if (sampler.sampleCount == 0 || floors == 0) {
-      for (std::size_t k = 1; k < a.rows; ++k) rows[k].dxMeters = rows[k].dyMeters = 0.0f;
-    } else {
-      // The packed arena holds scales x, shapes x, scales y, shapes y.
-      const std::size_t mx = sampler.modesX, my = sampler.modesY;
-      const float* shapesX = samplerArena_.data() + sampler.arenaOffset + mx;
-      const float* shapesY = shapesX + std::size_t{sampler.floors} * mx + my;
-      const float* cx = modal_.data() + j * 16;
-      const float* cy = cx + 8;
-      floorDisplacements(shapesX, cx, mx, shapesY, cy, my, floors, rows + 1);
-    }
-    if (!a.peaksWritten) {
-      // The peak drifts do not change with time: written once, when the summary is there.
-      const TileRuntime& t = *tiles_[a.ref.node];
-      if (t.summary) {
-        if (a.ref.index < t.summary->buildings.size()) {
-          const BuildingResponse& summary = t.summary->buildings[a.ref.index];
-          for (std::uint32_t k = 0; k < a.rows; ++k) {
-            rows[k].peakDriftAbove = k < summary.storeys ? t.summary->storeyPeakDrift[summary.firstStorey + k] : 0.0f;
-          }
-        }
-        animated_[j]->peaksWritten = true;
-      }
-    }
-  }
-  counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
-  counts.modelsAnimated += modelsAnimated_;
-}
-
-void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles) {
-  const float radius = options_.animationRadiusM;
-  struct Candidate {
-    float distance2;
-    std::uint32_t node, index, position;
-  };
-  std::vector<Candidate> candidates;
-  const double r2 = static_cast<double>(radius) * radius;
-  for (std::uint32_t i : tiles) {
-    const TileRuntime& t = *tiles_[i];
-    const LoadedTile& tile = *t.loaded;
-    for (const IndexRange& range : t.visible) {
-      for (std::uint32_t p = range.begin; p < range.end; ++p) {
-        const std::uint32_t b = tile.tree.order()[p];
-        const BuildingAttributes& a = tile.data.buildings[b].attributes;
-        // Distance from the eye to the building's axis at mid-height.
-        const double cx = a.centroidX + tile.data.originX - static_cast<double>(eye.x);
-        const double cy = a.centroidY + tile.data.originY - static_cast<double>(eye.y);
-        const double cz = 0.5 * static_cast<double>(a.heightM + a.minHeightM) - static_cast<double>(eye.z);
-        const double d2 = cx * cx + cy * cy + cz * cz;
-        if (d2 <= r2 && t.history->buildings[b].floors == a.storeys) {
-          candidates.push_back({static_cast<float>(d2), i, b, p});
-        }
-      }
-    }
-  }
-  if (candidates.size() > options_.maxAnimatedBuildings) {
-    std::nth_element(candidates.begin(),
-                     candidates.begin() + static_cast<std::ptrdiff_t>(options_.maxAnimatedBuildings), candidates.end(),
-                     [](const Candidate& a, const Candidate& b) { return a.distance2 < b.distance2; });
-    candidates.resize(options_.maxAnimatedBuildings);
-  }
-
-  // Keep the floor rows of buildings that stay animated; release the rest; allocate the new.
-  // (Each tile maps its buildings to their entries in animated_: no hashing.)
-  ++choice_;
-  for (const Candidate& c : candidates) {
-    TileRuntime& t = *tiles_[c.node];
-    const LoadedTile& tile = *t.loaded;
-    if (t.animatedIndex.size() != tile.data.buildings.size()) {
-      t.animatedIndex.assign(tile.data.buildings.size(), kNotAnimated);
-    }
-    if (const std::uint32_t k = t.animatedIndex[c.index]; k != kNotAnimated) {
-      animated_[k]->choice = choice_;
-      continue;
-    }
-    const std::uint32_t rows = tile.data.buildings[c.index].attributes.storeys + 1u;
-    const auto base = floorSlots_->allocate(rows);
-    if (!base) break;
-    auto a = std::make_unique<Animated>();
-    a->ref = {c.node, c.index};
-    a->slot = tile.slotBase + c.position;
-    a->floorBase = *base;
-    a->rows = rows;
-    a->choice = choice_;
-    buildingRows_[a->slot].floorBase = static_cast<float>(*base);
-    writeBuildingRows(a->slot, 1);
-    t.animatedIndex[c.index] = static_cast<std::uint32_t>(animated_.size());
-    animated_.push_back(std::move(a));
-  }
-  bool released = false;
-  for (auto& a : animated_) {
-    if (a->choice == choice_) continue;
-    TileRuntime& t = *tiles_[a->ref.node];
-    if (t.loaded) {
-      buildingRows_[a->slot].floorBase = -1.0f;
-      writeBuildingRows(a->slot, 1);
-    }
-    if (a->ref.index < t.animatedIndex.size()) t.animatedIndex[a->ref.index] = kNotAnimated;
-    floorSlots_->release(a->floorBase, a->rows);
-    a.reset();
-    released = true;
-  }
-  if (released) {
-    animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
-    reindexAnimated();
-  }
-  // Their histories, in the same order, for the sampling loop (valid until the next choice: any
-  // change of residency changes the signature, and the choice is made again before sampling).
-  samplers_.resize(animated_.size());
-  windows_.resize(animated_.size());
-  samplerArena_.clear();
-  modelsAnimated_ = 0;
-  for (std::size_t j = 0; j < animated_.size(); ++j) {
-    if (tiles_[animated_[j]->ref.node]->loaded->meshOf(animated_[j]->ref.index) != nullptr) ++modelsAnimated_;
-    const BuildingHistory& h = tiles_[animated_[j]->ref.node]->history->buildings[animated_[j]->ref.index];
-    AnimatedSampler& sampler = samplers_[j];
-    sampler.x = h.x.coordinates.data();
-    sampler.y = h.y.coordinates.data();
-    sampler.startSeconds = h.startSeconds;
-    sampler.sampleRateHz = h.sampleRateHz;
-    sampler.sampleCount = h.sampleCount;
-    sampler.floors = h.floors;
-    sampler.modesX = h.x.modes;
-    sampler.modesY = h.y.modes;
-    sampler.arenaOffset = static_cast<std::uint32_t>(samplerArena_.size());
-    std::fill(sampler.window, sampler.window + 4, UINT32_MAX);  // nothing in its window yet
-    for (const HistoryDirection* d : {&h.x, &h.y}) {
-      samplerArena_.insert(samplerArena_.end(), d->scales.begin(), d->scales.end());
-      samplerArena_.insert(samplerArena_.end(), d->shapes.begin(), d->shapes.end());
-    }
-  }
-}
-
-// ---------------------------------------------------------------------------------------------
-// Selection, filters, picking, search.
-
-namespace {
-
-void setFlag(BuildingGpuRecord& row, unsigned bit, bool on) {
-  auto flags = static_cast<unsigned>(row.flags);
-  flags = on ? (flags | bit) : (flags & ~bit);
-  row.flags = static_cast<float>(flags);
-}
-
-}  // namespace
-
-bool BuildingFilters::passes(Importance importance, std::string_view buildingUse, const BuildingResponse* r) const {
-  if (criticalOnly && importance != Importance::Critical) return false;
-  if (!use.empty() && buildingUse != use) return false;
-  if (minDamage >= 0) {
-    if (r == nullptr || r->damage == DamageState::NoResult) return false;
-    if (static_cast<int>(r->damage) < minDamage) return false;
-  }
-  return true;
-}
-
-void CityScene::applyFlags(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
-  if (!t.loaded) return;
-  const LoadedTile& tile = *t.loaded;
-  const bool filtering = filters_.active();
-  for (std::uint32_t b = 0; b < tile.data.buildings.size(); ++b) {
-    BuildingGpuRecord& row = buildingRows_[tile.slotBase + tile.positionOf[b]];
-    const BuildingAttributes& a = tile.data.buildings[b].attributes;
-    const BuildingResponse* r = t.summary && b < t.summary->buildings.size() ? &t.summary->buildings[b] : nullptr;
-    setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
-    setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r));
-    setFlag(row, kFlagHidden, hiddenByLod(a.lod));
-  }
-  writeBuildingRows(tile.slotBase, static_cast<std::uint32_t>(tile.positionOf.size()));
-}
-
-void CityScene::applyFlagsEverywhere() {
-  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
-    if (tiles_[i]->loaded) applyFlags(i);
-  }
-}
-
-bool CityScene::hiddenByLod(std::uint8_t lod) const {
-  // A LOD2 building with models switched off is drawn as its LOD1 extrusion, like the LOD1 ones.
-  return lod == 2 && showLod2_ ? false : !showLod1_;
-}
-
-void CityScene::setLodVisibility(bool lod1, bool lod2) {
-  if (lod1 == showLod1_ && lod2 == showLod2_) return;
-  showLod1_ = lod1;
-  showLod2_ = lod2;
-  applyFlagsEverywhere();
-}
-
-void CityScene::setFilters(const BuildingFilters& filters) {
-  if (filters == filters_) return;
-  filters_ = filters;
-  applyFlagsEverywhere();
-}
-
-std::optional<BuildingRef> CityScene::find(std::string_view id) const {
-  std::optional<BuildingRef> coarse;
-  const std::string key(id);
-  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
-    const TileRuntime& t = *tiles_[i];
-    if (!t.loaded) continue;
-    const auto it = t.loaded->idIndex.find(key);
-    if (it == t.loaded->idIndex.end()) continue;
-    if (!t.loaded->data.coarse) return BuildingRef{i, it->second};
-    // Of the coarse copies, the deepest (the most detailed) wins.
-    if (!coarse || tileset_->nodes[i].level > tileset_->nodes[coarse->node].level) coarse = BuildingRef{i, it->second};
-  }
-  return coarse;
-}
-
-std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
-  if (ref.node >= tiles_.size() || !tiles_[ref.node]->loaded) return std::nullopt;
-  const TileRuntime& t = *tiles_[ref.node];
-  const CityTile& d = t.loaded->data;
-  if (ref.index >= d.buildings.size()) return std::nullopt;
-  BuildingInfo info;
-  info.attributes = d.buildings[ref.index].attributes;
-  info.attributes.centroidX += d.originX;
-  info.attributes.centroidY += d.originY;
-  info.detailed = !d.coarse;
-  info.tile = tileset_->nodes[ref.node].key();
-  if (const TileMesh* m = t.loaded->meshOf(ref.index)) {
-    info.modelSource = meshSourceName(m->source);
-    info.modelTriangles = static_cast<std::uint32_t>((d.coarse ? m->farTriangles.size() : m->triangles.size()) / 3);
-  }
-  // Its results: from this tile's summary, or, while that is on its way (a leaf just loaded for
-  // the selection), from another loaded copy's (the coarse tiles above carry the same results).
-  const TileRuntime* source = &t;
-  std::uint32_t index = ref.index;
-  if (!t.summary && tileset_->nodes[ref.node].response) {
-    const std::string& id = d.buildings[ref.index].attributes.id;
-    for (const auto& other : tiles_) {
-      if (!other->loaded || !other->summary) continue;
-      const auto it = other->loaded->idIndex.find(id);
-      if (it == other->loaded->idIndex.end()) continue;
-      source = other.get();
-      index = it->second;
-      break;
-    }
-  }
-  if (source->summary && index < source->summary->buildings.size()) {
-    info.hasResponse = true;
-    info.response = source->summary->buildings[index];
-    const auto first =
-        source->summary->storeyPeakDrift.begin() + static_cast<std::ptrdiff_t>(info.response.firstStorey);
-    info.storeyPeakDrift.assign(first, first + static_cast<std::ptrdiff_t>(info.response.storeys));
-  }
-  return info;
-}
-
-const SearchEntry* CityScene::indexEntry(std::string_view id) const {
-  if (search_.state != TileState::Loaded) return nullptr;
-  for (const SearchEntry& e : searchIndex_) {
-    if (e.id == id) return &e;
-  }
-  return nullptr;
-}
-
-bool CityScene::select(const std::string& id) {
-  if (id == selected_) return true;
-  const auto ref = id.empty() || !tileset_ ? std::nullopt : find(id);
-  const SearchEntry* entry = id.empty() || ref ? nullptr : indexEntry(id);
-  if (!id.empty() && !ref && entry == nullptr) return false;
-  selected_ = id;
-  series_.reset();
-  seriesFor_.clear();
-  detailWanted_.clear();
-  applyFlagsEverywhere();
-  if (id.empty() || !tileset_) return true;
-  if (entry != nullptr) {
-    // In no loaded tile (a large city's coarse tiles hold only its largest buildings): its leaf,
-    // from the index.
-    detailWanted_.push_back(entry->leaf);
-  } else if (tiles_[ref->node]->loaded->data.coarse) {
-    // Its leaf (full attributes and history): the leaves whose bounds hold its centroid.
-    const auto info = this->info(*ref);
-    for (std::uint32_t i = 0; i < tileset_->nodes.size(); ++i) {
-      const TileNode& n = tileset_->nodes[i];
-      if (n.children.empty() && n.bounds.contains(static_cast<float>(info->attributes.centroidX),
-                                                  static_cast<float>(info->attributes.centroidY))) {
-        detailWanted_.push_back(i);
-      }
-    }
-  }
-  return true;
-}
-
-std::optional<BuildingSeries> CityScene::selectionSeries(std::size_t samples) {
-  if (selected_.empty() || samples < 2) return std::nullopt;
-  if (series_ && seriesFor_ == selected_ && series_->roofDisplacementM.size() == samples) return series_;
-  const auto ref = find(selected_);
-  if (!ref) return std::nullopt;
-  TileRuntime& t = *tiles_[ref->node];
-  if (t.loaded->data.coarse) return std::nullopt;  // the leaf is on its way
-  if (t.historyState == TileState::Unloaded || t.historyState == TileState::Failed) requestHistory(ref->node);
-  t.historyUsed = frame_;
-  if (t.historyState != TileState::Loaded || ref->index >= t.history->buildings.size()) return std::nullopt;
-  const BuildingHistory& h = t.history->buildings[ref->index];
-  const BuildingAttributes& a = t.loaded->data.buildings[ref->index].attributes;
-  if (h.floors == 0) return std::nullopt;
-  BuildingSeries s;
-  s.durationSeconds = duration();
-  std::vector<float> x(h.floors + 1u), y(h.floors + 1u);
-  const float storeyHeight = std::max(a.storeyHeightM(), 0.1f);
-  for (std::size_t i = 0; i < samples; ++i) {
-    const double time = s.durationSeconds * static_cast<double>(i) / static_cast<double>(samples - 1);
-    sampleHistory(h, time, x, y);
-    s.roofDisplacementM.push_back(std::hypot(x[h.floors], y[h.floors]));
-    float drift = 0.0f;
-    for (std::size_t k = 0; k < h.floors; ++k) {
-      drift = std::max(drift, std::hypot(x[k + 1] - x[k], y[k + 1] - y[k]) / storeyHeight);
-    }
-    s.maxDriftRatio.push_back(drift);
-  }
-  series_ = std::move(s);
-  seriesFor_ = selected_;
-  return series_;
-}
-
-std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::vec3& direction) const {
-  float best = INFINITY;
-  std::optional<BuildingRef> hit;
-  std::vector<std::pair<float, std::uint32_t>> candidates;
-  const float o[3] = {origin.x, origin.y, origin.z};
-  const float dir[3] = {direction.x, direction.y, direction.z};
-  for (std::uint32_t node : selection_.draw) {
-    const TileRuntime& t = *tiles_[node];
-    if (!t.loaded) continue;
-    const LoadedTile& tile = *t.loaded;
-    candidates.clear();
-    tile.tree.raycast(origin, direction, best == INFINITY ? 1.0e7f : best, candidates);
-    for (const auto& [entry, position] : candidates) {
-      if (entry > best) break;  // boxes come nearest first: nothing further can be nearer
-      const std::uint32_t b = tile.tree.order()[position];
-      const TileBuilding& tb = tile.data.buildings[b];
-      if (hiddenByLod(tb.attributes.lod)) continue;  // hidden: not pickable
-      if (const TileMesh* m = showLod2_ ? tile.meshOf(b) : nullptr) {
-        // A LOD2 model is picked on its own triangles (the far mesh in coarse tiles).
-        const glm::vec3 offset(tile.origin.x, tile.origin.y, tb.attributes.minHeightM);
-        const auto tHit = tile.data.coarse
-                              ? rayTriangles<std::uint16_t>(o, dir, m->farPositions, m->farTriangles, offset)
-                              : rayTriangles<std::uint32_t>(o, dir, m->positions, m->triangles, offset);
-        if (tHit && *tHit < best) {
-          best = *tHit;
-          hit = BuildingRef{node, b};
-        }
-        continue;
-      }
-      for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
-        const TilePart& part = tile.data.parts[p];
-        PrismView prism;
-        prism.xy = &tile.data.vertices[part.firstVertex].x;
-        prism.ringCounts = &tile.data.ringVertexCounts[part.firstRing];
-        prism.ringCount = part.ringCount;
-        prism.offsetX = tile.origin.x;
-        prism.offsetY = tile.origin.y;
-        prism.minZ = part.minHeightM;
-        prism.maxZ = part.heightM;
-        if (const auto tHit = rayPrism(o, dir, prism); tHit && *tHit < best) {
-          best = *tHit;
-          hit = BuildingRef{node, b};
-        }
-      }
-    }
-  }
-  return hit;
-}
-
-void CityScene::fetchCityFile(CityFileLoad& load, const CityFile& file, const std::string& label,
-                              std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept) {
-  if (load.state != TileState::Unloaded) return;
-  load.state = TileState::Loading;
-  ++inFlight_;
-  const std::string url = resolveUrl(manifestUrl_, file.file);
-  fetcher_.fetch(
-      url,
-      [this, &load, file, label, url, accept = std::move(accept)](FetchResponse r) {
-        --inFlight_;
-        std::string problem;
-        bool transient = true;
-        if (!r.ok() || r.bytes.size() != file.bytes || crc32(r.bytes) != file.crc32) {
-          problem = label + " " + url + " failed: " +
-                    (!r.ok() ? (r.status == 0 ? r.error : "HTTP " + std::to_string(r.status))
-                             : std::string("size or checksum differs from the manifest"));
-          transient = !r.ok() ? transientStatus(r.status) : true;
-        } else {
-          problem = accept(r.bytes, url);
-          transient = false;
-        }
-        if (!problem.empty()) {
-          // Retried with backoff, as tiles are (the server may recover); reported once.
-          load.state = TileState::Failed;
-          load.retryAt = clock_ + backoffSeconds(++load.attempts, transient);
-          if (load.attempts == 1) onError_(problem);
-          return;
-        }
-        load.state = TileState::Loaded;
-        if (load.attempts > 0 && onResolved_) {
-          onResolved_(label + " " + url + " failed");
-          onResolved_(url + ":");
-        }
-        load.attempts = 0;
-      },
-      requestTimeout(options_, file.bytes, load.attempts));
-}
-
-void CityScene::retryCityFiles() {
-  for (CityFileLoad* load : {&search_, &citySummaryLoad_}) {
-    if (load->state == TileState::Failed && load->retryAt <= clock_) load->state = TileState::Unloaded;
-  }
-  if (search_.attempts > 0 && search_.state == TileState::Unloaded) requestSearchIndex();
-  // The response summary in the index's order follows the index (it is useless without it).
-  requestCitySummary();
-}
-
-void CityScene::requestSearchIndex() {
-  if (!tileset_ || !tileset_->search) return;
-  fetchCityFile(search_, *tileset_->search, "Search index",
-                [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
-                  auto decoded = decodeSearchIndex(bytes, url);
-                  if (!decoded.ok()) return decoded.error();
-                  if (decoded->size() != tileset_->buildings) {
-                    return url + ": " + std::to_string(decoded->size()) +
-                           " entries, but the manifest says the city has " + std::to_string(tileset_->buildings) +
-                           " buildings";
-                  }
-                  for (std::size_t i = 0; i < decoded->size(); ++i) {
-                    const std::uint32_t leaf = (*decoded)[i].leaf;
-                    if (leaf >= tileset_->nodes.size() || !tileset_->nodes[leaf].children.empty()) {
-                      return url + ": entry " + std::to_string(i) + " names tile " + std::to_string(leaf) +
-                             ", which is not a leaf of this city";
-                    }
-                  }
-                  searchIndex_ = std::move(decoded).value();
-                  searchBytes_ = searchIndex_.size() * sizeof(SearchEntry);
-                  for (const SearchEntry& e : searchIndex_) {
-                    for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
-                      if (text->size() >= sizeof(std::string)) searchBytes_ += text->size() + 1;
-                    }
-                  }
-                  return {};
-                });
-}
-
-void CityScene::requestCitySummary() {
-  if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
-      search_.state != TileState::Loaded || citySummaryLoad_.state != TileState::Unloaded) {
-    return;
-  }
-  fetchCityFile(citySummaryLoad_, *tileset_->response->summaryIndex, "Response summary",
-                [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
-                  auto decoded = decodeResponseSummary(bytes, url);
-                  if (!decoded.ok()) return decoded.error();
-                  if (decoded->buildings.size() != searchIndex_.size()) {
-                    return url + ": " + std::to_string(decoded->buildings.size()) +
-                           " buildings, the search index has " + std::to_string(searchIndex_.size());
-                  }
-                  citySummary_ = std::move(decoded).value();
-                  searchBytes_ += citySummary_->buildings.size() * sizeof(BuildingResponse) +
-                                  citySummary_->storeyPeakDrift.size() * sizeof(float);
-                  return {};
-                });
-}
-
-bool CityScene::searchIndexSettled() const {
-  if (!tileset_) return manifestFailed_;
-  if (!tileset_->search || search_.state == TileState::Failed) return true;
-  if (search_.state != TileState::Loaded) return false;
-  const bool summaryExpected = tileset_->response && tileset_->response->summaryIndex && !tileset_->responseOutOfDate();
-  return !summaryExpected || citySummaryLoad_.state == TileState::Loaded || citySummaryLoad_.state == TileState::Failed;
-}
-
-const BuildingResponse* CityScene::cityResponse(std::uint32_t index) const {
-  return citySummary_ && index < citySummary_->buildings.size() ? &citySummary_->buildings[index] : nullptr;
-}
-
-BuildingListEntry CityScene::listEntry(std::uint32_t index) const {
-  const SearchEntry& s = searchIndex_[index];
-  BuildingListEntry e;
-  e.id = s.id;
-  e.name = s.name;
-  e.address = s.address;
-  e.use = s.use;
-  e.importance = s.importance;
-  e.heightM = s.heightM;
-  e.storeys = s.storeys;
-  e.x = s.x;
-  e.y = s.y;
-  if (const BuildingResponse* r = cityResponse(index)) {
-    e.damage = r->damage;
-    e.peakDriftRatio = r->peakDriftRatio;
-    e.peakRoofDisplacementM = r->peakRoofDisplacementM;
-    e.pgaG = r->pgaG;
-  }
-  return e;
-}
-
-std::vector<BuildingListEntry> CityScene::search(std::string_view query, std::size_t limit) {
-  std::vector<BuildingListEntry> out;
-  requestSearchIndex();
-  if (search_.state != TileState::Loaded) return out;
-  for (std::uint32_t i = 0; i < searchIndex_.size() && out.size() < limit; ++i) {
-    const SearchEntry& e = searchIndex_[i];
-    if (matchesQuery(e.id, query) || matchesQuery(e.name, query) || matchesQuery(e.address, query)) {
-      out.push_back(listEntry(i));
-    }
-  }
-  return out;
-}
-
-std::vector<BuildingListEntry> CityScene::filteredList(std::size_t limit, std::size_t* total) {
-  std::vector<BuildingListEntry> out;
-  if (total != nullptr) *total = 0;
-  requestSearchIndex();
-  if (search_.state != TileState::Loaded) return out;
-  struct Key {
-    int damage;
-    float drift;
-    std::uint32_t index;
-  };
-  std::vector<Key> keys;
-  for (std::uint32_t i = 0; i < searchIndex_.size(); ++i) {
-    const BuildingResponse* r = cityResponse(i);
-    if (!filters_.passes(searchIndex_[i].importance, searchIndex_[i].use, r)) continue;
-    const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
-    keys.push_back({damage, r != nullptr ? r->peakDriftRatio : 0.0f, i});
-  }
-  if (total != nullptr) *total = keys.size();
-  const std::size_t n = std::min(limit, keys.size());
-  std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
-                    [](const Key& a, const Key& b) {
-                      if (a.damage != b.damage) return a.damage > b.damage;
-                      if (a.drift != b.drift) return a.drift > b.drift;
-                      return a.index < b.index;
-                    });
-  for (std::size_t k = 0; k < n; ++k) out.push_back(listEntry(keys[k].index));
-  return out;
+  return ready;
 }
 
 }  // namespace qv

@@ -67,8 +67,8 @@ void Viewer::setViewport(int widthPixels, int heightPixels, double widthCss, dou
 
 void Viewer::openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options) {
   city_ = std::make_unique<CityScene>(device_, fetcher, manifestUrl, options,
-                                      [this](const std::string& message) { reportError(message); });
-  city_->setResolvedSink([this](const std::string& prefix) { withdrawErrors(prefix); });
+                                      [this](const LoadError& e) { reportError(e.message, e.key); });
+  city_->setResolvedSink([this](const std::string& key) { withdrawErrors(key); });
   cityFramed_ = false;
   settled_ = false;
   dataSource_ = dataOriginProblem(options.origin).empty() ? dataOriginDescription(options.origin) : std::string();
@@ -95,14 +95,23 @@ bool Viewer::setTime(double seconds) {
   return true;
 }
 
-void Viewer::withdrawErrors(const std::string& prefix) {
-  std::erase_if(errors_, [&](const std::string& e) { return e.starts_with(prefix); });
+void Viewer::withdrawErrors(const std::string& key) {
+  if (key.empty()) return;
+  for (std::size_t i = errors_.size(); i-- > 0;) {
+    if (errorKeys_[i] != key) continue;
+    errors_.erase(errors_.begin() + static_cast<std::ptrdiff_t>(i));
+    errorKeys_.erase(errorKeys_.begin() + static_cast<std::ptrdiff_t>(i));
+  }
 }
 
-void Viewer::reportError(std::string message) {
+void Viewer::reportError(std::string message, std::string key) {
   // Keep the list bounded: a broken server must not grow memory without end.
-  if (errors_.size() >= 200) errors_.erase(errors_.begin());
+  if (errors_.size() >= 200) {
+    errors_.erase(errors_.begin());
+    errorKeys_.erase(errorKeys_.begin());
+  }
   errors_.push_back(std::move(message));
+  errorKeys_.push_back(std::move(key));
 }
 
 void Viewer::frame(double dtSeconds) {

@@ -178,23 +178,10 @@ std::vector<std::uint8_t> encodeResponseHistory(const ResponseHistoryTile& tile)
 Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> bytes, std::string_view name);
 
 /// Displacements (metres, x and y) of floor levels 0 .. floors at time t seconds (floor 0, the
-/// ground, is 0), Catmull-Rom interpolated; times beyond the history hold its last sample.
+/// ground, is 0), Catmull-Rom interpolated; times beyond the history hold its last sample. What
+/// the encoder's error measure and the fuzzers reconstruct; the interpolation itself is
+/// engine::anim's (qv/anim/HistorySampling.h), which the viewer's frame loop uses directly.
 void sampleHistory(const BuildingHistory& history, double timeSeconds, std::span<float> floorsX,
                    std::span<float> floorsY);
-
-/// Where time t falls in a history: the four samples around it and their Catmull-Rom weights
-/// (sampleHistory's interpolation, for callers that keep the mode shapes elsewhere).
-struct HistoryTap {
-  std::uint32_t i0 = 0, i1 = 0, i2 = 0, i3 = 0;
-  float w0 = 0.0f, w1 = 0.0f, w2 = 0.0f, w3 = 0.0f;
-};
-/// Requires sampleCount > 0.
-HistoryTap historyTap(float startSeconds, float sampleRateHz, std::uint32_t sampleCount, double timeSeconds);
-/// The modal coordinates of one direction at a tap (scaled to metres per unit shape): reads
-/// `coordinates` (time-major, sample i's row at i * rowStride, as HistoryDirection holds them with
-/// rowStride = modes) and `scales`, and writes `modes` values (at most 8, the format's limit) to
-/// `out`. `modes` defaults to rowStride.
-void modalCoordinates(const std::int16_t* coordinates, std::size_t rowStride, const float* scales,
-                      const HistoryTap& tap, float* out, std::size_t modes = SIZE_MAX);
 
 }  // namespace qv

@@ -9,7 +9,6 @@
 #pragma once
 
 #include <array>
-#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -17,16 +16,20 @@
 #include <string>
 #include <vector>
 
+#include "qv/anim/HistorySampling.h"
 #include "qv/format/CityTile.h"
 #include "qv/format/ResponseTile.h"
-#include "qv/format/SearchIndex.h"
 #include "qv/format/Tileset.h"
 #include "qv/geometry/OrbitCamera.h"
 #include "qv/lod/TileSelector.h"
 #include "qv/scene/BuildingInfo.h"
+#include "qv/scene/BuildingTable.h"
+#include "qv/scene/CityIndex.h"
 #include "qv/scene/Fetcher.h"
+#include "qv/scene/FileLoader.h"
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
+#include "qv/scene/SceneClock.h"
 
 namespace qv {
 
@@ -50,41 +53,15 @@ struct CitySceneOptions {
   /// The deployment's data origin policy: a city from an origin it does not allow is refused
   /// before any request (qv::dataOriginProblem).
   DataOriginPolicy origin;
+  /// The time retries, the decode budget and frame timings are measured in; nullptr: steadyClock().
+  /// Not owned; must outlive the scene.
+  SceneClock* clock = nullptr;
 };
 
 struct TileCounts {
   std::uint32_t loaded = 0;
   std::uint32_t pending = 0;  ///< wanted by the view and not loaded yet (tiles and response tiers)
   std::uint32_t failed = 0;
-};
-
-/// Which buildings are shown at full strength; the others are dimmed.
-struct BuildingFilters {
-  int minDamage = -1;         ///< -1: any; 0..4: damage state at least this (none .. complete)
-  std::string use;            ///< empty: any; else the normalized use ("hospital", "school", ...)
-  bool criticalOnly = false;  ///< only critical facilities
-  [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly; }
-  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const {
-    return passes(a.importance, a.use, r);
-  }
-  [[nodiscard]] bool passes(Importance importance, std::string_view use, const BuildingResponse* r) const;
-  friend bool operator==(const BuildingFilters&, const BuildingFilters&) = default;
-};
-
-/// One row of the city-wide list of (filtered) buildings.
-struct BuildingListEntry {
-  std::string id;
-  std::string name;  ///< from the search index when loaded, else empty
-  std::string address;
-  std::string use;
-  Importance importance = Importance::General;
-  DamageState damage = DamageState::NoResult;
-  float peakDriftRatio = 0.0f;
-  float peakRoofDisplacementM = 0.0f;
-  float pgaG = 0.0f;
-  float heightM = 0.0f;
-  std::uint16_t storeys = 0;
-  double x = 0.0, y = 0.0;  ///< centroid, metres in the city frame
 };
 
 /// Time series of one building for plots: `samples` values evenly spaced over [0, duration].
@@ -103,14 +80,16 @@ struct BuildingRef {
 
 class CityScene {
  public:
-  using ErrorSink = std::function<void(const std::string&)>;
+  /// Receives every error: files that failed (keyed by their URL) and problems of the city as a
+  /// whole (an empty key: they stand).
+  using ErrorSink = std::function<void(const LoadError&)>;
 
   /// Starts loading `manifestUrl` (tileset.json); tiles are resolved relative to it.
   CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifestUrl, CitySceneOptions options,
             ErrorSink onError);
-  /// Called with the start of an earlier error message once what failed has recovered (a tile
-  /// that loads after failing), so the viewer can withdraw it.
-  void setResolvedSink(ErrorSink sink) { onResolved_ = std::move(sink); }
+  /// Called with the key of an earlier error once what failed has recovered (a tile that loads
+  /// after failing), so the viewer can withdraw it.
+  void setResolvedSink(FileLoader::ResolvedSink sink) { loader_.setResolvedSink(std::move(sink)); }
   ~CityScene();
   CityScene(const CityScene&) = delete;
   CityScene& operator=(const CityScene&) = delete;
@@ -166,7 +145,7 @@ class CityScene {
   /// Buildings passing the filters, most damaged first (then by peak drift), at most `limit`;
   /// `total` receives how many pass in all.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(std::size_t limit, std::size_t* total = nullptr);
-  [[nodiscard]] bool searchIndexLoaded() const { return search_.state == TileState::Loaded; }
+  [[nodiscard]] bool searchIndexLoaded() const { return index_.loaded(); }
   /// The search index (and the response summary in its order) has loaded or failed, or the city has none.
   [[nodiscard]] bool searchIndexSettled() const;
   /// Damage states (none .. complete, no result) of the buildings in view, from the last frame.
@@ -181,52 +160,72 @@ class CityScene {
   struct Animated;
 
   void onManifest(FetchResponse response);
-  void request(std::uint32_t node, double now);
-  void onTile(std::uint32_t node, FetchResponse response, double now);
+  void reportCityError(std::string message);
+  [[nodiscard]] FileSpec tileSpec(std::uint32_t node) const;
+  [[nodiscard]] FileSpec summarySpec(std::uint32_t node) const;
+  [[nodiscard]] FileSpec historySpec(std::uint32_t node) const;
+  void request(std::uint32_t node);     // the tile (when due) and its summary
   void finishTile(std::uint32_t node);  // decode + mesh (time-budgeted)
-  void failTile(std::uint32_t node, const std::string& message, bool transient, double now);
   void evict(std::uint32_t node);
+  /// After animated_ changed order: each tile's building -> entry map.
   void reindexAnimated();
-  void markNoResult(std::uint32_t node);  ///< its summary failed: hatch its buildings  ///< after animated_ changed
-                                          ///< order: each tile's building -> entry map
+  void markNoResult(std::uint32_t node);  // its summary failed: hatch its buildings
   void requestSummary(std::uint32_t node);
   void requestHistory(std::uint32_t node);
   void applySummary(std::uint32_t node);
-  void writeBuildingRows(std::uint32_t first, std::uint32_t count);
-  void enforceMemoryBudget();
+  void enforceMemoryBudget();           // evicts what this frame did not use, least recently used first
   void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
   void applyFlagsEverywhere();
-  void requestSearchIndex();
-  [[nodiscard]] BuildingListEntry listEntry(
-      std::uint32_t index) const;  // of the root tile  // evicts what this frame did not use, least recently used first
+  // The steps of a frame (update), in order.
+  void decodeArrived(double frameStart);                                     // decode and mesh within the work budget
+  void selectAndRequest(const CameraView& view);                             // choose tiles; request, retry
+  std::uint32_t cull(const Frustum& frustum, std::vector<DrawItem>& items);  // visible buildings
+  void countDamageInView();                                                  // when the visible sets changed
+  [[nodiscard]] std::uint64_t loadedBuildings() const;
+  [[nodiscard]] bool responsesReady() const;  // no summary of a drawn tile, no history on its way
   void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
   /// Chooses the animated buildings (nearest first, up to the cap) among the visible buildings of
   /// `tiles` (within the radius, histories loaded), keeping the floor rows of those that stay.
   void chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles);
+  /// The drawn leaves within the radius whose histories are loaded (requesting the others) into
+  /// animationTiles_; returns the signature of what the choice of animated buildings depends on.
+  std::uint64_t findAnimationTiles(const glm::vec3& eye);
+  struct AnimationCandidate {
+    float distance2;  // from the eye, m²
+    std::uint32_t node, index, position;
+  };
+  /// Visible buildings of `tiles` within the radius, the nearest up to the cap.
+  [[nodiscard]] std::vector<AnimationCandidate> animationCandidates(const glm::vec3& eye,
+                                                                    const std::vector<std::uint32_t>& tiles) const;
+  /// Makes `candidates` the animated buildings: keeps the floor rows of those that stay.
+  void keepAnimated(const std::vector<AnimationCandidate>& candidates);
+  /// What the sampling loop reads, packed in animation order.
+  void packSamplers();
+  /// Every animated building's floor rows at this time.
+  void sampleFloors(double timeSeconds);
 
   RenderDevice& device_;
   Fetcher& fetcher_;
   std::string manifestUrl_;
   CitySceneOptions options_;
   ErrorSink onError_;
-  ErrorSink onResolved_;
   Fetcher::RequestId manifestRequest_ = 0;
   std::optional<Tileset> tileset_;
   bool manifestFailed_ = false;
   bool settled_ = false;
   std::vector<std::unique_ptr<TileRuntime>> tiles_;
-  std::vector<TileState> states_;
+  std::vector<TileState> states_;  // the tiles' states as the selector reads them (copied each frame)
   std::vector<std::uint32_t> decodeQueue_;
-  std::uint32_t inFlight_ = 0;
   std::uint64_t frame_ = 0;
-  double clock_ = 0.0;                                               // seconds since creation (for retries)
-  std::optional<std::chrono::steady_clock::time_point> lastUpdate_;  // the previous frame's start
+  SceneClock& clock_;
+  FileLoader loader_;                 // every file after the manifest, and the in-flight limit
+  CityIndex index_;                   // the search index and the response summary in its order
+  std::optional<double> lastUpdate_;  // the previous frame's start, seconds
   TileSelection selection_;
   /// Per node, the bytes it holds once loaded (tile data, mesh, summary): measured when it last
   /// loaded, else estimated from its file size at the ratio measured so far for its kind (coarse
   /// or leaf). The selector keeps the tiles drawn and wanted within the budget with these.
   std::vector<std::uint64_t> nodeBytes_;
-  std::vector<bool> nodeBytesMeasured_;
   std::unique_ptr<bool[]> wasLoaded_;         // per node: loaded at some time (a span needs contiguous bools)
   std::uint64_t residentOfFile_[2] = {0, 0};  // [leaf, coarse]: resident bytes of the tiles loaded so far
   std::uint64_t fileOfResident_[2] = {0, 0};  // their file bytes
@@ -234,29 +233,14 @@ class CityScene {
   [[nodiscard]] std::uint64_t tileBytes(std::uint32_t node) const;  // a loaded tile's resident bytes
 
   // GPU tables and their CPU mirrors.
-  std::vector<BuildingGpuRecord> buildingRows_;
-  std::uint32_t dirtyFirst_ = UINT32_MAX, dirtyEnd_ = 0;
-  std::vector<FloorGpuRecord> floorRows_;
-  std::unique_ptr<class RangeAllocator> slots_;
-  std::unique_ptr<class RangeAllocator> floorSlots_;
+  BuildingTable table_;
   std::vector<std::unique_ptr<Animated>> animated_;
   /// What sampling one animated building needs, packed when the buildings are chosen (the
   /// pointers stay valid until the next choice: any change of residency triggers one first).
   struct AnimatedSampler {
-    const std::int16_t* x = nullptr;  // coordinates, time-major (HistoryDirection)
-    const std::int16_t* y = nullptr;
-    float startSeconds = 0.0f;
-    float sampleRateHz = 0.0f;
-    std::uint32_t sampleCount = 0;
+    HistoryStream stream;           // its scales point into samplerArena_
     std::uint32_t arenaOffset = 0;  // scales x, shapes x, scales y, shapes y in samplerArena_
     std::uint16_t floors = 0;
-    std::uint8_t modesX = 0, modesY = 0;
-    std::uint32_t window[4] = {UINT32_MAX, UINT32_MAX, UINT32_MAX, UINT32_MAX};  // samples in its window
-  };
-  /// The coordinates of the four samples an animated building interpolates (rows of 8, x and y).
-  struct SampleWindow {
-    std::int16_t x[32] = {};
-    std::int16_t y[32] = {};
   };
   std::vector<SampleWindow> windows_;      // of animated_, same order
   std::vector<AnimatedSampler> samplers_;  // of animated_, same order
@@ -274,24 +258,6 @@ class CityScene {
   bool showLod1_ = true;
   bool showLod2_ = true;
   [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
-  /// A city-wide file (the search index, the response summary in its order): fetched once, retried
-  /// with backoff after a failure.
-  struct CityFileLoad {
-    TileState state = TileState::Unloaded;
-    int attempts = 0;  // failures so far
-    double retryAt = 0.0;
-  };
-  /// Fetches `file` into `load`; `accept` decodes and keeps the bytes or returns what is wrong.
-  void fetchCityFile(CityFileLoad& load, const CityFile& file, const std::string& label,
-                     std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept);
-  void retryCityFiles();
-  CityFileLoad search_;
-  std::vector<SearchEntry> searchIndex_;
-  std::uint64_t searchBytes_ = 0;  // heap held by the index and its summary (estimate)
-  CityFileLoad citySummaryLoad_;
-  std::optional<ResponseSummaryTile> citySummary_;  // the response, in the index's order
-  void requestCitySummary();
-  [[nodiscard]] const BuildingResponse* cityResponse(std::uint32_t index) const;
   std::array<std::uint64_t, 6> damageInView_{};
   std::uint64_t viewSignature_ = 0;  // visible sets and summaries behind damageInView_
   std::string seriesFor_;

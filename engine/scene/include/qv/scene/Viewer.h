@@ -102,9 +102,10 @@ class Viewer {
   /// True once everything of the initial view has loaded or failed.
   [[nodiscard]] bool settled() const { return settled_; }
 
-  void reportError(std::string message);
-  /// Removes the messages that start with `prefix` (what they reported has recovered).
-  void withdrawErrors(const std::string& prefix);
+  /// Shows `message`; `key` names what failed (a file's URL), empty when it is never withdrawn.
+  void reportError(std::string message, std::string key = {});
+  /// Removes the messages reported with `key` (what they reported has recovered); "" removes none.
+  void withdrawErrors(const std::string& key);
   [[nodiscard]] const std::vector<std::string>& errors() const { return errors_; }
 
   [[nodiscard]] StatsSummary stats() const { return stats_.summary(); }
@@ -128,6 +129,7 @@ class Viewer {
   ColorMode colorMode_ = ColorMode::CurrentDrift;
   bool settled_ = false;
   std::vector<std::string> errors_;
+  std::vector<std::string> errorKeys_;  // of errors_, same order (errors() hands out the messages)
   std::string dataSource_;
   FrameStats stats_;
 

@@ -1,0 +1,69 @@
+// BuildingTable: the CPU side of the two GPU tables the shaders read, and what has changed since
+// the last upload.
+//
+// The building table has one BuildingGpuRecord per loaded building (its storeys, results and
+// flags), in ranges a tile reserves when it loads (one row per building, in the tile's BoxTree
+// order) and releases when it is evicted. The floor table has one FloorGpuRecord per floor level of
+// each animated building (its displacement this frame), in ranges reserved while it animates.
+// Edits mark building rows changed; upload() sends the changed span of the building table and the
+// used part of the floor table.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "qv/scene/RenderDevice.h"
+
+namespace qv {
+
+class RangeAllocator;
+
+class BuildingTable {
+ public:
+  /// Capacities of the two index spaces (the device grows its textures on demand).
+  static constexpr std::uint32_t kMaxBuildingRows = 1u << 21;
+  static constexpr std::uint32_t kMaxFloorRows = 1u << 22;
+
+  BuildingTable(std::uint32_t maxBuildingRows = kMaxBuildingRows, std::uint32_t maxFloorRows = kMaxFloorRows);
+  ~BuildingTable();
+  BuildingTable(const BuildingTable&) = delete;
+  BuildingTable& operator=(const BuildingTable&) = delete;
+
+  /// Reserves `count` consecutive building rows (at least one is reserved, for a tile without
+  /// buildings); the first, or nullopt when the table is full. Their contents are unspecified
+  /// until written.
+  std::optional<std::uint32_t> reserveBuildings(std::uint32_t count);
+  void releaseBuildings(std::uint32_t first, std::uint32_t count);
+  /// A building row for editing; `changed` (or edit()) marks it for the next upload.
+  [[nodiscard]] BuildingGpuRecord& row(std::uint32_t slot) { return buildings_[slot]; }
+  [[nodiscard]] const BuildingGpuRecord& row(std::uint32_t slot) const { return buildings_[slot]; }
+  /// Rows [first, first + count), marked changed.
+  std::span<BuildingGpuRecord> edit(std::uint32_t first, std::uint32_t count);
+  void changed(std::uint32_t first, std::uint32_t count);
+  /// Sets or clears BuildingFlag bits of a row (not marked changed).
+  static void setFlag(BuildingGpuRecord& row, BuildingFlag flag, bool on);
+
+  /// Reserves `count` consecutive floor rows; the first, or nullopt when full.
+  std::optional<std::uint32_t> reserveFloors(std::uint32_t count);
+  void releaseFloors(std::uint32_t first, std::uint32_t count);
+  /// Floor rows [first, first + count) of reserved rows (written every frame by the animation).
+  std::span<FloorGpuRecord> floors(std::uint32_t first, std::uint32_t count);
+
+  /// Sends the changed building rows (one span from the first to the last changed) and, when
+  /// `floorsInUse`, every floor row up to the highest reserved to `device`; then nothing is changed.
+  void upload(RenderDevice& device, bool floorsInUse);
+  /// The changed span [first, end) waiting for upload; first >= end when none.
+  [[nodiscard]] std::pair<std::uint32_t, std::uint32_t> changedRange() const { return {changedFirst_, changedEnd_}; }
+
+ private:
+  std::vector<BuildingGpuRecord> buildings_;
+  std::vector<FloorGpuRecord> floorRows_;
+  std::unique_ptr<RangeAllocator> buildingSlots_;
+  std::unique_ptr<RangeAllocator> floorSlots_;
+  std::uint32_t changedFirst_ = UINT32_MAX, changedEnd_ = 0;
+};
+
+}  // namespace qv

@@ -1,0 +1,100 @@
+// CityIndex: the city-wide side of a city: its search index (every building's id, name, address,
+// use and leaf tile) and the response summary in the index's order, each loaded once through the
+// FileLoader, and what is built from them: search, the filtered list of buildings, lookup by id.
+// Until they load, search and lists are empty.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "qv/format/ResponseTile.h"
+#include "qv/format/SearchIndex.h"
+#include "qv/format/Tileset.h"
+#include "qv/scene/FileLoader.h"
+
+namespace qv {
+
+/// Which buildings are shown at full strength; the others are dimmed.
+struct BuildingFilters {
+  int minDamage = -1;         ///< -1: any; 0..4: damage state at least this (none .. complete)
+  std::string use;            ///< empty: any; else the normalized use ("hospital", "school", ...)
+  bool criticalOnly = false;  ///< only critical facilities
+  [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly; }
+  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const {
+    return passes(a.importance, a.use, r);
+  }
+  [[nodiscard]] bool passes(Importance importance, std::string_view use, const BuildingResponse* r) const;
+  friend bool operator==(const BuildingFilters&, const BuildingFilters&) = default;
+};
+
+/// One row of the city-wide list of (filtered) buildings.
+struct BuildingListEntry {
+  std::string id;
+  std::string name;  ///< from the search index when loaded, else empty
+  std::string address;
+  std::string use;
+  Importance importance = Importance::General;
+  DamageState damage = DamageState::NoResult;
+  float peakDriftRatio = 0.0f;
+  float peakRoofDisplacementM = 0.0f;
+  float pgaG = 0.0f;
+  float heightM = 0.0f;
+  std::uint16_t storeys = 0;
+  double x = 0.0, y = 0.0;  ///< centroid, metres in the city frame
+};
+
+class CityIndex {
+ public:
+  /// Files are resolved against `manifestUrl`; nothing loads before open().
+  CityIndex(FileLoader& loader, std::string manifestUrl);
+  ~CityIndex();
+  CityIndex(const CityIndex&) = delete;
+  CityIndex& operator=(const CityIndex&) = delete;
+
+  /// The city's manifest has loaded; it must outlive this index.
+  void open(const Tileset& tileset) { tileset_ = &tileset; }
+  /// Fetches the search index once (cities without one have nothing to load).
+  void request();
+  /// Once a frame: a failed file is fetched again after its backoff; the response summary in the
+  /// index's order follows the index.
+  void retry();
+
+  [[nodiscard]] bool loaded() const { return search_.state == TileState::Loaded; }
+  /// The index (and the summary in its order) has loaded or failed, or the city has none.
+  [[nodiscard]] bool settled() const;
+  /// Files on their way (0 .. 2).
+  [[nodiscard]] std::uint32_t pendingFiles() const;
+  /// Heap held by the index and its summary (estimate).
+  [[nodiscard]] std::uint64_t bytes() const { return bytes_; }
+
+  /// The building's entry (nullptr while the index is not loaded, or for an unknown id).
+  [[nodiscard]] const SearchEntry* entry(std::string_view id) const;
+  /// Buildings whose id, name or address contain every word of `query`: at most `limit`, index order.
+  [[nodiscard]] std::vector<BuildingListEntry> search(std::string_view query, std::size_t limit) const;
+  /// Buildings passing `filters`, most damaged first (then by peak drift, then index order), at
+  /// most `limit`; `total` receives how many pass in all.
+  [[nodiscard]] std::vector<BuildingListEntry> filteredList(const BuildingFilters& filters, std::size_t limit,
+                                                            std::size_t* total) const;
+
+ private:
+  void requestSummary();
+  void fetch(FileLoad& load, FileKind kind, const CityFile& file,
+             std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept);
+  [[nodiscard]] const BuildingResponse* response(std::uint32_t index) const;
+  [[nodiscard]] BuildingListEntry listEntry(std::uint32_t index) const;
+
+  FileLoader& loader_;
+  std::string manifestUrl_;
+  const Tileset* tileset_ = nullptr;
+  FileLoad search_;
+  std::vector<SearchEntry> entries_;
+  FileLoad summaryLoad_;
+  std::optional<ResponseSummaryTile> summary_;  // the response, in the index's order
+  std::uint64_t bytes_ = 0;
+};
+
+}  // namespace qv

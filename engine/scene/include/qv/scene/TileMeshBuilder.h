@@ -1,0 +1,64 @@
+// TileMeshBuilder: a decoded city tile made ready to draw, without a device. `indexTile` builds
+// what the scene looks buildings up by (the BoxTree in Morton order, id -> building, building ->
+// position, building -> LOD2 model); `buildTileMesh` merges every building into one mesh whose
+// vertices name their building's row of the GPU building table; `initialBuildingRows` gives those
+// rows. Positions (the BoxTree's order) decide the rows: building b is row slotBase +
+// positionOf[b], so a tile's visible ranges of positions are ranges of rows.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "qv/format/CityTile.h"
+#include "qv/geometry/BuildingMesh.h"
+#include "qv/scene/RenderDevice.h"
+#include "qv/spatial/BoxTree.h"
+
+namespace qv {
+
+/// A decoded tile and its lookups. Coordinates of `data` are relative to `origin` (the city frame
+/// in metres, z = 0); the tree's boxes are in the city frame.
+struct TileContent {
+  CityTile data;
+  std::unordered_map<std::string, std::uint32_t> idIndex;  ///< building id -> index in the file
+  BoxTree tree;
+  std::vector<std::uint32_t> positionOf;  ///< building index -> position in tree.order()
+  std::vector<std::int32_t> meshIndex;    ///< building index -> index in data.meshes, or -1 (LOD1)
+  glm::vec3 origin{0.0f};
+
+  /// The building's LOD2 model, or nullptr (LOD1 only, or out of range).
+  [[nodiscard]] const TileMesh* meshOf(std::uint32_t building) const {
+    return building < meshIndex.size() && meshIndex[building] >= 0
+               ? &data.meshes[static_cast<std::size_t>(meshIndex[building])]
+               : nullptr;
+  }
+  [[nodiscard]] std::uint32_t buildingCount() const { return static_cast<std::uint32_t>(data.buildings.size()); }
+};
+
+/// Takes `tile` and builds its lookups. A building's box holds its prisms and, in the form the
+/// tile draws it (the far mesh in coarse tiles), its LOD2 model.
+TileContent indexTile(CityTile tile);
+
+/// The merged mesh of every building in position order: a LOD2 model (kKindModel) followed by its
+/// LOD1 extrusion (kKindFallback), or the extrusion alone. Leaves get a vertex ring at every floor
+/// level inside each part (the floors bend with their displacements); coarse tiles plain prisms.
+/// Vertex slots are slotBase + position.
+MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase);
+
+/// The building table rows of the tile in position order (`rows.size()` == buildingCount()):
+/// storey height (at least 0.5 m), storeys and base height; damage kDamagePending when the tile
+/// has results on their way (`resultsPending`), else -1 (no result); flags clear; not animated.
+void initialBuildingRows(const TileContent& tile, bool resultsPending, std::span<BuildingGpuRecord> rows);
+
+/// Heap bytes the tile's data and lookups hold (an estimate used for the memory budget).
+std::uint64_t tileCpuBytes(const TileContent& tile);
+
+/// GPU bytes of a mesh (vertices and indices).
+std::uint64_t meshGpuBytes(const MeshData& mesh);
+
+}  // namespace qv

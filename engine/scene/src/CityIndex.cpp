@@ -1,0 +1,176 @@
+#include "qv/scene/CityIndex.h"
+
+#include <algorithm>
+#include <functional>
+
+namespace qv {
+
+bool BuildingFilters::passes(Importance importance, std::string_view buildingUse, const BuildingResponse* r) const {
+  if (criticalOnly && importance != Importance::Critical) return false;
+  if (!use.empty() && buildingUse != use) return false;
+  if (minDamage >= 0) {
+    if (r == nullptr || r->damage == DamageState::NoResult) return false;
+    if (static_cast<int>(r->damage) < minDamage) return false;
+  }
+  return true;
+}
+
+CityIndex::CityIndex(FileLoader& loader, std::string manifestUrl)
+    : loader_(loader), manifestUrl_(std::move(manifestUrl)) {}
+
+CityIndex::~CityIndex() {
+  loader_.cancel(search_);
+  loader_.cancel(summaryLoad_);
+}
+
+std::uint32_t CityIndex::pendingFiles() const {
+  return (search_.state == TileState::Loading ? 1u : 0u) + (summaryLoad_.state == TileState::Loading ? 1u : 0u);
+}
+
+const SearchEntry* CityIndex::entry(std::string_view id) const {
+  if (search_.state != TileState::Loaded) return nullptr;
+  for (const SearchEntry& e : entries_) {
+    if (e.id == id) return &e;
+  }
+  return nullptr;
+}
+
+void CityIndex::fetch(FileLoad& load, FileKind kind, const CityFile& file,
+                      std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept) {
+  const FileSpec spec{kind, resolveUrl(manifestUrl_, file.file), file.bytes, file.crc32, {}};
+  loader_.start(load, spec, [url = spec.url, accept = std::move(accept)](std::vector<std::uint8_t>& bytes) {
+    std::string problem = accept(bytes, url);
+    return problem.empty() ? Verdict::loaded() : Verdict::rejected(std::move(problem), false);
+  });
+}
+
+void CityIndex::retry() {
+  // Retried with backoff, as tiles are (the server may recover).
+  if (search_.failures > 0 && loader_.due(search_)) request();
+  // The response summary in the index's order follows the index (it is useless without it).
+  requestSummary();
+}
+
+void CityIndex::request() {
+  if (!tileset_ || !tileset_->search) return;
+  fetch(search_, FileKind::SearchIndex, *tileset_->search,
+        [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
+          auto decoded = decodeSearchIndex(bytes, url);
+          if (!decoded.ok()) return decoded.error();
+          if (decoded->size() != tileset_->buildings) {
+            return url + ": " + std::to_string(decoded->size()) + " entries, but the manifest says the city has " +
+                   std::to_string(tileset_->buildings) + " buildings";
+          }
+          for (std::size_t i = 0; i < decoded->size(); ++i) {
+            const std::uint32_t leaf = (*decoded)[i].leaf;
+            if (leaf >= tileset_->nodes.size() || !tileset_->nodes[leaf].children.empty()) {
+              return url + ": entry " + std::to_string(i) + " names tile " + std::to_string(leaf) +
+                     ", which is not a leaf of this city";
+            }
+          }
+          entries_ = std::move(decoded).value();
+          bytes_ = entries_.size() * sizeof(SearchEntry);
+          for (const SearchEntry& e : entries_) {
+            for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
+              if (text->size() >= sizeof(std::string)) bytes_ += text->size() + 1;
+            }
+          }
+          return {};
+        });
+}
+
+void CityIndex::requestSummary() {
+  if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
+      search_.state != TileState::Loaded) {
+    return;
+  }
+  fetch(summaryLoad_, FileKind::CitySummary, *tileset_->response->summaryIndex,
+        [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
+          auto decoded = decodeResponseSummary(bytes, url);
+          if (!decoded.ok()) return decoded.error();
+          if (decoded->buildings.size() != entries_.size()) {
+            return url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the search index has " +
+                   std::to_string(entries_.size());
+          }
+          summary_ = std::move(decoded).value();
+          bytes_ +=
+              summary_->buildings.size() * sizeof(BuildingResponse) + summary_->storeyPeakDrift.size() * sizeof(float);
+          return {};
+        });
+}
+
+bool CityIndex::settled() const {
+  if (!tileset_) return false;
+  if (!tileset_->search || search_.state == TileState::Failed) return true;
+  if (search_.state != TileState::Loaded) return false;
+  const bool summaryExpected = tileset_->response && tileset_->response->summaryIndex && !tileset_->responseOutOfDate();
+  return !summaryExpected || summaryLoad_.state == TileState::Loaded || summaryLoad_.state == TileState::Failed;
+}
+
+const BuildingResponse* CityIndex::response(std::uint32_t index) const {
+  return summary_ && index < summary_->buildings.size() ? &summary_->buildings[index] : nullptr;
+}
+
+BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
+  const SearchEntry& s = entries_[index];
+  BuildingListEntry e;
+  e.id = s.id;
+  e.name = s.name;
+  e.address = s.address;
+  e.use = s.use;
+  e.importance = s.importance;
+  e.heightM = s.heightM;
+  e.storeys = s.storeys;
+  e.x = s.x;
+  e.y = s.y;
+  if (const BuildingResponse* r = response(index)) {
+    e.damage = r->damage;
+    e.peakDriftRatio = r->peakDriftRatio;
+    e.peakRoofDisplacementM = r->peakRoofDisplacementM;
+    e.pgaG = r->pgaG;
+  }
+  return e;
+}
+
+std::vector<BuildingListEntry> CityIndex::search(std::string_view query, std::size_t limit) const {
+  std::vector<BuildingListEntry> out;
+  if (search_.state != TileState::Loaded) return out;
+  for (std::uint32_t i = 0; i < entries_.size() && out.size() < limit; ++i) {
+    const SearchEntry& e = entries_[i];
+    if (matchesQuery(e.id, query) || matchesQuery(e.name, query) || matchesQuery(e.address, query)) {
+      out.push_back(listEntry(i));
+    }
+  }
+  return out;
+}
+
+std::vector<BuildingListEntry> CityIndex::filteredList(const BuildingFilters& filters, std::size_t limit,
+                                                       std::size_t* total) const {
+  std::vector<BuildingListEntry> out;
+  if (total != nullptr) *total = 0;
+  if (search_.state != TileState::Loaded) return out;
+  struct Key {
+    int damage;
+    float drift;
+    std::uint32_t index;
+  };
+  std::vector<Key> keys;
+  for (std::uint32_t i = 0; i < entries_.size(); ++i) {
+    const BuildingResponse* r = response(i);
+    if (!filters.passes(entries_[i].importance, entries_[i].use, r)) continue;
+    const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
+    keys.push_back({damage, r != nullptr ? r->peakDriftRatio : 0.0f, i});
+  }
+  if (total != nullptr) *total = keys.size();
+  const std::size_t n = std::min(limit, keys.size());
+  std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
+                    [](const Key& a, const Key& b) {
+                      if (a.damage != b.damage) return a.damage > b.damage;
+                      if (a.drift != b.drift) return a.drift > b.drift;
+                      return a.index < b.index;
+                    });
+  for (std::size_t k = 0; k < n; ++k) out.push_back(listEntry(keys[k].index));
+  return out;
+}
+
+}  // namespace qv

@@ -1,0 +1,121 @@
+// CityScene's memory: what each tile holds (measured once loaded, estimated before), and eviction
+// beyond the memory budget (histories outside the animation radius first, then the least recently
+// used tiles, then the coarse tiles the view replaced).
+#include <algorithm>
+
+#include "CitySceneState.h"
+
+namespace qv {
+
+std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
+  const TileRuntime& t = *tiles_[node];
+  std::uint64_t total = t.bytes.size() + t.historyBytes;
+  if (t.loaded) total += t.loaded->cpuBytes + t.loaded->gpuBytes;
+  if (t.summary) {
+    total += t.summary->buildings.size() * sizeof(BuildingResponse) + t.summary->storeyPeakDrift.size() * sizeof(float);
+  }
+  return total;
+}
+
+std::uint64_t CityScene::memoryBytes() const {
+  std::uint64_t total = index_.bytes();
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) total += tileBytes(i);
+  return total;
+}
+
+void CityScene::updateNodeBytes() {
+  // Resident bytes per file byte, as measured on the tiles loaded so far; before any, what the
+  // synthetic and OSM cities measure natively (coarse tiles about 9, leaves about 17: a leaf's
+  // mesh has a ring of vertices per floor).
+  constexpr double kDefaultRatio[2] = {17.0, 9.0};
+  double ratio[2];
+  for (int k = 0; k < 2; ++k) {
+    ratio[k] = fileOfResident_[k] > 0
+                   ? static_cast<double>(residentOfFile_[k]) / static_cast<double>(fileOfResident_[k])
+                   : kDefaultRatio[k];
+  }
+  for (std::uint32_t i = 0; i < nodeBytes_.size(); ++i) {
+    if (tiles_[i]->tile.state == TileState::Loaded) {
+      // Histories come and go with the animation radius: the tile's own bytes, measured.
+      nodeBytes_[i] = tileBytes(i) - tiles_[i]->historyBytes;
+      tiles_[i]->bytesMeasured = true;
+      wasLoaded_[i] = true;
+    } else if (!tiles_[i]->bytesMeasured) {
+      const TileNode& n = tileset_->nodes[i];
+      nodeBytes_[i] = static_cast<std::uint64_t>(static_cast<double>(n.bytes) * ratio[n.children.empty() ? 0 : 1]);
+    }
+  }
+}
+
+void CityScene::evict(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  ++residencyGeneration_;
+  if (t.loaded) {
+    // Buildings of this tile stop animating first (they hold floor rows).
+    for (auto& a : animated_) {
+      if (a && a->ref.node == node) {
+        table_.releaseFloors(a->floorBase, a->rows);
+        a.reset();
+      }
+    }
+    animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
+    t.animatedIndex.clear();
+    reindexAnimated();
+    if (t.loaded->mesh) device_.destroyMesh(t.loaded->mesh);
+    table_.releaseBuildings(t.loaded->slotBase, t.loaded->buildingCount());
+    t.loaded.reset();
+  }
+  t.summary.reset();
+  t.summaryLoad.state = TileState::Unloaded;
+  t.history.reset();
+  t.historyBytes = 0;
+  t.historyLoad.state = TileState::Unloaded;
+  t.tile.state = TileState::Unloaded;
+}
+
+void CityScene::enforceMemoryBudget() {
+  std::uint64_t total = memoryBytes();
+  if (total <= options_.memoryBudgetBytes) return;
+  // Histories outside the animation radius go first (re-fetched when needed), then whole tiles,
+  // least recently used first; nothing the current frame uses is evicted.
+  std::vector<std::uint32_t> candidates;
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
+    if (tiles_[i]->history && tiles_[i]->historyUsed < frame_) {
+      total -= tiles_[i]->historyBytes;
+      tiles_[i]->history.reset();
+      ++residencyGeneration_;
+      tiles_[i]->historyBytes = 0;
+      tiles_[i]->historyLoad.state = TileState::Unloaded;
+      if (total <= options_.memoryBudgetBytes) return;
+    }
+    if (tiles_[i]->loaded && tiles_[i]->lastUsed < frame_) candidates.push_back(i);
+  }
+  std::sort(candidates.begin(), candidates.end(),
+            [&](std::uint32_t a, std::uint32_t b) { return tiles_[a]->lastUsed < tiles_[b]->lastUsed; });
+  for (std::uint32_t i : candidates) {
+    if (total <= options_.memoryBudgetBytes) break;
+    const std::uint64_t bytes = tileBytes(i);
+    evict(i);
+    total -= std::min(total, bytes);
+  }
+  if (total <= options_.memoryBudgetBytes) return;
+  // Still over: the coarse tiles this frame replaced by their children, largest first. The
+  // selector passes through an evicted tile to its children instead of loading it again.
+  candidates.clear();
+  for (std::uint32_t i : selection_.replaced) {
+    if (tiles_[i]->loaded && std::find(detailWanted_.begin(), detailWanted_.end(), i) == detailWanted_.end())
+      candidates.push_back(i);
+  }
+  std::sort(candidates.begin(), candidates.end(), [&](std::uint32_t a, std::uint32_t b) {
+    const std::uint64_t ba = tileBytes(a), bb = tileBytes(b);
+    return ba != bb ? ba > bb : a < b;
+  });
+  for (std::uint32_t i : candidates) {
+    if (total <= options_.memoryBudgetBytes) break;
+    const std::uint64_t bytes = tileBytes(i);
+    evict(i);
+    total -= std::min(total, bytes);
+  }
+}
+
+}  // namespace qv

@@ -1,0 +1,51 @@
+// The per-node state of a CityScene, shared by its source files (CityScene.cpp: loading, the
+// frame and memory; CitySceneAnimation.cpp; CitySceneInspection.cpp: flags, picking, selection).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "qv/scene/CityScene.h"
+#include "qv/scene/TileMeshBuilder.h"
+
+namespace qv {
+
+inline constexpr std::uint32_t kNotAnimated = UINT32_MAX;
+
+struct CityScene::LoadedTile : TileContent {
+  explicit LoadedTile(TileContent content) : TileContent(std::move(content)) {}
+  MeshHandle mesh;
+  std::uint32_t slotBase = 0;
+  std::uint64_t cpuBytes = 0;
+  std::uint64_t gpuBytes = 0;
+};
+
+struct CityScene::TileRuntime {
+  FileLoad tile;                    // the tile's file; its state is the node's
+  std::vector<std::uint8_t> bytes;  // arrived, waiting to be decoded
+  std::unique_ptr<LoadedTile> loaded;
+  std::uint64_t lastUsed = 0;
+  bool bytesMeasured = false;       // nodeBytes_ holds what it measured when it last loaded
+  std::vector<IndexRange> visible;  // this frame's culling result (positions)
+
+  FileLoad summaryLoad;
+  std::unique_ptr<ResponseSummaryTile> summary;
+  FileLoad historyLoad;
+  std::unique_ptr<ResponseHistoryTile> history;
+  std::uint64_t historyBytes = 0;
+  std::uint64_t historyUsed = 0;
+  /// Per building of the loaded tile: its index in animated_, or kNotAnimated.
+  std::vector<std::uint32_t> animatedIndex;
+};
+
+struct CityScene::Animated {
+  BuildingRef ref;
+  std::uint32_t slot = 0;
+  std::uint32_t floorBase = 0;
+  std::uint32_t rows = 0;     // storeys + 1
+  std::uint64_t choice = 0;   // the last choice (chooseAnimated) that kept it
+  bool peaksWritten = false;  // its peak drifts are in its floor rows
+};
+
+}  // namespace qv

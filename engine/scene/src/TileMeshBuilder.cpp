@@ -1,0 +1,169 @@
+#include "qv/scene/TileMeshBuilder.h"
+
+#include <algorithm>
+
+namespace qv {
+namespace {
+
+// The building's box in the city frame: its prisms and the LOD2 model the tile draws.
+Box buildingBox(const TileContent& tile, std::uint32_t b) {
+  const CityTile& d = tile.data;
+  const TileBuilding& tb = d.buildings[b];
+  Box box;
+  for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
+    const TilePart& part = d.parts[p];
+    for (std::uint32_t v = part.firstVertex; v < part.firstVertex + part.vertexCount; ++v) {
+      box.expand(d.vertices[v].x + tile.origin.x, d.vertices[v].y + tile.origin.y, part.minHeightM);
+      box.expand(d.vertices[v].x + tile.origin.x, d.vertices[v].y + tile.origin.y, part.heightM);
+    }
+  }
+  if (const TileMesh* m = tile.meshOf(b)) {
+    const float ground = tb.attributes.minHeightM;
+    for (const glm::vec3& q : d.coarse ? m->farPositions : m->positions)
+      box.expand(q.x + tile.origin.x, q.y + tile.origin.y, q.z + ground);
+  }
+  return box;
+}
+
+// The LOD2 model of one building (the far mesh in coarse tiles), marked kKindModel. Its vertices
+// lie on the floor planes it was re-meshed at (one bone per floor level): the vertex shader blends
+// the displacements of the floors below and above each vertex by height, which are the bone
+// weights the model stores.
+void appendModel(MeshData& mesh, const TileMesh& model, bool coarse, float groundZ, std::uint32_t slot) {
+  const std::size_t first = mesh.vertices.size();
+  const std::size_t firstTriangle = mesh.triangleCount();
+  TriangleMeshInput in;
+  in.offset = glm::vec3(0.0f, 0.0f, groundZ);
+  in.slot = slot;
+  std::vector<std::uint32_t> farIndices;
+  std::vector<std::uint8_t> kinds;
+  if (coarse) {
+    farIndices.assign(model.farTriangles.begin(), model.farTriangles.end());
+    in.positions = model.farPositions;
+    in.triangles = farIndices;
+  } else {
+    constexpr std::uint8_t kKinds[kMeshSurfaceKinds] = {kWall, kRoof, kGround, kKindFromNormal};
+    for (std::size_t k = 0; k < kMeshSurfaceKinds; ++k) kinds.insert(kinds.end(), model.trianglesPerKind[k], kKinds[k]);
+    in.positions = model.positions;
+    in.triangles = model.triangles;
+    in.kinds = kinds;
+  }
+  appendTriangleMesh(mesh, in);
+  for (std::size_t v = first; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindModel;
+  mesh.modelTriangles += mesh.triangleCount() - firstTriangle;
+}
+
+// The LOD1 extrusion of one building: its parts as prisms, with a vertex ring at every floor
+// level inside each part in leaves.
+void appendExtrusions(MeshData& mesh, const CityTile& d, const TileBuilding& tb, std::uint32_t slot) {
+  const BuildingAttributes& a = tb.attributes;
+  const float storeyHeight = std::max(a.storeyHeightM(), 0.5f);
+  std::vector<float> levels;
+  std::vector<std::uint32_t> ringEnds, roof;
+  for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
+    const TilePart& part = d.parts[pi];
+    levels.clear();
+    if (!d.coarse) {
+      for (int k = 1; k < a.storeys && k < 1000; ++k) {
+        const float z = a.minHeightM + static_cast<float>(k) * storeyHeight;
+        if (z > part.minHeightM + 0.01f && z < part.heightM - 0.01f) levels.push_back(z);
+      }
+    }
+    ringEnds.clear();
+    std::uint32_t end = 0;
+    for (std::uint32_t r = part.firstRing; r < part.firstRing + part.ringCount; ++r) {
+      end += d.ringVertexCounts[r];
+      ringEnds.push_back(end);
+    }
+    roof.assign(d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle) * 3,
+                d.roofTriangles.begin() + static_cast<std::ptrdiff_t>(part.firstTriangle + part.triangleCount) * 3);
+    ExtrusionInput in;
+    in.points = std::span<const glm::vec2>(d.vertices).subspan(part.firstVertex, part.vertexCount);
+    in.ringEnds = ringEnds;
+    in.roofTriangles = roof;
+    in.baseZ = part.minHeightM;
+    in.topZ = part.heightM;
+    in.levels = levels;
+    in.slot = slot;
+    appendExtrusion(mesh, in);
+  }
+}
+
+}  // namespace
+
+TileContent indexTile(CityTile data) {
+  TileContent tile;
+  tile.data = std::move(data);
+  const CityTile& d = tile.data;
+  tile.origin = glm::vec3(static_cast<float>(d.originX), static_cast<float>(d.originY), 0.0f);
+  // LOD2 models (MESH section), by building: drawn instead of the building's prisms, the skinned
+  // mesh in leaves and the simplified far mesh in coarse tiles.
+  tile.meshIndex.assign(d.buildings.size(), -1);
+  for (std::size_t k = 0; k < d.meshes.size(); ++k) {
+    if (d.meshes[k].building < d.buildings.size()) tile.meshIndex[d.meshes[k].building] = static_cast<std::int32_t>(k);
+  }
+  // Boxes per building in the city frame, then the BoxTree's Morton order for slots and mesh.
+  std::vector<Box> boxes(d.buildings.size());
+  for (std::uint32_t b = 0; b < d.buildings.size(); ++b) boxes[b] = buildingBox(tile, b);
+  tile.tree.build(boxes);
+  const auto& order = tile.tree.order();
+  tile.idIndex.reserve(d.buildings.size());
+  for (std::uint32_t b = 0; b < d.buildings.size(); ++b) tile.idIndex.emplace(d.buildings[b].attributes.id, b);
+  tile.positionOf.resize(order.size());
+  for (std::uint32_t p = 0; p < order.size(); ++p) tile.positionOf[order[p]] = p;
+  return tile;
+}
+
+MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase) {
+  MeshData mesh;
+  const CityTile& d = tile.data;
+  const auto& order = tile.tree.order();
+  for (std::uint32_t p = 0; p < order.size(); ++p) {
+    const TileBuilding& tb = d.buildings[order[p]];
+    const TileMesh* model = tile.meshOf(order[p]);
+    if (model != nullptr) appendModel(mesh, *model, d.coarse, tb.attributes.minHeightM, slotBase + p);
+    // The LOD1 extrusion; after a model, marked as the fallback the shader draws instead when LOD2
+    // is switched off.
+    const std::size_t firstExtruded = mesh.vertices.size();
+    const std::size_t firstExtrudedTriangle = mesh.triangleCount();
+    appendExtrusions(mesh, d, tb, slotBase + p);
+    if (model != nullptr) {
+      for (std::size_t v = firstExtruded; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindFallback;
+      mesh.fallbackTriangles += mesh.triangleCount() - firstExtrudedTriangle;
+    }
+  }
+  return mesh;
+}
+
+void initialBuildingRows(const TileContent& tile, bool resultsPending, std::span<BuildingGpuRecord> rows) {
+  const auto& order = tile.tree.order();
+  for (std::uint32_t p = 0; p < order.size() && p < rows.size(); ++p) {
+    const BuildingAttributes& a = tile.data.buildings[order[p]].attributes;
+    BuildingGpuRecord& row = rows[p];
+    row = BuildingGpuRecord{};
+    row.storeyHeightMeters = std::max(a.storeyHeightM(), 0.5f);
+    row.storeys = static_cast<float>(a.storeys);
+    row.baseZ = a.minHeightM;
+    // Results on their way: plain (not hatched as "no result") until the summary arrives.
+    if (resultsPending) row.damageState = kDamagePending;
+  }
+}
+
+std::uint64_t tileCpuBytes(const TileContent& tile) {
+  const CityTile& d = tile.data;
+  std::uint64_t bytes = d.vertices.size() * sizeof(glm::vec2) + d.roofTriangles.size() * 2 +
+                        d.ringVertexCounts.size() * 2 + d.parts.size() * sizeof(TilePart) +
+                        d.buildings.size() * (sizeof(TileBuilding) + 64) + d.buildings.size() * (sizeof(Box) * 2 + 12) +
+                        tile.meshIndex.size() * 4;
+  for (const TileMesh& m : d.meshes) {
+    bytes += sizeof(TileMesh) + m.positions.size() * (sizeof(glm::vec3) + 5) + m.triangles.size() * 4 +
+             m.farPositions.size() * sizeof(glm::vec3) + m.farTriangles.size() * 2;
+  }
+  return bytes;
+}
+
+std::uint64_t meshGpuBytes(const MeshData& mesh) {
+  return mesh.vertices.size() * sizeof(BuildingVertex) + mesh.indices.size() * sizeof(std::uint32_t);
+}
+
+}  // namespace qv

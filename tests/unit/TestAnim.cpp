@@ -1,0 +1,145 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <vector>
+
+#include "qv/anim/FloorDisplacements.h"
+#include "qv/anim/HistorySampling.h"
+
+using namespace qv;
+
+namespace {
+
+// A floor row as the scene's floor table has it: the displacements and something else.
+struct Row {
+  float dxMeters = 0.0f;
+  float dyMeters = 0.0f;
+  float other = 7.0f;
+};
+
+// A history of `samples` samples at `rateHz` from `startSeconds`, `modes` per sample, whose mode
+// k at sample i is base + slope * i + k (a straight line in time per mode).
+struct RampHistory {
+  std::vector<std::int16_t> coordinates;
+  std::vector<float> scales;
+  float startSeconds, rateHz;
+  std::uint32_t samples;
+  std::size_t modes;
+  RampHistory(float start, float rate, std::uint32_t n, std::size_t m, int base, int slope)
+      : startSeconds(start), rateHz(rate), samples(n), modes(m) {
+    for (std::uint32_t i = 0; i < n; ++i) {
+      for (std::size_t k = 0; k < m; ++k)
+        coordinates.push_back(static_cast<std::int16_t>(base + slope * static_cast<int>(i) + static_cast<int>(k)));
+    }
+    for (std::size_t k = 0; k < m; ++k) scales.push_back(0.5f + 0.25f * static_cast<float>(k));
+  }
+};
+
+}  // namespace
+
+TEST_CASE("A history is read exactly at its samples and held before its start and after its end", "[anim]") {
+  const float start = 2.0f, rate = 8.0f;  // samples at times exact in binary
+  const std::uint32_t count = 50;
+  for (std::uint32_t i = 0; i < count; ++i) {
+    CAPTURE(i);
+    const HistoryTap tap = historyTap(start, rate, count, start + i / 8.0);
+    CHECK(tap.i1 == i);
+    CHECK(tap.w1 == Approx(1.0f).margin(1e-5));
+    CHECK(tap.w0 == Approx(0.0f).margin(1e-5));
+    CHECK(tap.w2 == Approx(0.0f).margin(1e-5));
+    CHECK(tap.w3 == Approx(0.0f).margin(1e-5));
+  }
+  for (double t : {-5.0, 0.0, 1.99}) {
+    const HistoryTap tap = historyTap(start, rate, count, t);
+    CHECK(tap.i1 == 0);
+    CHECK(tap.w1 == 1.0f);
+  }
+  for (double t : {start + 49.0 / 8.0, 100.0, 1.0e9}) {
+    const HistoryTap tap = historyTap(start, rate, count, t);
+    CHECK(tap.i1 == count - 1);
+    CHECK(tap.i2 == count - 1);
+    CHECK(tap.i3 == count - 1);
+  }
+}
+
+TEST_CASE("Between samples a straight-line history stays on its line, in every mode", "[anim]") {
+  const RampHistory h(1.0f, 8.0f, 40, 5, -300, 15);
+  for (double t = 1.2; t < 5.5; t += 0.037) {
+    CAPTURE(t);
+    const HistoryTap tap = historyTap(h.startSeconds, h.rateHz, h.samples, t);
+    float out[kMaxHistoryModes] = {};
+    modalCoordinates(h.coordinates.data(), h.modes, h.scales.data(), tap, out);
+    const double position = (t - h.startSeconds) * h.rateHz;
+    for (std::size_t k = 0; k < h.modes; ++k) {
+      const double expected = (-300.0 + 15.0 * position + static_cast<double>(k)) * h.scales[k];
+      CHECK(out[k] == Approx(expected).margin(1e-3));
+    }
+  }
+}
+
+TEST_CASE("A building's sample window gives what the whole history gives, forward, backward and after jumps",
+          "[anim]") {
+  const RampHistory hx(0.5f, 20.0f, 300, 3, 100, -7);
+  RampHistory hy(0.5f, 20.0f, 300, 6, -900, 11);
+  for (std::size_t i = 0; i < hy.coordinates.size(); ++i) {
+    hy.coordinates[i] = static_cast<std::int16_t>(hy.coordinates[i] * ((i % 3) == 0 ? -1 : 1));  // not a line
+  }
+  HistoryStream stream;
+  stream.x = hx.coordinates.data();
+  stream.y = hy.coordinates.data();
+  stream.scalesX = hx.scales.data();
+  stream.scalesY = hy.scales.data();
+  stream.startSeconds = hx.startSeconds;
+  stream.sampleRateHz = hx.rateHz;
+  stream.sampleCount = hx.samples;
+  stream.modesX = static_cast<std::uint8_t>(hx.modes);
+  stream.modesY = static_cast<std::uint8_t>(hy.modes);
+  SampleWindow window;
+  std::vector<double> times;
+  for (double t = 0.0; t < 4.0; t += 1.0 / 60.0) times.push_back(t);       // playing at 60 frames a second
+  for (double t = 4.0; t > 2.0; t -= 1.0 / 30.0) times.push_back(t);       // scrubbing back
+  for (double t : {12.0, 0.7, 15.9, 16.0, 3.3, 3.31}) times.push_back(t);  // jumps and the end
+  for (double t : times) {
+    CAPTURE(t);
+    float windowed[2 * kMaxHistoryModes] = {};
+    windowedModalCoordinates(stream, t, window, windowed);
+    const HistoryTap tap = historyTap(stream.startSeconds, stream.sampleRateHz, stream.sampleCount, t);
+    float x[kMaxHistoryModes] = {}, y[kMaxHistoryModes] = {};
+    modalCoordinates(hx.coordinates.data(), hx.modes, hx.scales.data(), tap, x);
+    modalCoordinates(hy.coordinates.data(), hy.modes, hy.scales.data(), tap, y);
+    for (std::size_t k = 0; k < hx.modes; ++k) CHECK(windowed[k] == x[k]);
+    for (std::size_t k = 0; k < hy.modes; ++k) CHECK(windowed[kMaxHistoryModes + k] == y[k]);
+  }
+}
+
+TEST_CASE("Floor displacements from modal coordinates equal the plain dot products for every mode count", "[anim]") {
+  // Shapes and coordinates with distinct values, for 0 … 8 modes in each direction (the unrolled
+  // kernels up to 6, the general loop beyond).
+  constexpr std::size_t kFloors = 7;
+  std::vector<float> shapesX(kFloors * 8), shapesY(kFloors * 8), cx(8), cy(8);
+  for (std::size_t i = 0; i < shapesX.size(); ++i) {
+    shapesX[i] = 0.01f * static_cast<float>(i % 13) - 0.05f;
+    shapesY[i] = 0.02f * static_cast<float>(i % 7) + 0.01f;
+  }
+  for (std::size_t k = 0; k < 8; ++k) {
+    cx[k] = 1.5f - 0.4f * static_cast<float>(k);
+    cy[k] = 0.3f * static_cast<float>(k) - 0.7f;
+  }
+  for (std::size_t mx = 0; mx <= 8; ++mx) {
+    for (std::size_t my = 0; my <= 8; ++my) {
+      CAPTURE(mx, my);
+      std::vector<Row> rows(kFloors + 1);
+      rows[kFloors].dxMeters = 42.0f;  // beyond the floors: untouched
+      floorDisplacements(shapesX.data(), cx.data(), mx, shapesY.data(), cy.data(), my, kFloors, rows.data());
+      for (std::size_t f = 0; f < kFloors; ++f) {
+        double x = 0.0, y = 0.0;
+        for (std::size_t k = 0; k < mx; ++k) x += static_cast<double>(shapesX[f * mx + k]) * cx[k];
+        for (std::size_t k = 0; k < my; ++k) y += static_cast<double>(shapesY[f * my + k]) * cy[k];
+        CHECK(rows[f].dxMeters == Approx(x).margin(1e-6));
+        CHECK(rows[f].dyMeters == Approx(y).margin(1e-6));
+      }
+      CHECK(rows[kFloors].dxMeters == 42.0f);
+      for (const Row& row : rows) CHECK(row.other == 7.0f);  // only dx and dy are written
+    }
+  }
+}

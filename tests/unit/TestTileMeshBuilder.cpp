@@ -1,0 +1,123 @@
+#include <catch2/catch.hpp>
+
+#include <map>
+
+#include "MiniCity.h"
+#include "qv/scene/TileMeshBuilder.h"
+
+using namespace qv;
+using test::MiniCity;
+
+namespace {
+
+// Node `node` of the city, decoded and indexed.
+TileContent tileOf(const MiniCity& city, std::uint32_t node) {
+  const std::string url = "city/" + city.tileset.nodes[node].file;
+  Result<CityTile> decoded = decodeCityTile(city.files.at(url), url);
+  REQUIRE(decoded.ok());
+  return indexTile(std::move(decoded).value());
+}
+
+struct SlotGeometry {
+  int plain = 0, model = 0, fallback = 0;
+  float topZ = -1e9f;
+  glm::vec2 sum{0.0f};
+};
+
+// Per slot: vertex counts by kind, the highest vertex and the sum of plain vertices' positions.
+std::map<std::uint32_t, SlotGeometry> bySlot(const MeshData& mesh) {
+  std::map<std::uint32_t, SlotGeometry> out;
+  for (const BuildingVertex& v : mesh.vertices) {
+    SlotGeometry& g = out[v.slot];
+    if ((v.kind & kKindModel) != 0) {
+      ++g.model;
+      g.topZ = std::max(g.topZ, v.z);
+    } else if ((v.kind & kKindFallback) != 0) {
+      ++g.fallback;
+    } else {
+      ++g.plain;
+      g.sum += glm::vec2(v.x, v.y);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("A tile's index finds every building and its row", "[scene][tilemesh]") {
+  const MiniCity city;
+  for (std::uint32_t node = 0; node < city.tileset.nodes.size(); ++node) {
+    CAPTURE(node);
+    const TileContent tile = tileOf(city, node);
+    REQUIRE(tile.buildingCount() == city.tileset.nodes[node].buildings);
+    REQUIRE(tile.positionOf.size() == tile.buildingCount());
+    for (std::uint32_t b = 0; b < tile.buildingCount(); ++b) {
+      CHECK(tile.idIndex.at(tile.data.buildings[b].attributes.id) == b);
+      CHECK(tile.tree.order()[tile.positionOf[b]] == b);
+      CHECK(tile.meshOf(b) == nullptr);  // no LOD2 in this city
+    }
+  }
+}
+
+TEST_CASE("A tile's mesh draws each building at its place, in its own row, with floor rings in leaves",
+          "[scene][tilemesh]") {
+  const MiniCity city;
+  const TileContent root = tileOf(city, 0);
+  const std::uint32_t slotBase = 1000;
+  const auto coarse = bySlot(buildTileMesh(root, slotBase));
+  REQUIRE(coarse.size() == root.buildingCount());
+  for (std::uint32_t b = 0; b < root.buildingCount(); ++b) {
+    const BuildingAttributes& a = root.data.buildings[b].attributes;
+    const SlotGeometry& g = coarse.at(slotBase + root.positionOf[b]);
+    const glm::vec2 centre = g.sum / static_cast<float>(g.plain) + glm::vec2(root.origin);
+    CHECK(centre.x == Approx(a.centroidX + root.data.originX).margin(0.5));
+    CHECK(centre.y == Approx(a.centroidY + root.data.originY).margin(0.5));
+  }
+  // The same building in a leaf has a vertex ring at each floor level (the floors bend apart).
+  const TileContent leaf = tileOf(city, 1);
+  const auto detailed = bySlot(buildTileMesh(leaf, 0));
+  const std::string& id = leaf.data.buildings[0].attributes.id;
+  const int leafVertices = detailed.at(leaf.positionOf[0]).plain;
+  const int coarseVertices = coarse.at(slotBase + root.positionOf[root.idIndex.at(id)]).plain;
+  CHECK(leafVertices > coarseVertices);
+}
+
+TEST_CASE("A LOD2 model is meshed with its LOD1 fallback in the same row", "[scene][tilemesh][lod2]") {
+  const MiniCity city(true, true);
+  for (std::uint32_t node : {0u, 1u}) {
+    CAPTURE(node);
+    const TileContent tile = tileOf(city, node);
+    const auto it = tile.idIndex.find(MiniCity::kLod2Id);
+    REQUIRE(it != tile.idIndex.end());
+    REQUIRE(tile.meshOf(it->second) != nullptr);
+    const MeshData mesh = buildTileMesh(tile, 0);
+    const auto slots = bySlot(mesh);
+    const SlotGeometry& g = slots.at(tile.positionOf[it->second]);
+    CHECK(g.model > 0);
+    CHECK(g.fallback > 0);
+    CHECK(g.plain == 0);
+    CHECK(g.topZ == Approx(MiniCity::kSpireTopM).margin(0.01));
+    CHECK(mesh.modelTriangles > 0);
+    CHECK(mesh.fallbackTriangles > 0);
+    // Every other building is plain.
+    for (const auto& [slot, other] : slots) {
+      if (slot != tile.positionOf[it->second]) CHECK(other.model + other.fallback == 0);
+    }
+  }
+}
+
+TEST_CASE("A tile's first rows carry its storeys and say whether results are on their way", "[scene][tilemesh]") {
+  const MiniCity withResponse;
+  const TileContent tile = tileOf(withResponse, 1);
+  std::vector<BuildingGpuRecord> rows(tile.buildingCount());
+  for (bool pending : {true, false}) {
+    initialBuildingRows(tile, pending, rows);
+    for (const BuildingGpuRecord& row : rows) {
+      CHECK(row.storeys == static_cast<float>(MiniCity::kStoreys));
+      CHECK(row.storeyHeightMeters == Approx(MiniCity::kStoreyHeight));
+      CHECK(row.damageState == (pending ? kDamagePending : -1.0f));
+      CHECK(row.floorBase == -1.0f);
+      CHECK(row.flags == 0.0f);
+    }
+  }
+}
