@@ -2,11 +2,13 @@
 
 #include <simdjson.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
 #include "qv/core/Text.h"
 #include "qv/scene/Export.h"
+#include "qv/scene/ViewConsequences.h"
 
 using namespace qv;
 
@@ -100,7 +102,7 @@ TEST_CASE("CSV export: formula triggers are neutralised, text round-trips, numbe
   const auto rows = readCsv(csv);
   REQUIRE(rows.size() == kHostile.size() + 1);
   const std::vector<std::string>& header = rows[0];
-  REQUIRE(header.size() == 15);
+  REQUIRE(header.size() == 35);
   CHECK(header[1] == "name");
   CHECK(header[2] == "address");
   for (std::size_t i = 0; i < kHostile.size(); ++i) {
@@ -161,4 +163,78 @@ TEST_CASE("GeoJSON export of hostile names parses and gives the names back", "[s
     CHECK(lon < -74.0);
     ++i;
   }
+}
+
+TEST_CASE("CSV export carries each building's HAZUS probabilities and consequences, blank without them",
+          "[scene][export]") {
+  BuildingListEntry with;
+  with.id = "s1";
+  with.damage = DamageState::Moderate;
+  BuildingLoss loss;
+  const float p[5] = {0.5f, 0.25f, 0.125f, 0.0625f, 0.0625f};
+  for (std::size_t k = 0; k < 5; ++k) loss.structural[k] = p[k];
+  loss.tag[0] = 0.75f;
+  loss.tag[1] = 0.125f;
+  loss.tag[2] = 0.125f;
+  loss.occupants = 42.5f;
+  loss.injuries[3] = 0.25f;
+  loss.repairCostUsd = 125000.0f;
+  loss.flags = kLossOccupantsInferred;
+  with.loss = loss;
+  BuildingListEntry without;
+  without.id = "s2";
+  const auto rows = readCsv(exportCsv(std::vector<BuildingListEntry>{with, without}, GeoFrame(-74.0, 40.7)));
+  REQUIRE(rows.size() == 3);
+  const auto column = [&](const std::string& name) {
+    const auto at = std::find(rows[0].begin(), rows[0].end(), name);
+    REQUIRE(at != rows[0].end());
+    return static_cast<std::size_t>(at - rows[0].begin());
+  };
+  CHECK(rows[1][column("p_moderate")] == "0.12500");
+  CHECK(rows[1][column("expected_damage_state")] == "0.9375");  // 0.25 + 2 x 0.125 + 3 x 0.0625 + 4 x 0.0625
+  CHECK(rows[1][column("p_tag_red")] == "0.12500");
+  CHECK(rows[1][column("occupants")] == "42.50");
+  CHECK(rows[1][column("occupants_inferred")] == "1");
+  CHECK(rows[1][column("value_inferred")] == "0");
+  CHECK(rows[1][column("deaths")] == "0.25000");
+  CHECK(rows[1][column("repair_cost_usd")] == "125000");
+  REQUIRE(rows[2].size() == rows[0].size());
+  CHECK(rows[2][column("p_moderate")].empty());  // unknown, not zero
+  CHECK(rows[2][column("repair_cost_usd")].empty());
+}
+
+TEST_CASE("The view's consequence sums: exact expected values, a normal 90 % interval, and the totals CSV",
+          "[scene][export]") {
+  ConsequenceSums sums;
+  BuildingLoss a;
+  a.structural[0] = 0.5f;
+  a.structural[2] = 0.5f;
+  a.tag[0] = 0.5f;
+  a.tag[1] = 0.5f;
+  a.repairCostUsd = 1000.0f;
+  a.repairCostStdUsd = 300.0f;
+  a.occupants = 10.0f;
+  for (int i = 0; i < 4; ++i) sums.add(a);
+  const seismic::LossTotals t = sums.totals();
+  CHECK(t.buildings == 4);
+  CHECK(t.damageStates[2].expected == Approx(2.0));
+  // Four Bernoulli(0.5): sigma = sqrt(4 * 0.25) = 1, interval 2 -+ 1.645.
+  CHECK(t.damageStates[2].low == Approx(2.0 - 1.6448536));
+  CHECK(t.damageStates[2].high == Approx(2.0 + 1.6448536));
+  CHECK(t.repairCostUsd.expected == Approx(4000.0));
+  CHECK(t.repairCostUsd.high == Approx(4000.0 + 1.6448536 * 600.0));
+  CHECK(t.occupants.expected == Approx(40.0));
+  CHECK(t.damageStates[4].high == 0.0);  // nothing possible, nothing in the interval
+  seismic::ConsequenceTotals file;
+  file.timeOfDay = "night";
+  file.city = t;
+  file.districts.push_back({"=Downtown", t});
+  const auto rows = readCsv(exportConsequencesCsv(file, &t));
+  REQUIRE(rows.size() == 4);
+  CHECK(rows[1][0] == "city");
+  CHECK(rows[2][0] == "view");
+  CHECK(rows[3][0] == "district");
+  CHECK(rows[3][1] == "'=Downtown");  // a district name cannot run a formula
+  CHECK(rows[1][2] == "4");
+  CHECK(rows[1][3] == "night");
 }

@@ -21,10 +21,12 @@ CityIndex::CityIndex(FileLoader& loader, std::string manifestUrl)
 CityIndex::~CityIndex() {
   loader_.cancel(search_);
   loader_.cancel(summaryLoad_);
+  loader_.cancel(consequencesLoad_);
 }
 
 std::uint32_t CityIndex::pendingFiles() const {
-  return (search_.state == TileState::Loading ? 1u : 0u) + (summaryLoad_.state == TileState::Loading ? 1u : 0u);
+  return (search_.state == TileState::Loading ? 1u : 0u) + (summaryLoad_.state == TileState::Loading ? 1u : 0u) +
+         (consequencesLoad_.state == TileState::Loading ? 1u : 0u);
 }
 
 const SearchEntry* CityIndex::entry(std::string_view id) const {
@@ -49,9 +51,28 @@ void CityIndex::retry() {
   if (search_.failures > 0 && loader_.due(search_)) request();
   // The response summary in the index's order follows the index (it is useless without it).
   requestSummary();
+  if (consequencesLoad_.failures > 0) requestConsequences();
+}
+
+void CityIndex::requestConsequences() {
+  if (!tileset_ || !tileset_->response || !tileset_->response->consequences || tileset_->responseOutOfDate() ||
+      !loader_.due(consequencesLoad_)) {
+    return;
+  }
+  fetch(consequencesLoad_, FileKind::Consequences, *tileset_->response->consequences,
+        [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
+          const std::string_view text(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+          auto parsed = seismic::parseConsequences(text, url);
+          if (!parsed.ok()) return parsed.error();
+          consequences_ = std::make_unique<seismic::ConsequenceTotals>(std::move(parsed).value());
+          bytes_ += sizeof(seismic::ConsequenceTotals) +
+                    consequences_->districts.size() * sizeof(seismic::ConsequenceTotals::District);
+          return {};
+        });
 }
 
 void CityIndex::request() {
+  requestConsequences();
   if (!tileset_ || !tileset_->search) return;
   fetch(search_, FileKind::SearchIndex, *tileset_->search,
         [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
@@ -101,6 +122,12 @@ void CityIndex::requestSummary() {
 
 bool CityIndex::settled() const {
   if (!tileset_) return false;
+  const bool consequencesExpected =
+      tileset_->response && tileset_->response->consequences && !tileset_->responseOutOfDate();
+  if (consequencesExpected && consequencesLoad_.state != TileState::Loaded &&
+      consequencesLoad_.state != TileState::Failed) {
+    return false;
+  }
   if (!tileset_->search || search_.state == TileState::Failed) return true;
   if (search_.state != TileState::Loaded) return false;
   const bool summaryExpected = tileset_->response && tileset_->response->summaryIndex && !tileset_->responseOutOfDate();
@@ -128,6 +155,9 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
     e.peakDriftRatio = r->peakDriftRatio;
     e.peakRoofDisplacementM = r->peakRoofDisplacementM;
     e.pgaG = r->pgaG;
+    if (r->source != ResponseSource::None && summary_ && index < summary_->losses.size()) {
+      e.loss = summary_->losses[index];
+    }
   }
   return e;
 }

@@ -252,6 +252,15 @@ void CityScene::applySummary(std::uint32_t node) {
     BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
     row.peakValue = r.peakDriftRatio;
     row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
+    row.lossCode = -1.0f;
+    if (b < t.summary->losses.size() && r.source != ResponseSource::None) {
+      const BuildingLoss& l = t.summary->losses[b];
+      int tag = 0;
+      for (int k = 1; k < 3; ++k) {
+        if (l.tag[k] > l.tag[tag]) tag = k;
+      }
+      row.lossCode = packLossCode(l.structural[2] + l.structural[3] + l.structural[4], l.expectedState(), tag);
+    }
   }
   table_.changed(tile.slotBase, tile.buildingCount());
   applyFlags(node);  // damage filters need the summary
@@ -428,6 +437,7 @@ void CityScene::countDamageInView() {
   viewSignature_ = viewSignature;
   if (viewChanged) {
     damageInView_.fill(0);
+    lossInView_.clear();
     for (std::uint32_t i : selection_.draw) {
       const TileRuntime& t = *tiles_[i];
       if (!t.loaded) continue;
@@ -437,6 +447,9 @@ void CityScene::countDamageInView() {
           const DamageState d =
               t.summary && b < t.summary->buildings.size() ? t.summary->buildings[b].damage : DamageState::NoResult;
           ++damageInView_[d == DamageState::NoResult ? 5 : static_cast<std::size_t>(d)];
+          if (d != DamageState::NoResult && t.summary && b < t.summary->losses.size()) {
+            lossInView_.add(t.summary->losses[b]);
+          }
         }
       }
     }

@@ -38,7 +38,9 @@ std::string number(double v, int decimals) {
 std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFrame& geo) {
   std::string out =
       "id,name,address,use,importance,damage_state,peak_drift_ratio,peak_roof_displacement_m,pga_g,height_m,storeys,"
-      "lon,lat,x_m,y_m\r\n";
+      "lon,lat,x_m,y_m,p_none,p_slight,p_moderate,p_extensive,p_complete,p_collapse,expected_damage_state,"
+      "p_tag_green,p_tag_yellow,p_tag_red,occupants,occupants_inferred,injuries_1,injuries_2,injuries_3,deaths,"
+      "repair_cost_usd,replacement_value_usd,value_inferred,repair_time_days\r\n";
   for (const BuildingListEntry& b : buildings) {
     const auto ll = geo.reverse({b.x, b.y});
     out += csvField(b.id) + ',' + csvField(b.name) + ',' + csvField(b.address) + ',' + csvField(b.use) + ',';
@@ -46,7 +48,21 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
     out += number(b.peakDriftRatio, 6) + ',' + number(b.peakRoofDisplacementM, 4) + ',' + number(b.pgaG, 4) + ',';
     out += number(b.heightM, 1) + ',' + std::to_string(b.storeys) + ',';
     out += (ll ? number(ll->lon, 7) : std::string()) + ',' + (ll ? number(ll->lat, 7) : std::string()) + ',';
-    out += number(b.x, 2) + ',' + number(b.y, 2) + "\r\n";
+    out += number(b.x, 2) + ',' + number(b.y, 2);
+    // HAZUS columns: left blank (not zero) for a building without probabilities.
+    if (b.loss) {
+      const BuildingLoss& l = *b.loss;
+      for (const float p : l.structural) out += ',' + number(p, 5);
+      out += ',' + number(l.collapse, 6) + ',' + number(l.expectedState(), 4);
+      for (const float p : l.tag) out += ',' + number(p, 5);
+      out += ',' + number(l.occupants, 2) + ',' + ((l.flags & kLossOccupantsInferred) != 0 ? "1" : "0");
+      for (const float v : l.injuries) out += ',' + number(v, 5);
+      out += ',' + number(l.repairCostUsd, 0) + ',' + number(l.replacementValueUsd, 0) + ',' +
+             ((l.flags & kLossValueInferred) != 0 ? "1" : "0") + ',' + number(l.repairTimeDays, 1);
+    } else {
+      out += std::string(20, ',');
+    }
+    out += "\r\n";
   }
   return out;
 }
@@ -84,12 +100,12 @@ std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, cons
   for (const char* n : names) out += std::string(",") + n + "," + n + "_low," + n + "_high";
   out += "\r\n";
   auto row = [&](std::string_view kind, std::string_view area, const seismic::LossTotals& t) {
-    const seismic::Estimate* values[] = {&t.damageStates[0], &t.damageStates[1], &t.damageStates[2],
-                                         &t.damageStates[3], &t.damageStates[4], &t.collapsed,
-                                         &t.tags[0],         &t.tags[1],         &t.tags[2],
-                                         &t.occupants,       &t.injuries[0],     &t.injuries[1],
+    const seismic::Estimate* values[] = {&t.damageStates[0], &t.damageStates[1], &t.damageStates[2], &t.damageStates[3],
+                                         &t.damageStates[4], &t.collapsed,       &t.tags[0],         &t.tags[1],
+                                         &t.tags[2],         &t.occupants,       &t.injuries[0],     &t.injuries[1],
                                          &t.injuries[2],     &t.injuries[3],     &t.repairCostUsd};
-    out += std::string(kind) + ',' + csvField(area) + ',' + std::to_string(t.buildings) + ',' + csvField(totals.timeOfDay);
+    out +=
+        std::string(kind) + ',' + csvField(area) + ',' + std::to_string(t.buildings) + ',' + csvField(totals.timeOfDay);
     for (const seismic::Estimate* e : values) {
       out += ',' + number(e->expected, 4) + ',' + number(e->low, 4) + ',' + number(e->high, 4);
     }

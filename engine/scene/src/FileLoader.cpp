@@ -29,6 +29,8 @@ std::string subject(const FileSpec& spec) {
       return "Response history " + spec.url;
     case FileKind::SearchIndex:
       return "Search index " + spec.url;
+    case FileKind::Consequences:
+      return "Consequences " + spec.url;
   }
   return spec.url;
 }

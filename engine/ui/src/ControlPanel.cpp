@@ -209,10 +209,11 @@ void ControlPanel::drawShakingOfBuilding(const BuildingInfo& info, ui::Widgets& 
     }
   }
   if (info.spread && info.spread->records > 1) {
-    w.textWrapped(ui::format("Across %u records: peak drift and floor acceleration are medians (log standard "
-                             "deviation %.2f and %.2f); the motion shown is record %u, the nearest the median",
-                             info.spread->records, static_cast<double>(info.spread->driftBeta),
-                             static_cast<double>(info.spread->accelerationBeta), info.spread->shownRecord + 1u));
+    w.textWrapped(
+        ui::format("Across %u records: peak drift and floor acceleration are medians (log standard "
+                   "deviation %.2f and %.2f); the motion shown is record %u, the nearest the median",
+                   info.spread->records, static_cast<double>(info.spread->driftBeta),
+                   static_cast<double>(info.spread->accelerationBeta), info.spread->shownRecord + 1u));
   }
 }
 
@@ -226,8 +227,8 @@ void ControlPanel::drawBuildingLoss(const BuildingLoss& l, ui::Widgets& w) {
   }
   const float moderate = l.structural[2] + l.structural[3] + l.structural[4];
   w.field("Moderate or worse", ui::format("%.1f %%; expected state %.2f (0 none .. 4 complete); collapse %.2f %%",
-                                          100.0 * static_cast<double>(moderate),
-                                          static_cast<double>(l.expectedState()), 100.0 * static_cast<double>(l.collapse)));
+                                          100.0 * static_cast<double>(moderate), static_cast<double>(l.expectedState()),
+                                          100.0 * static_cast<double>(l.collapse)));
   const char* tags[3] = {"Tag green", "Tag yellow", "Tag red"};
   for (std::size_t k = 0; k < 3; ++k) {
     w.meter(tags[k], l.tag[k], ui::format("%.1f %%", 100.0 * static_cast<double>(l.tag[k])), kTagPalette[k].r,
@@ -237,15 +238,14 @@ void ControlPanel::drawBuildingLoss(const BuildingLoss& l, ui::Widgets& w) {
   const bool valueInferred = (l.flags & kLossValueInferred) != 0;
   w.field("Occupants present", ui::format("%.1f%s", static_cast<double>(l.occupants),
                                           occupantsInferred ? " (inferred from floor area and use)" : ""));
-  w.field("Expected injuries",
-          ui::format("%.2f minor, %.2f hospital, %.3f life-threatening; deaths %.3f%s",
-                     static_cast<double>(l.injuries[0]), static_cast<double>(l.injuries[1]),
-                     static_cast<double>(l.injuries[2]), static_cast<double>(l.injuries[3]),
-                     occupantsInferred ? " (from inferred occupants)" : ""));
-  w.field("Expected repair cost",
-          ui::format("%s of %s%s; repair time %.0f days", usd(l.repairCostUsd).c_str(),
-                     usd(l.replacementValueUsd).c_str(), valueInferred ? " (value inferred from floor area and use)" : "",
-                     static_cast<double>(l.repairTimeDays)));
+  w.field("Expected injuries", ui::format("%.2f minor, %.2f hospital, %.3f life-threatening; deaths %.3f%s",
+                                          static_cast<double>(l.injuries[0]), static_cast<double>(l.injuries[1]),
+                                          static_cast<double>(l.injuries[2]), static_cast<double>(l.injuries[3]),
+                                          occupantsInferred ? " (from inferred occupants)" : ""));
+  w.field("Expected repair cost", ui::format("%s of %s%s; repair time %.0f days", usd(l.repairCostUsd).c_str(),
+                                             usd(l.replacementValueUsd).c_str(),
+                                             valueInferred ? " (value inferred from floor area and use)" : "",
+                                             static_cast<double>(l.repairTimeDays)));
 }
 
 void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host) {
@@ -265,22 +265,21 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   const seismic::ConsequenceTotals* file = city->consequences();
   if (file == nullptr) {
     w.textWrapped(r.consequences ? (city->consequencesFailed() ? "The consequences file could not be loaded."
-                                                              : "Loading the consequences...")
+                                                               : "Loading the consequences...")
                                  : "These results carry no damage probabilities or consequences (computed before "
                                    "they existed, or imported): run quakeview-prep response again.");
     return;
   }
   const seismic::LossTotals view = city->consequencesInView();
-  w.textWrapped(ui::format("HAZUS 5.1, occupants at %s. Expected values with a 90 %% interval; the view's interval "
-                           "is a normal approximation (docs/losses.md). Occupants and replacement values are "
-                           "inferred from floor area and use unless the data gives them.",
-                           file->timeOfDay.c_str()));
+  w.textWrapped(
+      ui::format("HAZUS 5.1, occupants at %s. Expected values with a 90 %% interval; the view's interval "
+                 "is a normal approximation (docs/losses.md). Occupants and replacement values are "
+                 "inferred from floor area and use unless the data gives them.",
+                 file->timeOfDay.c_str()));
   auto cell = [](const seismic::Estimate& e, int decimals) {
     return ui::format("%.*f (%.*f-%.*f)", decimals, e.expected, decimals, e.low, decimals, e.high);
   };
-  auto money = [](const seismic::Estimate& e) {
-    return usd(e.expected) + " (" + usd(e.low) + "-" + usd(e.high) + ")";
-  };
+  auto money = [](const seismic::Estimate& e) { return usd(e.expected) + " (" + usd(e.low) + "-" + usd(e.high) + ")"; };
   const seismic::LossTotals& c = file->city;
   std::vector<std::vector<std::string>> rows;
   rows.push_back({"Buildings with a result", ui::format("%llu", static_cast<unsigned long long>(c.buildings)),
@@ -302,8 +301,7 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
     std::vector<std::vector<std::string>> districtRows;
     for (const seismic::ConsequenceTotals::District& d : file->districts) {
       const seismic::LossTotals& t = d.totals;
-      const double moderate =
-          t.damageStates[2].expected + t.damageStates[3].expected + t.damageStates[4].expected;
+      const double moderate = t.damageStates[2].expected + t.damageStates[3].expected + t.damageStates[4].expected;
       double hurt = 0.0;
       for (std::size_t k = 0; k < 3; ++k) hurt += t.injuries[k].expected;
       districtRows.push_back({d.name, ui::format("%llu", static_cast<unsigned long long>(t.buildings)),

@@ -1,9 +1,9 @@
 #include "qv/ui/Widgets.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdarg>
 #include <cstdio>
-#include <cmath>
 #include <cstring>
 
 #include <imgui.h>
@@ -242,8 +242,8 @@ void Widgets::table(const char* id, const std::vector<std::string>& headers,
   std::string line;
   for (std::size_t c = 0; c < headers.size(); ++c) line += (c > 0 ? " | " : "") + std::string(Shown(headers[c]).view());
   mirror_.line(line);
-  const bool shown = ImGui::BeginTable(id, columns, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg |
-                                                        ImGuiTableFlags_SizingFixedFit);
+  const bool shown =
+      ImGui::BeginTable(id, columns, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit);
   if (shown) {
     for (const std::string& h : headers) ImGui::TableSetupColumn(std::string(Shown(h).view()).c_str());
     ImGui::TableHeadersRow();

@@ -1,11 +1,13 @@
 // CityIndex: the city-wide side of a city: its search index (every building's id, name, address,
 // use and leaf tile) and the response summary in the index's order, each loaded once through the
-// FileLoader, and what is built from them: search, the filtered list of buildings, lookup by id.
+// FileLoader, and what is built from them: search, the filtered list of buildings, lookup by id;
+// and the response's consequence totals (consequences.json).
 // Until they load, search and lists are empty.
 #pragma once
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -15,6 +17,7 @@
 #include "qv/format/SearchIndex.h"
 #include "qv/format/Tileset.h"
 #include "qv/scene/FileLoader.h"
+#include "qv/seismic/ConsequencesFile.h"
 
 namespace qv {
 
@@ -44,7 +47,8 @@ struct BuildingListEntry {
   float pgaG = 0.0f;
   float heightM = 0.0f;
   std::uint16_t storeys = 0;
-  double x = 0.0, y = 0.0;  ///< centroid, metres in the city frame
+  double x = 0.0, y = 0.0;           ///< centroid, metres in the city frame
+  std::optional<BuildingLoss> loss;  ///< HAZUS probabilities and consequences, when the response has them
 };
 
 class CityIndex {
@@ -57,13 +61,17 @@ class CityIndex {
 
   /// The city's manifest has loaded; it must outlive this index.
   void open(const Tileset& tileset) { tileset_ = &tileset; }
-  /// Fetches the search index once (cities without one have nothing to load).
+  /// Fetches the search index and the consequence totals once (cities without them have nothing
+  /// to load).
   void request();
   /// Once a frame: a failed file is fetched again after its backoff; the response summary in the
   /// index's order follows the index.
   void retry();
 
   [[nodiscard]] bool loaded() const { return search_.state == TileState::Loaded; }
+  /// The response's consequence totals (consequences.json) once loaded, else nullptr.
+  [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return consequences_.get(); }
+  [[nodiscard]] bool consequencesFailed() const { return consequencesLoad_.state == TileState::Failed; }
   /// The index (and the summary in its order) has loaded or failed, or the city has none.
   [[nodiscard]] bool settled() const;
   /// Files on their way (0 .. 2).
@@ -90,10 +98,13 @@ class CityIndex {
   FileLoader& loader_;
   std::string manifestUrl_;
   const Tileset* tileset_ = nullptr;
+  void requestConsequences();
   FileLoad search_;
   std::vector<SearchEntry> entries_;
   FileLoad summaryLoad_;
   std::optional<ResponseSummaryTile> summary_;  // the response, in the index's order
+  FileLoad consequencesLoad_;
+  std::unique_ptr<seismic::ConsequenceTotals> consequences_;  // the response's totals
   std::uint64_t bytes_ = 0;
 };
 

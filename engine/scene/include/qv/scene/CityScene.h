@@ -30,6 +30,7 @@
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
 #include "qv/scene/SceneClock.h"
+#include "qv/scene/ViewConsequences.h"
 
 namespace qv {
 
@@ -150,6 +151,13 @@ class CityScene {
   [[nodiscard]] bool searchIndexSettled() const;
   /// Damage states (none .. complete, no result) of the buildings in view, from the last frame.
   [[nodiscard]] const std::array<std::uint64_t, 6>& damageInView() const { return damageInView_; }
+  /// The consequences of the buildings in view (expected values and a normal-approximation 90 %
+  /// interval, qv/scene/ViewConsequences.h); zeros without HAZUS results.
+  [[nodiscard]] seismic::LossTotals consequencesInView() const { return lossInView_.totals(); }
+  /// The city's and districts' totals (the response's consequences.json) once loaded; nullptr before,
+  /// after a failure (consequencesFailed) and for responses without them.
+  [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return index_.consequences(); }
+  [[nodiscard]] bool consequencesFailed() const { return index_.consequencesFailed(); }
 
   [[nodiscard]] const CitySceneOptions& options() const { return options_; }
   CitySceneOptions& mutableOptions() { return options_; }
@@ -259,6 +267,7 @@ class CityScene {
   bool showLod2_ = true;
   [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
   std::array<std::uint64_t, 6> damageInView_{};
+  ConsequenceSums lossInView_;
   std::uint64_t viewSignature_ = 0;  // visible sets and summaries behind damageInView_
   std::string seriesFor_;
   std::optional<BuildingSeries> series_;

@@ -5,13 +5,17 @@
 #include <string>
 
 #include "qv/geometry/GeoFrame.h"
-#include "qv/seismic/ConsequencesFile.h"
 #include "qv/scene/CityScene.h"
+#include "qv/seismic/ConsequencesFile.h"
 
 namespace qv {
 
 /// RFC 4180 CSV with a header row: id, name, address, use, importance, damage_state,
-/// peak_drift_ratio, peak_roof_displacement_m, pga_g, height_m, storeys, lon, lat, x_m, y_m.
+/// peak_drift_ratio, peak_roof_displacement_m, pga_g, height_m, storeys, lon, lat, x_m, y_m, then the
+/// HAZUS columns (blank for a building without probabilities): p_none … p_complete, p_collapse,
+/// expected_damage_state, p_tag_green, p_tag_yellow, p_tag_red, occupants, occupants_inferred (1/0),
+/// injuries_1 … injuries_3, deaths, repair_cost_usd, replacement_value_usd, value_inferred (1/0),
+/// repair_time_days.
 /// Safe to open in a spreadsheet: a text field that begins with =, +, -, @, a tab or a carriage
 /// return is written as a quoted field with a leading apostrophe ("'=SUM(A1)"), so no formula
 /// runs; numeric columns are plain numbers (negative ones too). Invalid UTF-8 becomes U+FFFD.

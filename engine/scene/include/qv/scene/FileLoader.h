@@ -22,7 +22,15 @@
 
 namespace qv {
 
-enum class FileKind : std::uint8_t { Manifest, Tile, ResponseSummary, ResponseHistory, SearchIndex, CitySummary };
+enum class FileKind : std::uint8_t {
+  Manifest,
+  Tile,
+  ResponseSummary,
+  ResponseHistory,
+  SearchIndex,
+  CitySummary,
+  Consequences,
+};
 
 /// A file that failed, as the viewer shows it until the file loads.
 struct LoadError {
