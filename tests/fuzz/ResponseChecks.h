@@ -29,6 +29,9 @@ inline void checkSameSummary(const ResponseSummaryTile& a, const ResponseSummary
               p.residualDriftRatio == q.residualDriftRatio && p.firstStorey == q.firstStorey,
           "round trip changed a building's summary");
   }
+  // The optional sections (spectral scaling, suite spread, HAZUS losses) survive too.
+  check(a.scaling == b.scaling && a.spread == b.spread && a.storeySpread == b.storeySpread && a.losses == b.losses,
+        "round trip changed an optional section");
 }
 
 /// Samples every history at a few times (the viewer's use): must stay in bounds and finite.
