@@ -9,38 +9,20 @@
 #include <iterator>
 #include <string>
 
+#include "ResponseTestCity.h"
 #include "ToolRun.h"
 
 namespace {
+
+using qv::test::readText;
+using qv::test::square;
+using qv::test::tag;
 
 const std::string kTool = QUAKEVIEW_PREP_EXE;
 const std::string kRecords = std::string(QUAKEVIEW_SHARED_DATA_DIR) + "/ground-motions/";
 
 qv::test::ToolRun run(const std::string& arguments, bool withStderr = false) {
   return qv::test::runTool(kTool, arguments, withStderr);
-}
-
-std::string readText(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// A square footprint of side ~20 m at (lon, lat) as an OSM way with `tags`.
-std::string square(int id, double lon, double lat, const std::string& tags) {
-  const double d = 0.0002;
-  std::string s;
-  const double corners[4][2] = {{lon, lat}, {lon + d, lat}, {lon + d, lat + d}, {lon, lat + d}};
-  for (int k = 0; k < 4; ++k) {
-    s += "<node id=\"" + std::to_string(id * 10 + k) + "\" lat=\"" + std::to_string(corners[k][1]) + "\" lon=\"" +
-         std::to_string(corners[k][0]) + "\"/>\n";
-  }
-  s += "<way id=\"" + std::to_string(id) + "\">";
-  for (int k = 0; k <= 4; ++k) s += "<nd ref=\"" + std::to_string(id * 10 + k % 4) + "\"/>";
-  return s + tags + "</way>\n";
-}
-
-std::string tag(const std::string& k, const std::string& v) {
-  return "<tag k=\"" + k + "\" v=\"" + v + "\"/>";
 }
 
 }  // namespace

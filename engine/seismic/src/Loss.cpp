@@ -105,6 +105,11 @@ struct SplitMix64 {
   double uniformOpenClosed() { return static_cast<double>((next() >> 11) + 1) * 0x1.0p-53; }
 };
 
+// P(DS >= k) for k = 1..4.
+std::array<double, 4> exceedances(const DamageProbabilities& p) {
+  return {p.atLeast(1), p.atLeast(2), p.atLeast(3), p.atLeast(4)};
+}
+
 // Number of k in 1..4 with v <= P(DS >= k): the state whose cumulative interval holds v (a draw
 // near 0 is the most severe).
 int stateAt(const std::array<double, 4>& atLeast, double v) {
@@ -361,12 +366,9 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
   std::vector<double> sums(R * kCount, 0.0);
   SplitMix64 rng{seed};
   for (const BuildingLoss& b : buildings) {
-    const std::array<double, 4> str{b.structural.atLeast(1), b.structural.atLeast(2), b.structural.atLeast(3),
-                                    b.structural.atLeast(4)};
-    const std::array<double, 4> nsd{b.nonStructuralDrift.atLeast(1), b.nonStructuralDrift.atLeast(2),
-                                    b.nonStructuralDrift.atLeast(3), b.nonStructuralDrift.atLeast(4)};
-    const std::array<double, 4> nsa{b.nonStructuralAcceleration.atLeast(1), b.nonStructuralAcceleration.atLeast(2),
-                                    b.nonStructuralAcceleration.atLeast(3), b.nonStructuralAcceleration.atLeast(4)};
+    const std::array<double, 4> str = exceedances(b.structural);
+    const std::array<double, 4> nsd = exceedances(b.nonStructuralDrift);
+    const std::array<double, 4> nsa = exceedances(b.nonStructuralAcceleration);
     const double collapse = b.collapse;
     const ConditionalConsequences& g = b.given;
     for (std::size_t r = 0; r < R; ++r) {
@@ -406,12 +408,9 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
 }
 
 LossSpread lossSpread(const BuildingLoss& b) {
-  const std::array<double, 4> str{b.structural.atLeast(1), b.structural.atLeast(2), b.structural.atLeast(3),
-                                  b.structural.atLeast(4)};
-  const std::array<double, 4> nsd{b.nonStructuralDrift.atLeast(1), b.nonStructuralDrift.atLeast(2),
-                                  b.nonStructuralDrift.atLeast(3), b.nonStructuralDrift.atLeast(4)};
-  const std::array<double, 4> nsa{b.nonStructuralAcceleration.atLeast(1), b.nonStructuralAcceleration.atLeast(2),
-                                  b.nonStructuralAcceleration.atLeast(3), b.nonStructuralAcceleration.atLeast(4)};
+  const std::array<double, 4> str = exceedances(b.structural);
+  const std::array<double, 4> nsd = exceedances(b.nonStructuralDrift);
+  const std::array<double, 4> nsa = exceedances(b.nonStructuralAcceleration);
   // Every outcome is constant between consecutive breakpoints of the draw v in (0, 1]; evaluate each
   // piece at its right end (the outcome there holds on the whole piece, as stateAt compares v <= P).
   std::vector<double> cuts = {0.0, 1.0, b.collapse};
