@@ -13,7 +13,8 @@ import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
 const ACTUAL = path.join(DATA, 'actual');
 const SYNTH = path.join(DATA, 'synth');
-const CITY_RECT = { x: 300, y: 120, w: 600, h: 420 };
+// The city at the overview, right of the panel.
+const CITY_RECT = { x: 540, y: 220, width: 460, height: 320 };
 let server;
 
 before(async () => {

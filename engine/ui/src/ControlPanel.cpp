@@ -272,17 +272,22 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   }
   const seismic::LossTotals view = city->consequencesInView();
   w.textWrapped(
-      ui::format("HAZUS 5.1, occupants at %s. Expected values with a 90 %% interval; the view's interval "
-                 "is a normal approximation (docs/losses.md). Occupants and replacement values are "
-                 "inferred from floor area and use unless the data gives them.",
+      ui::format("HAZUS 5.1, occupants at %s; expected value (90 %% interval). Occupants and values "
+                 "are inferred from floor area and use unless the data gives them.",
                  file->timeOfDay.c_str()));
   auto cell = [](const seismic::Estimate& e, int decimals) {
     return ui::format("%.*f (%.*f-%.*f)", decimals, e.expected, decimals, e.low, decimals, e.high);
   };
-  auto money = [](const seismic::Estimate& e) { return usd(e.expected) + " (" + usd(e.low) + "-" + usd(e.high) + ")"; };
+  auto money = [](const seismic::Estimate& e) {
+    // One unit for the three numbers, from the expected value: "$1.86 M (0.87-3.36)".
+    const double m = std::max({e.expected, e.high, 1.0});
+    const double unit = m >= 1e9 ? 1e9 : m >= 1e6 ? 1e6 : m >= 1e3 ? 1e3 : 1.0;
+    const char* name = m >= 1e9 ? " bn" : m >= 1e6 ? " M" : m >= 1e3 ? " k" : "";
+    return ui::format("$%.2f%s (%.2f-%.2f)", e.expected / unit, name, e.low / unit, e.high / unit);
+  };
   const seismic::LossTotals& c = file->city;
   std::vector<std::vector<std::string>> rows;
-  rows.push_back({"Buildings with a result", ui::format("%llu", static_cast<unsigned long long>(c.buildings)),
+  rows.push_back({"Buildings (with a result)", ui::format("%llu", static_cast<unsigned long long>(c.buildings)),
                   ui::format("%llu", static_cast<unsigned long long>(view.buildings))});
   for (std::size_t k = 0; k < 5; ++k) {
     rows.push_back({std::string(kDamageLabels[k]), cell(c.damageStates[k], 1), cell(view.damageStates[k], 1)});
@@ -290,9 +295,9 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   rows.push_back({"Collapsed", cell(c.collapsed, 2), cell(view.collapsed, 2)});
   const char* tags[3] = {"Tag green", "Tag yellow", "Tag red"};
   for (std::size_t k = 0; k < 3; ++k) rows.push_back({tags[k], cell(c.tags[k], 1), cell(view.tags[k], 1)});
-  rows.push_back({"Occupants present (inferred)", ui::format("%.0f", c.occupants.expected),
-                  ui::format("%.0f", view.occupants.expected)});
-  const char* injuries[4] = {"Injuries, minor", "Injuries, hospital", "Injuries, life-threatening", "Deaths"};
+  rows.push_back(
+      {"Occupants (inferred)", ui::format("%.0f", c.occupants.expected), ui::format("%.0f", view.occupants.expected)});
+  const char* injuries[4] = {"Minor injuries", "Hospitalised", "Life-threatening", "Deaths"};
   for (std::size_t k = 0; k < 4; ++k) rows.push_back({injuries[k], cell(c.injuries[k], 2), cell(view.injuries[k], 2)});
   rows.push_back({"Repair cost", money(c.repairCostUsd), money(view.repairCostUsd)});
   w.table("##consequences", {"", "City", "In view"}, rows);
@@ -348,6 +353,9 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       w.textColored(0.6f, 0.35f, 0.0f, "No earthquake results for this city (quakeview-prep response).");
     }
   }
+
+  // The decision numbers right under the shaking they assume.
+  drawConsequences(viewer, w, host);
 
   if (w.collapsingHeader("Animation")) {
     if (w.button(viewer.playing() ? "Pause (Space)##transport" : "Play (Space)##transport")) {
@@ -441,8 +449,6 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
                    percent(thresholds[0]).c_str(), percent(thresholds[1]).c_str(), percent(thresholds[2]).c_str(),
                    percent(thresholds[3]).c_str()));
   }
-
-  drawConsequences(viewer, w, host);
 
   if (city != nullptr && w.collapsingHeader("Find and filter", false)) {
     const bool focus = focusSearch_;
