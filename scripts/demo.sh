@@ -29,13 +29,13 @@ else
   # The default scenario, prepared once (the stamp records the parameters it was made with).
   data="$root/build/demo-data/default"
   city_recipe="synth-city --buildings 100000 --seed 1 --detailed-towers 300"
-  quake_recipe="response --synthetic 1 --epicentre -74.02,40.69,10 --magnitude 6.8"
+  quake_recipe="response --synthetic 1 2 3 --epicentre -74.02,40.69,10 --magnitude 6.8"
   recipe="$city_recipe; $quake_recipe"
   if [ "$(cat "$data/.recipe" 2>/dev/null)" != "$recipe" ]; then
     echo "[demo] preparing the default city: $city_recipe"
     # shellcheck disable=SC2086 # the recipes are word lists
     "$prep" $city_recipe --out "$data"
-    echo "[demo] simulating the default earthquake for every building (a minute or two): $quake_recipe"
+    echo "[demo] simulating the default earthquake for every building (two to three minutes on 2 cores): $quake_recipe"
     # shellcheck disable=SC2086
     "$prep" $quake_recipe --city "$data"
     echo "$recipe" >"$data/.recipe"
