@@ -171,6 +171,8 @@ TEST_CASE("City tiles round-trip through the codec", "[format][tile]") {
   b.attributes.importanceReasons = kReasonTall | kReasonComplex;
   b.attributes.lod = 2;
   b.attributes.notes = kNoteStoreysFromNave | kNotePreFrameMasonry;
+  b.attributes.occupants = 1234;
+  b.attributes.replacementValueUsd = 2.5e7f;
   t.buildings.push_back(b);
 
   const auto bytes = encodeCityTile(t);
@@ -208,6 +210,8 @@ TEST_CASE("City tiles round-trip through the codec", "[format][tile]") {
   CHECK(a.lod == 2);
   // The attribute notes (docs/formats.md, BLDG byte 21): why values were inferred.
   CHECK(a.notes == (kNoteStoreysFromNave | kNotePreFrameMasonry));
+  CHECK(a.occupants == 1234);  // given by the data (0: not given, in older tiles too)
+  CHECK(a.replacementValueUsd == 2.5e7f);
   CHECK(d.buildings[0].attributes.notes == kNoteNone);
   CHECK(attributeNoteNames(a.notes) == std::vector<std::string_view>{"storeys-from-nave", "pre-frame-masonry"});
   CHECK(d.buildings[0].attributes.structuralType == StructuralType::C1M);

@@ -319,3 +319,39 @@ TEST_CASE("response's ShakeMap, suite and consequence options are checked before
   CHECK(districts.exitCode != 0);
   CHECK(districts.output.find("feature 0 has no \"name\" property") != std::string::npos);
 }
+
+TEST_CASE("Occupants and replacement values a GeoJSON gives are used, not inferred", "[response][cli]") {
+  const std::string dir = "/tmp/qv-exposure-" + std::to_string(getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  auto feature = [](const std::string& id, double lon, const std::string& properties) {
+    return R"({"type":"Feature","properties":{"id":")" + id + R"(","building":"office","height":30)" + properties +
+           R"(},"geometry":{"type":"Polygon","coordinates":[[[)" + std::to_string(lon) + ",40.71],[" +
+           std::to_string(lon + 0.0003) + ",40.71],[" + std::to_string(lon + 0.0003) + ",40.7103],[" +
+           std::to_string(lon) + ",40.7103],[" + std::to_string(lon) + ",40.71]]]}}";
+  };
+  std::ofstream(dir + "/in.geojson") << R"({"type":"FeatureCollection","features":[)" +
+                                            feature("given", -74.01,
+                                                    R"(,"occupants":250,"replacement_value":12000000)") +
+                                            "," + feature("garbage", -74.008, R"(,"occupants":"many")") + "," +
+                                            feature("plain", -74.006, "") + "]}";
+  const auto city = run("city --input '" + dir + "/in.geojson' --out '" + dir + "/city'");
+  INFO(city.output);
+  REQUIRE(city.exitCode == 0);
+  CHECK(city.output.find("g:garbage: occupants=many is not a number of people") != std::string::npos);
+  const auto response = run("response --city '" + dir + "/city' --synthetic 1 --time-of-day day");
+  INFO(response.output);
+  REQUIRE(response.exitCode == 0);
+  simdjson::dom::parser parser;
+  const auto given = parse(parser, run("info '" + dir + "/city' --building g:given --json").output);
+  CHECK_FALSE(given["consequences"]["occupants_inferred"].get_bool().value());
+  CHECK_FALSE(given["consequences"]["value_inferred"].get_bool().value());
+  CHECK(number(given["consequences"]["replacement_value_usd"]) == Approx(12000000.0));
+  const double present = number(given["consequences"]["occupants"]);
+  CHECK(present > 0.0);
+  CHECK(present <= 250.0);  // the day's share of the 250 the data gives
+  simdjson::dom::parser other;
+  const auto garbage = parse(other, run("info '" + dir + "/city' --building g:garbage --json").output);
+  CHECK(garbage["consequences"]["occupants_inferred"].get_bool().value());
+  std::filesystem::remove_all(dir);
+}

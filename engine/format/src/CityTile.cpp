@@ -328,11 +328,11 @@ std::vector<std::uint8_t> encodeCityTile(const CityTile& tile) {
     bldg.u8(a.importanceReasons);
     bldg.u8(a.lod);
     bldg.u8(a.notes);
-    bldg.u16(0);
+    bldg.u16(a.occupants);  // 0: not given (reserved, so 0, in tiles written before)
     bldg.f32(a.footprintAreaM2);
     bldg.f32(static_cast<float>(a.centroidX));
     bldg.f32(static_cast<float>(a.centroidY));
-    bldg.u32(0);  // reserved
+    bldg.f32(a.replacementValueUsd);  // 0: not given (as above)
     for (const std::string* s : {&a.id, &a.name, &a.use, &a.address, &a.material, &a.structure, &a.amenity}) {
       strs.string(*s);
     }
@@ -616,11 +616,14 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
     a.importanceReasons = b.u8("importance reasons");
     a.lod = b.u8("lod");
     a.notes = b.u8("attribute notes");
-    b.skip(2, "reserved");
+    a.occupants = b.u16("occupants");
     a.footprintAreaM2 = b.f32("footprint area");
     a.centroidX = b.f32("centroid x");
     a.centroidY = b.f32("centroid y");
-    b.skip(4, "reserved");
+    a.replacementValueUsd = b.f32("replacement value");
+    if (!std::isfinite(a.replacementValueUsd) || a.replacementValueUsd < 0.0f) {
+      return error("section BLDG near byte " + std::to_string(b.offset()) + ": invalid replacement value");
+    }
     a.structuralType = type < static_cast<std::uint8_t>(StructuralType::Count) ? static_cast<StructuralType>(type)
                                                                                : StructuralType::Unknown;
     a.codeEra = era < static_cast<std::uint8_t>(CodeEra::Count) ? static_cast<CodeEra>(era) : CodeEra::Unknown;

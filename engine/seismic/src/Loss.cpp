@@ -450,6 +450,8 @@ Exposure exposureFromAttributes(const BuildingAttributes& a, int storeys) {
   e.era = resolvedCodeEra(e.type, a.codeEra);
   e.occupancy = occupancyFromUse(a.use, e.storeys);
   e.floorAreaM2 = static_cast<double>(a.footprintAreaM2) * static_cast<double>(e.storeys);
+  if (a.occupants > 0) e.occupants = static_cast<double>(a.occupants);
+  if (a.replacementValueUsd > 0.0f) e.replacementValueUsd = static_cast<double>(a.replacementValueUsd);
   return e;
 }
 

@@ -30,6 +30,8 @@ const std::string kUsage =
         "  --levels-property NAME      (building:levels)\n"
         "  --min-height-property NAME  (min_height)   --year-property NAME     (start_date)\n"
         "  --use-property NAME         (building)\n"
+        "  --occupants-property NAME   (occupants)    people at peak occupancy, else inferred from floor area\n"
+        "  --value-property NAME       (replacement_value)  replacement value in USD, else inferred\n"
         "  NYC building footprints: --height-property heightroof --height-unit ft --year-property cnstrct_yr\n");
 
 }  // namespace
@@ -49,6 +51,8 @@ int runCity(const CommandArgs& argv) {
                                  {"height-unit"},
                                  {"levels-property"},
                                  {"min-height-property"},
+                                 {"occupants-property"},
+                                 {"value-property"},
                                  {"year-property"},
                                  {"use-property"},
                                  {"no-lod2", false},
@@ -82,6 +86,8 @@ int runCity(const CommandArgs& argv) {
   }
   if (auto v = args->value("levels-property")) options.levelsProperty = *v;
   if (auto v = args->value("min-height-property")) options.minHeightProperty = *v;
+  if (auto v = args->value("occupants-property")) options.occupantsProperty = *v;
+  if (auto v = args->value("value-property")) options.valueProperty = *v;
   if (auto v = args->value("year-property")) options.yearProperty = *v;
   if (auto v = args->value("use-property")) options.useProperty = *v;
   if (const auto origin = args->value("origin")) {

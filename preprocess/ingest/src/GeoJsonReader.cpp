@@ -191,6 +191,8 @@ class GeoJsonReader {
     if (key == options_.yearProperty) return &tags.startDate;
     if (key == options_.useProperty) return &tags.building;
     if (key == options_.nameProperty) return &tags.name;
+    if (key == options_.occupantsProperty) return &tags.occupants;
+    if (key == options_.valueProperty) return &tags.replacementValue;
     if (key == "building:part") return &tags.buildingPart;
     if (key == "building:min_level") return &tags.minLevel;
     if (key == "building:material") return &tags.material;

@@ -5,6 +5,7 @@
 #include "qv/prep/Ingest.h"
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -93,14 +94,25 @@ struct Prepared {
   float roofHeightM = 0.0f;
   bool roofHeightTagged = false;
   int startYear = 0;
-  bool zeroHeight = false;        ///< height=0 tagged on a building above ground (then inferred)
-  std::string undergroundReason;  ///< not empty: underground, neither drawn nor analysed
+  std::uint16_t occupants = 0;       ///< given (0: not)
+  float replacementValueUsd = 0.0f;  ///< given (0: not)
+  bool zeroHeight = false;           ///< height=0 tagged on a building above ground (then inferred)
+  std::string undergroundReason;     ///< not empty: underground, neither drawn nor analysed
 };
 
 struct WorkerOutput {
   DropCounts drops;
   WarningLog warnings;
 };
+
+/// A whole-string finite number ("120", "2.5e6"), or nullopt.
+std::optional<double> plainNumber(const std::string& text) {
+  double v = 0.0;
+  const char* end = text.data() + text.size();
+  const auto [at, ec] = std::from_chars(text.data(), end, v);
+  if (ec != std::errc() || at != end || !std::isfinite(v)) return std::nullopt;
+  return v;
+}
 
 /// Parses the kept tags of one feature, warning (object, tag, value) about garbage.
 void parseTags(const RawFeature& feature, Prepared& out, WarningLog& warnings) {
@@ -173,6 +185,25 @@ void parseTags(const RawFeature& feature, Prepared& out, WarningLog& warnings) {
       out.startYear = *year;
     } else {
       warn("start_date not a year", yearKey, tags.startDate, "has no year; the code era is unknown");
+    }
+  }
+  // Occupants and replacement value (GeoJSON properties): whole people up to 65,535, dollars.
+  if (!tags.occupants.empty()) {
+    const std::optional<double> n = plainNumber(tags.occupants);
+    if (n && *n >= 0.0 && *n <= 65535.0) {
+      out.occupants = static_cast<std::uint16_t>(std::lround(*n));
+    } else {
+      warn("occupants not a count", names != nullptr ? names->occupantsProperty : "occupants", tags.occupants,
+           "is not a number of people (0 to 65535); inferred from floor area and use instead");
+    }
+  }
+  if (!tags.replacementValue.empty()) {
+    const std::optional<double> v = plainNumber(tags.replacementValue);
+    if (v && *v >= 0.0 && *v <= 1e12) {
+      out.replacementValueUsd = static_cast<float>(*v);
+    } else {
+      warn("replacement value not a number", names != nullptr ? names->valueProperty : "replacement_value",
+           tags.replacementValue, "is not an amount in USD; inferred from floor area and use instead");
     }
   }
   out.use = feature.kind == FeatureKind::Building ? normalizeUse(tags.building, tags.amenity)
@@ -286,6 +317,8 @@ void fillIdentity(const RawFeature& feature, const Prepared& prepared, BuildingA
   a.structure = tags.structure;
   a.amenity = tags.amenity;
   a.startYear = static_cast<std::int16_t>(prepared.startYear);
+  a.occupants = prepared.occupants;
+  a.replacementValueUsd = prepared.replacementValueUsd;
   a.lod = 1;
   a.footprintAreaM2 = static_cast<float>(prepared.areaM2);
   a.centroidX = prepared.centroid.x;

@@ -39,8 +39,10 @@ struct RawTags {
   std::string street;
   std::string postcode;
   std::string city;
-  std::string location;  ///< location=* ("underground")
-  std::string layer;     ///< layer=* (negative: below ground)
+  std::string location;          ///< location=* ("underground")
+  std::string layer;             ///< layer=* (negative: below ground)
+  std::string occupants;         ///< GeoJSON occupants property (no OSM key)
+  std::string replacementValue;  ///< GeoJSON replacement value property, USD (no OSM key)
 };
 
 enum class FeatureKind : std::uint8_t { Building, Part };

@@ -97,8 +97,13 @@ struct BuildingAttributes {
   std::uint8_t lod = 1;            ///< 1: extruded footprint, 2: detailed model
   std::uint8_t notes = kNoteNone;  ///< AttributeNote bits: why values were inferred or changed
   float footprintAreaM2 = 0.0f;    ///< area of the ground footprint
-  double centroidX = 0.0;          ///< metres east of the city origin
-  double centroidY = 0.0;          ///< metres north of the city origin
+  /// People in the building at peak occupancy, as the data states it (a GeoJSON property); 0:
+  /// not given (the consequences then infer it from floor area and use).
+  std::uint16_t occupants = 0;
+  /// Replacement value in US dollars, as the data states it; 0: not given (inferred then).
+  float replacementValueUsd = 0.0f;
+  double centroidX = 0.0;  ///< metres east of the city origin
+  double centroidY = 0.0;  ///< metres north of the city origin
 
   bool operator==(const BuildingAttributes&) const = default;
 

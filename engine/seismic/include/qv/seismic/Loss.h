@@ -249,7 +249,8 @@ LossSpread lossSpread(const BuildingLoss& building);
 
 /// A building's exposure from its attributes, as `quakeview-prep response` assesses it: the type and
 /// code era the building model resolves (resolvedStructuralType, resolvedCodeEra), the occupancy
-/// from its use, floor area = footprint x storeys, no tagged occupants or value (inferred).
+/// from its use, floor area = footprint x storeys, and the occupants and replacement value the data
+/// gives (BuildingAttributes; inferred when 0).
 Exposure exposureFromAttributes(const BuildingAttributes& attributes, int storeys);
 
 }  // namespace qv::seismic

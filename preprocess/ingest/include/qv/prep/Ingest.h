@@ -31,6 +31,10 @@ struct IngestOptions {
   std::string minHeightProperty = "min_height";
   std::string yearProperty = "start_date";
   std::string useProperty = "building";
+  /// People at peak occupancy and the replacement value (USD) where a GeoJSON gives them; the
+  /// consequences infer both from floor area and use otherwise.
+  std::string occupantsProperty = "occupants";
+  std::string valueProperty = "replacement_value";
   /// Projection centre {lon, lat} in degrees; default: the centre of the data's bounds.
   std::optional<std::array<double, 2>> originLonLat;
   /// Worker threads for projection and cleaning (0: the machine's cores, at most 4).
