@@ -114,6 +114,15 @@ void CityIndex::requestSummary() {
                    std::to_string(entries_.size());
           }
           summary_ = std::move(decoded).value();
+          // The suite's spread over the city: the median of the buildings' drift log standard deviations.
+          std::vector<float> betas;
+          for (std::size_t i = 0; i < summary_->spread.size(); ++i) {
+            if (summary_->spread[i].records > 1) betas.push_back(summary_->spread[i].driftBeta);
+          }
+          if (!betas.empty()) {
+            std::nth_element(betas.begin(), betas.begin() + static_cast<std::ptrdiff_t>(betas.size() / 2), betas.end());
+            medianDriftBeta_ = betas[betas.size() / 2];
+          }
           bytes_ +=
               summary_->buildings.size() * sizeof(BuildingResponse) + summary_->storeyPeakDrift.size() * sizeof(float);
           return {};

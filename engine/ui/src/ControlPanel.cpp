@@ -271,6 +271,14 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
     return;
   }
   const seismic::LossTotals view = city->consequencesInView();
+  if (r.records.size() > 1) {
+    const std::optional<float> spread = city->suiteDriftSpread();
+    w.textWrapped(spread ? ui::format("Record-to-record spread: peak drifts vary by a log standard deviation of %.2f "
+                                      "(median over the buildings; each building's own in its inspection); the "
+                                      "probabilities include it",
+                                      static_cast<double>(*spread))
+                         : ui::format("Record-to-record spread: loading (%zu records)", r.records.size()));
+  }
   w.textWrapped(
       ui::format("HAZUS 5.1, occupants at %s; expected value (90 %% interval). Occupants and values "
                  "are inferred from floor area and use unless the data gives them.",

@@ -72,6 +72,9 @@ class CityIndex {
   /// The response's consequence totals (consequences.json) once loaded, else nullptr.
   [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return consequences_.get(); }
   [[nodiscard]] bool consequencesFailed() const { return consequencesLoad_.state == TileState::Failed; }
+  /// Across a record suite: the median over the city's buildings of their peak drift's log standard
+  /// deviation (from the summary in the index's order); nullopt for one record or until loaded.
+  [[nodiscard]] std::optional<float> medianDriftBeta() const { return medianDriftBeta_; }
   /// The index (and the summary in its order) has loaded or failed, or the city has none.
   [[nodiscard]] bool settled() const;
   /// Files on their way (0 .. 2).
@@ -104,6 +107,7 @@ class CityIndex {
   FileLoad summaryLoad_;
   std::optional<ResponseSummaryTile> summary_;  // the response, in the index's order
   FileLoad consequencesLoad_;
+  std::optional<float> medianDriftBeta_;
   std::unique_ptr<seismic::ConsequenceTotals> consequences_;  // the response's totals
   std::uint64_t bytes_ = 0;
 };

@@ -158,6 +158,8 @@ class CityScene {
   /// after a failure (consequencesFailed) and for responses without them.
   [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return index_.consequences(); }
   [[nodiscard]] bool consequencesFailed() const { return index_.consequencesFailed(); }
+  /// The record suite's spread over the city (CityIndex::medianDriftBeta).
+  [[nodiscard]] std::optional<float> suiteDriftSpread() const { return index_.medianDriftBeta(); }
 
   [[nodiscard]] const CitySceneOptions& options() const { return options_; }
   CitySceneOptions& mutableOptions() { return options_; }
