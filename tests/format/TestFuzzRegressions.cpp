@@ -35,7 +35,11 @@ bool expectedValid(const std::string& path) {
 
 template <typename TDecode, typename TEncode>
 void replayBinary(const char* target, TDecode decode, TEncode encode) {
-  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, target)) {
+  std::string missing;
+  const auto inputs = fuzz::requiredInputs(QUAKEVIEW_SOURCE_DIR, target, missing);
+  INFO(missing);
+  REQUIRE(missing.empty());
+  for (const fuzz::SavedInput& input : inputs) {
     SECTION(input.path) {
       const auto fixed = fuzz::withValidSizeAndCrc(input.bytes);
       if (expectedValid(input.path)) {

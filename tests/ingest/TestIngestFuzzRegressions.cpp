@@ -37,7 +37,11 @@ void replay(const std::string& path) {
 
 TEST_CASE("Fuzzer-found OSM inputs are read or rejected cleanly", "[ingest][osm][fuzz]") {
   const TempDir dir;
-  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "osm")) {
+  std::string missing;
+  const auto inputs = fuzz::requiredInputs(QUAKEVIEW_SOURCE_DIR, "osm", missing);
+  INFO(missing);
+  REQUIRE(missing.empty());
+  for (const fuzz::SavedInput& input : inputs) {
     SECTION(input.path) {
       // As fuzz_osm: text starting with '<' is OSM XML, anything else PBF.
       const std::string bytes(input.bytes.begin(), input.bytes.end());
@@ -54,7 +58,11 @@ TEST_CASE("An OSM coordinate with a huge exponent is refused, not read as a wron
   // then spans 40 degrees, which the city's extent check refuses, naming the building.
   const TempDir dir;
   std::string text;
-  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "osm")) {
+  std::string missing;
+  const auto inputs = fuzz::requiredInputs(QUAKEVIEW_SOURCE_DIR, "osm", missing);
+  INFO(missing);
+  REQUIRE(missing.empty());
+  for (const fuzz::SavedInput& input : inputs) {
     if (input.path.ends_with("coordinate-with-huge-exponent.osm")) text.assign(input.bytes.begin(), input.bytes.end());
   }
   REQUIRE(text.find("lat=\"40.750e705\"") != std::string::npos);
@@ -70,7 +78,11 @@ TEST_CASE("An OSM coordinate with a huge exponent is refused, not read as a wron
 
 TEST_CASE("Fuzzer-found GeoJSON inputs are read or rejected cleanly", "[ingest][geojson][fuzz]") {
   const TempDir dir;
-  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "geojson")) {
+  std::string missing;
+  const auto inputs = fuzz::requiredInputs(QUAKEVIEW_SOURCE_DIR, "geojson", missing);
+  INFO(missing);
+  REQUIRE(missing.empty());
+  for (const fuzz::SavedInput& input : inputs) {
     SECTION(input.path) {
       replay(dir.write("input.geojson", std::string(input.bytes.begin(), input.bytes.end())));
     }

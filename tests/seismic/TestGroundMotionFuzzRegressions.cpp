@@ -15,7 +15,11 @@ using namespace qv;
 using namespace qv::seismic;
 
 TEST_CASE("Fuzzer-found ground-motion records are read or rejected cleanly", "[seismic][reader][fuzz]") {
-  for (const fuzz::SavedInput& input : fuzz::savedInputs(QUAKEVIEW_SOURCE_DIR, "ground_motion")) {
+  std::string missing;
+  const auto inputs = fuzz::requiredInputs(QUAKEVIEW_SOURCE_DIR, "ground_motion", missing);
+  INFO(missing);
+  REQUIRE(missing.empty());
+  for (const fuzz::SavedInput& input : inputs) {
     if (input.bytes.empty()) continue;
     SECTION(input.path) {
       const std::string_view text(reinterpret_cast<const char*>(input.bytes.data()) + 1, input.bytes.size() - 1);
