@@ -533,11 +533,13 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   t.buildings = kept.size();
   t.buildingsRevision = options.buildingsRevision;
   t.response = options.response;
-  // An older response's city-wide summary follows the old index's order, and its notes name the
-  // old buildings: neither is this city's (nor are their files written into it).
+  // An older response's city-wide summary follows the old index's order, and its notes and
+  // consequence totals are of the old buildings: none is this city's (nor are their files written
+  // into it).
   if (t.response) {
     t.response->summaryIndex.reset();
     t.response->notes.reset();
+    t.response->consequences.reset();
   }
   t.sources = model.sources;
   t.excluded = model.excluded;
