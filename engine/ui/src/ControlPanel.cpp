@@ -284,6 +284,8 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
                  "are inferred from floor area and use unless the data gives them.",
                  file->timeOfDay.c_str()));
   auto cell = [](const seismic::Estimate& e, int decimals) {
+    // Whole numbers from a thousand up, so the city's and the view's columns fit the panel.
+    if (e.high >= 1000.0) decimals = 0;
     return ui::format("%.*f (%.*f-%.*f)", decimals, e.expected, decimals, e.low, decimals, e.high);
   };
   auto money = [](const seismic::Estimate& e) {
