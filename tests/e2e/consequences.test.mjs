@@ -64,7 +64,10 @@ test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool w
     assert.ok(Math.abs(c.view.repairCostUsd.expected - c.city.repairCostUsd.expected) <=
       1e-4 * Math.max(1, c.city.repairCostUsd.expected));
 
-    // The Consequences section of the panel (open by default) shows the same table.
+    // The Consequences section of the panel (open by default) shows the same table; the suite's
+    // spread follows once the city-wide summary (loaded after the search index) is in.
+    await page.waitForFunction(() => /Record-to-record spread: peak drifts/.test(window.quakeview.uiText()), null,
+      { timeout: 30000 });
     const panel = await page.evaluate(() => window.quakeview.uiText());
     assert.match(panel, /\| City \| In view/);
     assert.match(panel, /Repair cost \| \$/);
