@@ -63,6 +63,61 @@ TEST_CASE("Response summary version 2 is pinned by golden bytes", "[format][resp
   CHECK(decoded->storeyPeakDrift == std::vector<float>{0.0125f, 0.0078125f});
 }
 
+TEST_CASE("Response history version 1 is pinned by golden bytes written from docs/formats.md", "[format][response]") {
+  // Built field by field from the layout in docs/formats.md (CRC by zlib), not by the encoder: a
+  // 2-storey building with 3 samples at 10 Hz from 0.5 s, one X basis vector in 8 bits and no Y
+  // motion, and a building without a history.
+  const std::vector<std::uint8_t> golden = {0x51, 0x56, 0x52, 0x48, 0x01, 0x00, 0x00, 0x00,
+                                            0x5c, 0x00, 0x00, 0x00, 0xfa, 0xf4, 0x6c, 0x3a,  // header
+                                            0x02, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x00,
+                                            0x02, 0x00, 0x00, 0x00, 0x48, 0x4d, 0x45, 0x54,  // B, 0, S, HMET
+                                            0x34, 0x00, 0x00, 0x00, 0x04, 0x00, 0x00, 0x00,
+                                            0x48, 0x49, 0x53, 0x54, 0x38, 0x00, 0x00, 0x00,  // HIST at 56
+                                            0x23, 0x00, 0x00, 0x00, 0x00, 0x00, 0x80, 0x40,
+                                            0x02, 0x00, 0x08, 0x00, 0x00, 0x00, 0x20, 0x41,  // 4 s; 2 floors, 8 bits
+                                            0x00, 0x00, 0x00, 0x3f, 0x03, 0x00, 0x00, 0x00,
+                                            0x01, 0x00, 0x00, 0x00, 0x3f, 0x00, 0x00, 0x80,  // start, N, X: 1 mode
+                                            0x3f, 0x00, 0x00, 0x80, 0x3e, 0x01, 0xfe, 0x7f,
+                                            0x00, 0x00, 0x00, 0x00};  // scale, 1 -2 127, Y: 0; floors 0; pad
+  ResponseHistoryTile tile;
+  tile.durationSeconds = 4.0f;
+  BuildingHistory a;
+  a.floors = 2;
+  a.bits = 8;
+  a.sampleRateHz = 10.0f;
+  a.startSeconds = 0.5f;
+  a.sampleCount = 3;
+  a.x.modes = 1;
+  a.x.shapes = {0.5f, 1.0f};
+  a.x.scales = {0.25f};
+  a.x.coordinates = {1, -2, 127};
+  tile.buildings.push_back(a);
+  tile.buildings.push_back(BuildingHistory{});
+  CHECK(encodeResponseHistory(tile) == golden);
+
+  const auto decoded = decodeResponseHistory(golden, "golden.qvh");
+  REQUIRE(decoded.ok());
+  CHECK(decoded->durationSeconds == 4.0f);
+  REQUIRE(decoded->buildings.size() == 2);
+  const BuildingHistory& d = decoded->buildings[0];
+  CHECK(d.floors == 2);
+  CHECK(d.bits == 8);
+  CHECK(d.sampleRateHz == 10.0f);
+  CHECK(d.startSeconds == 0.5f);
+  CHECK(d.sampleCount == 3);
+  CHECK(d.x.modes == 1);
+  CHECK(d.x.shapes == std::vector<float>{0.5f, 1.0f});
+  CHECK(d.x.coordinates == std::vector<std::int16_t>{1, -2, 127});
+  CHECK(d.y.modes == 0);
+  CHECK(decoded->buildings[1].floors == 0);
+  // At the second sample (t = 0.6 s) the roof is at shape 1.0 x scale 0.25 x -2 = -0.5 m.
+  std::vector<float> fx(3), fy(3);
+  sampleHistory(*decoded->buildings.data(), 0.6, fx, fy);
+  CHECK(fx[2] == Approx(-0.5f));
+  CHECK(fx[1] == Approx(-0.25f));
+  CHECK(fy[2] == 0.0f);
+}
+
 TEST_CASE("Response summary version 1 files are still read, without status", "[format][response]") {
   // Written by the version 1 encoder: the same two buildings (28-byte records, reserved bytes).
   const std::vector<std::uint8_t> version1 = {
