@@ -152,10 +152,14 @@ test('search finds the Empire State Building; the damage filter dims the others;
     const downloadPromise = page.waitForEvent('download', { timeout: 15000 });
     const returned = await page.evaluate(() => window.quakeview.exportList('csv'));
     const download = await downloadPromise;
-    assert.match(download.suggestedFilename(), /\.csv$/);
+    // The name says what the file holds (the scenario's buildings under the damage filter).
+    assert.match(download.suggestedFilename(), /^quakeview-.*scenario-buildings-damage-[a-z]+\.csv$/);
     const csv = fs.readFileSync(await download.path(), 'utf8');
     assert.equal(csv, returned);
-    const lines = csv.trim().split(/\r?\n/);
+    // UTF-8 with a byte-order mark, then a comment line saying where the numbers came from.
+    assert.ok(csv.startsWith('\uFEFF# QuakeView building list |'), csv.slice(0, 120));
+    assert.match(csv.split('\r\n')[0], /\| Shaking: SCENARIO .*\| Filter: damage at least/);
+    const lines = csv.trim().split(/\r?\n/).slice(1);
     const header = lines[0].split(',');
     for (const key of ['id', 'name', 'damage_state', 'lon', 'lat']) assert.ok(header.includes(key), `CSV column ${key}: ${header}`);
     assert.equal(lines.length - 1, expected, 'one row per filtered building');

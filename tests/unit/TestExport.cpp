@@ -30,8 +30,12 @@ const std::vector<std::string> kHostile = {
     "Cin\xC3\xA9polis",
 };
 
-// RFC 4180 reader for the test (quoted fields with doubled quotes, CRLF records).
-std::vector<std::vector<std::string>> readCsv(const std::string& text) {
+// RFC 4180 reader for the test (quoted fields with doubled quotes, CRLF records) of an export: it
+// must begin with a UTF-8 byte-order mark, and a first line beginning with '#' is its comment.
+std::vector<std::vector<std::string>> readCsv(const std::string& file) {
+  REQUIRE(file.rfind("\xEF\xBB\xBF", 0) == 0);
+  std::string text = file.substr(3);
+  if (text.rfind('#', 0) == 0) text = text.substr(text.find("\r\n") + 2);
   std::vector<std::vector<std::string>> rows(1);
   std::string field;
   bool quoted = false, inQuotes = false;
@@ -237,4 +241,113 @@ TEST_CASE("The view's consequence sums: exact expected values, a normal 90 % int
   CHECK(rows[3][1] == "'=Downtown");  // a district name cannot run a formula
   CHECK(rows[1][2] == "4");
   CHECK(rows[1][3] == "night");
+}
+
+TEST_CASE("Exports say where their numbers came from and leave missing values blank", "[scene][export]") {
+  Tileset tileset;
+  tileset.name = "midtown";
+  ResponseInfo r;
+  r.eventType = "ACTUAL";
+  r.shakingField = "shakemap";
+  r.method = "MDOF shear building, Bouc-Wen";
+  r.records = {"RSN1 ELCENTRO, 180", "synthetic seed 2"};
+  r.timeOfDay = "day";
+  r.shakemap = ResponseInfo::ShakeMap{};
+  r.shakemap->eventId = "us7000abcd";
+  r.shakemap->version = "3";
+  r.shakemap->description = "M 5.8 - 10 km SW of Somewhere, NY";
+  tileset.response = r;
+  BuildingFilters filters;
+  filters.minDamage = 2;
+  filters.use = "school";
+  const ExportProvenance provenance = exportProvenance(tileset, filters);
+  CHECK(provenance.shaking == "ACTUAL EVENT (ShakeMap of a recorded earthquake)");
+  CHECK(provenance.filter == "damage at least moderate | use: school");
+
+  BuildingListEntry analysed = hostileList().back();
+  BuildingListEntry none;
+  none.id = "w2";
+  none.name = "Rooftop part";
+  none.heightM = 4.0f;
+  const std::vector<BuildingListEntry> list = {analysed, none};
+  const GeoFrame geo(-73.98, 40.75);
+
+  const std::string csv = exportCsv(list, geo, &provenance);
+  const std::string comment = csv.substr(3, csv.find("\r\n") - 3);
+  CHECK(comment.rfind("# QuakeView building list | City: midtown | Shaking: ACTUAL EVENT", 0) == 0);
+  CHECK(comment.find("ShakeMap us7000abcd version 3 (M 5.8 - 10 km SW of Somewhere  NY)") != std::string::npos);
+  CHECK(comment.find("Records: RSN1 ELCENTRO  180; synthetic seed 2") != std::string::npos);
+  CHECK(comment.find("Filter: damage at least moderate | use: school") != std::string::npos);
+  CHECK(comment.find(',') == std::string::npos);  // one line that a spreadsheet keeps in one cell
+  const auto rows = readCsv(csv);
+  REQUIRE(rows.size() == 3);
+  const auto column = [&rows](const std::string& name) {
+    return static_cast<std::size_t>(std::find(rows[0].begin(), rows[0].end(), name) - rows[0].begin());
+  };
+  CHECK(rows[1][0] == "w" + std::to_string(100 + kHostile.size() - 1));
+  CHECK(rows[1][1] == "Cin\xC3\xA9polis");
+  CHECK(rows[1][column("pga_g")] == "0.2100");
+  for (const char* name : {"peak_drift_ratio", "peak_roof_displacement_m", "pga_g", "storeys", "p_none"}) {
+    INFO(name);
+    CHECK(rows[2][column(name)].empty());
+  }
+  CHECK(rows[2][column("height_m")] == "4.0");
+
+  // Without a provenance the file still starts with the byte-order mark, then the header row.
+  CHECK(exportCsv(list, geo).rfind("\xEF\xBB\xBFid,name,", 0) == 0);
+
+  const std::string json = exportGeoJson(list, geo, &provenance);
+  simdjson::dom::parser parser;
+  const simdjson::dom::element doc = parser.parse(json);
+  CHECK(std::string_view(doc["quakeview"]["shaking"].get_string().value()).rfind("ACTUAL EVENT", 0) == 0);
+  CHECK(std::string_view(doc["quakeview"]["city"].get_string().value()) == "midtown");
+  const simdjson::dom::array features = doc["features"].get_array();
+  REQUIRE(features.size() == 2);
+  for (const simdjson::dom::element feature : features) {
+    const bool noResult = std::string_view(feature["properties"]["id"].get_string().value()) == "w2";
+    CHECK(feature["properties"]["pga_g"].is_null() == noResult);
+    CHECK(feature["properties"]["storeys"].is_null() == noResult);
+  }
+}
+
+TEST_CASE("Without a response an export says so, and an unstated event type is never called a scenario",
+          "[scene][export]") {
+  Tileset tileset;
+  CHECK(exportProvenance(tileset, BuildingFilters{}).shaking == "no response computed");
+  CHECK(exportProvenance(tileset, BuildingFilters{}).filter == "none");
+  ResponseInfo imported;
+  imported.method = "imported from results.csv";
+  CHECK(shakingStatement(imported).rfind("IMPORTED RESULTS", 0) == 0);
+  ResponseInfo shakemapUnstated;
+  shakemapUnstated.shakingField = "shakemap";
+  CHECK(shakingStatement(shakemapUnstated).rfind("NOT STATED", 0) == 0);
+  ResponseInfo computed;
+  CHECK(shakingStatement(computed) == "SCENARIO (computed, not a recorded event)");
+}
+
+TEST_CASE("Export file names carry the city, the event, what they hold and the filter", "[scene][export]") {
+  Tileset tileset;
+  tileset.name = "Synthetic city, 100000 buildings";
+  CHECK(exportFileName(tileset, BuildingFilters{}, "buildings", "csv") ==
+        "quakeview-synthetic-city-100000-buildings-no-response-buildings.csv");
+  ResponseInfo r;
+  tileset.response = r;
+  BuildingFilters filters;
+  filters.minDamage = 3;
+  filters.use = "fire_station";
+  filters.criticalOnly = true;
+  CHECK(exportFileName(tileset, filters, "buildings", "geojson") ==
+        "quakeview-synthetic-city-100000-buildings-scenario-buildings-damage-extensive-use-fire-station-critical."
+        "geojson");
+  tileset.name = "midtown";
+  tileset.response->eventType = "ACTUAL";
+  tileset.response->shakingField = "shakemap";
+  tileset.response->shakemap = ResponseInfo::ShakeMap{};
+  tileset.response->shakemap->eventId = "us7000ABCD";
+  CHECK(exportFileName(tileset, BuildingFilters{}, "consequences", "csv") ==
+        "quakeview-midtown-actual-us7000abcd-consequences.csv");
+  tileset.name = std::string(400, 'x');
+  const std::string longName = exportFileName(tileset, filters, "buildings", "csv");
+  CHECK(longName.size() == 150 + 4);
+  CHECK(longName.rfind("quakeview-xxx", 0) == 0);
 }

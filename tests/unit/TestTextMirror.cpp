@@ -161,15 +161,18 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
         std::string::npos);
   const std::string csv = panel.exportList(viewer, "csv", host);
   REQUIRE(host.downloads.size() == 1);
-  CHECK(host.downloads[0].first == "quakeview-buildings.csv");
+  // The file says what it holds: a scenario's buildings under this filter.
+  CHECK(host.downloads[0].first == "quakeview-scenario-buildings-damage-extensive.csv");
   std::size_t rows = 0;
   for (char c : csv) rows += c == '\n' ? 1u : 0u;
   std::size_t expected = 0;
   for (int i = 0; i < test::MiniCity::kSide; ++i) {
     for (int j = 0; j < test::MiniCity::kSide; ++j) expected += (i + j) % 5 >= 3 ? 1u : 0u;
   }
-  CHECK(rows == expected + 1);  // the header row
-  CHECK(csv.rfind("id,name,address,use,importance,damage_state", 0) == 0);
+  CHECK(rows == expected + 2);  // the provenance comment and the header row
+  CHECK(csv.rfind("\xEF\xBB\xBF# QuakeView building list | Shaking: SCENARIO", 0) == 0);
+  CHECK(csv.find("| Filter: damage at least extensive\r\nid,name,address,use,importance,damage_state") !=
+        std::string::npos);
   CHECK(csv.find(",-74.0") != std::string::npos);  // longitudes near the origin
   const std::string geojson = panel.exportList(viewer, "geojson", host);
   CHECK(geojson.find("\"type\":\"FeatureCollection\"") != std::string::npos);

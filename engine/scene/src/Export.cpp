@@ -33,10 +33,138 @@ std::string number(double v, int decimals) {
   return buffer;
 }
 
+constexpr std::string_view kByteOrderMark = "\xEF\xBB\xBF";
+
+// A provenance value inside the comment line: one line, no commas (a spreadsheet would split the
+// cell there) and no double quotes.
+std::string commentValue(std::string_view raw) {
+  std::string out = isValidUtf8(raw) ? std::string(raw) : toValidUtf8(raw);
+  for (char& c : out) {
+    if (c == ',' || c == '\r' || c == '\n' || c == '\t') c = ' ';
+    if (c == '"') c = '\'';
+  }
+  return out;
+}
+
+std::string commentLine(std::string_view title, const ExportProvenance& p) {
+  std::string line = "# QuakeView " + std::string(title);
+  auto part = [&line](std::string_view label, const std::string& value) {
+    if (!value.empty()) line += " | " + std::string(label) + ": " + commentValue(value);
+  };
+  part("City", p.city);
+  part("Shaking", p.shaking);
+  part("Earthquake", p.earthquake);
+  part("Records", p.records);
+  part("Method", p.method);
+  part("Time of day", p.timeOfDay);
+  part("Filter", p.filter);
+  return line + "\r\n";
+}
+
+std::string preamble(std::string_view title, const ExportProvenance* provenance) {
+  std::string out(kByteOrderMark);
+  if (provenance != nullptr) out += commentLine(title, *provenance);
+  return out;
+}
+
 }  // namespace
 
-std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFrame& geo) {
-  std::string out =
+std::string shakingStatement(const ResponseInfo& r) {
+  const bool imported = r.method.rfind("imported", 0) == 0;
+  if (r.eventType == "ACTUAL") return "ACTUAL EVENT (ShakeMap of a recorded earthquake)";
+  if (r.eventType == "SCENARIO" || (r.eventType.empty() && !imported && r.shakingField != "shakemap")) {
+    return r.shakingField == "shakemap" ? "SCENARIO (a ShakeMap scenario, not a recorded event)"
+                                        : "SCENARIO (computed, not a recorded event)";
+  }
+  if (imported) return "IMPORTED RESULTS (not stated whether a scenario or an actual event)";
+  return "NOT STATED whether a scenario or an actual event";
+}
+
+std::string describeFilters(const BuildingFilters& f) {
+  std::string text;
+  auto add = [&text](const std::string& phrase) { text += (text.empty() ? "" : " | ") + phrase; };
+  if (f.minDamage >= 0 && f.minDamage <= 4) {
+    add("damage at least " + std::string(damageStateName(static_cast<DamageState>(f.minDamage))));
+  }
+  if (!f.use.empty()) add("use: " + f.use);
+  if (f.criticalOnly) add("critical facilities only");
+  return text.empty() ? "none" : text;
+}
+
+namespace {
+
+// Lower-case ASCII letters and digits; everything else becomes one '-' (none at either end).
+std::string slug(std::string_view text) {
+  std::string out;
+  for (const char c : text) {
+    const bool keep = (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9');
+    const bool upper = c >= 'A' && c <= 'Z';
+    if (keep || upper) {
+      out += upper ? static_cast<char>(c - 'A' + 'a') : c;
+    } else if (!out.empty() && out.back() != '-') {
+      out += '-';
+    }
+  }
+  while (!out.empty() && out.back() == '-') out.pop_back();
+  return out;
+}
+
+}  // namespace
+
+std::string exportFileName(const Tileset& tileset, const BuildingFilters& filters, std::string_view what,
+                           std::string_view extension) {
+  std::string name = "quakeview";
+  auto add = [&name](std::string_view part) {
+    const std::string s = slug(part);
+    if (!s.empty()) name += "-" + s;
+  };
+  add(tileset.name);
+  if (!tileset.response) {
+    add("no-response");
+  } else {
+    const ResponseInfo& r = *tileset.response;
+    const std::string statement = shakingStatement(r);
+    add(statement.substr(0, statement.find(' ')) == "NOT" ? "unstated" : statement.substr(0, statement.find(' ')));
+    if (r.shakemap) add(r.shakemap->eventId);
+  }
+  add(what);
+  if (filters.minDamage >= 0 && filters.minDamage <= 4) {
+    add("damage-" + std::string(damageStateName(static_cast<DamageState>(filters.minDamage))));
+  }
+  if (!filters.use.empty()) add("use-" + filters.use);
+  if (filters.criticalOnly) add("critical");
+  if (name.size() > 150) name.resize(150);
+  while (name.back() == '-') name.pop_back();
+  return name + "." + std::string(extension);
+}
+
+ExportProvenance exportProvenance(const Tileset& tileset, const BuildingFilters& filters) {
+  ExportProvenance p;
+  p.city = tileset.name;
+  p.filter = describeFilters(filters);
+  if (!tileset.response) {
+    p.shaking = "no response computed";
+    return p;
+  }
+  const ResponseInfo& r = *tileset.response;
+  p.shaking = shakingStatement(r);
+  if (r.shakemap) {
+    p.earthquake = "ShakeMap " + r.shakemap->eventId + " version " + r.shakemap->version +
+                   (r.shakemap->description.empty() ? "" : " (" + r.shakemap->description + ")");
+  } else {
+    p.earthquake = r.scenario.empty() ? "one record for every building" : r.scenario;
+  }
+  for (const std::string& record : r.records) p.records += (p.records.empty() ? "" : "; ") + record;
+  if (p.records.empty()) p.records = r.motion;
+  p.method = r.method;
+  p.timeOfDay = r.timeOfDay;
+  return p;
+}
+
+std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFrame& geo,
+                      const ExportProvenance* provenance) {
+  std::string out = preamble("building list", provenance);
+  out +=
       "id,name,address,use,importance,damage_state,peak_drift_ratio,peak_roof_displacement_m,pga_g,height_m,storeys,"
       "lon,lat,x_m,y_m,p_none,p_slight,p_moderate,p_extensive,p_complete,p_collapse,expected_damage_state,"
       "p_tag_green,p_tag_yellow,p_tag_red,occupants,occupants_inferred,injuries_1,injuries_2,injuries_3,deaths,"
@@ -45,8 +173,13 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
     const auto ll = geo.reverse({b.x, b.y});
     out += csvField(b.id) + ',' + csvField(b.name) + ',' + csvField(b.address) + ',' + csvField(b.use) + ',';
     out += std::string(importanceName(b.importance)) + ',' + std::string(damageStateName(b.damage)) + ',';
-    out += number(b.peakDriftRatio, 6) + ',' + number(b.peakRoofDisplacementM, 4) + ',' + number(b.pgaG, 4) + ',';
-    out += number(b.heightM, 1) + ',' + std::to_string(b.storeys) + ',';
+    // Peaks exist only for a building with a result: blank otherwise (a zero would read as "no motion").
+    if (b.damage != DamageState::NoResult) {
+      out += number(b.peakDriftRatio, 6) + ',' + number(b.peakRoofDisplacementM, 4) + ',' + number(b.pgaG, 4) + ',';
+    } else {
+      out += ",,,";
+    }
+    out += number(b.heightM, 1) + ',' + (b.storeys > 0 ? std::to_string(b.storeys) : std::string()) + ',';
     out += (ll ? number(ll->lon, 7) : std::string()) + ',' + (ll ? number(ll->lat, 7) : std::string()) + ',';
     out += number(b.x, 2) + ',' + number(b.y, 2);
     // HAZUS columns: left blank (not zero) for a building without probabilities.
@@ -67,9 +200,17 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
   return out;
 }
 
-std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const GeoFrame& geo) {
+std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const GeoFrame& geo,
+                          const ExportProvenance* provenance) {
   JsonWriter w;
-  w.beginObject().field("type", "FeatureCollection").key("features").beginArray();
+  w.beginObject().field("type", "FeatureCollection");
+  if (provenance != nullptr) {
+    const ExportProvenance& p = *provenance;
+    w.key("quakeview").beginObject().field("city", p.city).field("shaking", p.shaking);
+    w.field("earthquake", p.earthquake).field("records", p.records).field("method", p.method);
+    w.field("filter", p.filter).field("time_of_day", p.timeOfDay).endObject();
+  }
+  w.key("features").beginArray();
   for (const BuildingListEntry& b : buildings) {
     const auto ll = geo.reverse({b.x, b.y});
     if (!ll) continue;
@@ -81,8 +222,18 @@ std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const Ge
     w.key("properties").beginObject();
     w.field("id", b.id).field("name", b.name).field("address", b.address).field("use", b.use);
     w.field("importance", importanceName(b.importance)).field("damage_state", damageStateName(b.damage));
-    w.field("peak_drift_ratio", b.peakDriftRatio).field("peak_roof_displacement_m", b.peakRoofDisplacementM);
-    w.field("pga_g", b.pgaG).field("height_m", b.heightM).field("storeys", static_cast<unsigned>(b.storeys));
+    if (b.damage != DamageState::NoResult) {
+      w.field("peak_drift_ratio", b.peakDriftRatio).field("peak_roof_displacement_m", b.peakRoofDisplacementM);
+      w.field("pga_g", b.pgaG);
+    } else {
+      w.key("peak_drift_ratio").null().key("peak_roof_displacement_m").null().key("pga_g").null();
+    }
+    w.field("height_m", b.heightM);
+    if (b.storeys > 0) {
+      w.field("storeys", static_cast<unsigned>(b.storeys));
+    } else {
+      w.key("storeys").null();
+    }
     w.endObject();
     w.endObject();
   }
@@ -92,11 +243,12 @@ std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const Ge
   return out;
 }
 
-std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, const seismic::LossTotals* view) {
+std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, const seismic::LossTotals* view,
+                                  const ExportProvenance* provenance) {
   const char* const names[] = {"none",       "slight",     "moderate",   "extensive", "complete",
                                "collapsed",  "tag_green",  "tag_yellow", "tag_red",   "occupants",
                                "injuries_1", "injuries_2", "injuries_3", "deaths",    "repair_cost_usd"};
-  std::string out = "area_kind,area,buildings,time_of_day";
+  std::string out = preamble("consequences", provenance) + "area_kind,area,buildings,time_of_day";
   for (const char* n : names) out += std::string(",") + n + "," + n + "_low," + n + "_high";
   out += "\r\n";
   auto row = [&](std::string_view kind, std::string_view area, const seismic::LossTotals& t) {

@@ -126,13 +126,16 @@ std::string ControlPanel::exportList(Viewer& viewer, const std::string& format, 
   CityScene* city = viewer.city();
   if (city == nullptr) return {};
   const std::vector<BuildingListEntry> list = city->filteredList(1000000);
+  const Tileset none;
+  const Tileset& tileset = city->tileset() != nullptr ? *city->tileset() : none;
+  const ExportProvenance provenance = exportProvenance(tileset, city->filters());
   if (format == "geojson") {
-    std::string text = exportGeoJson(list, viewer.geo());
-    host.download("quakeview-buildings.geojson", "application/geo+json", text);
+    std::string text = exportGeoJson(list, viewer.geo(), &provenance);
+    host.download(exportFileName(tileset, city->filters(), "buildings", "geojson"), "application/geo+json", text);
     return text;
   }
-  std::string text = exportCsv(list, viewer.geo());
-  host.download("quakeview-buildings.csv", "text/csv", text);
+  std::string text = exportCsv(list, viewer.geo(), &provenance);
+  host.download(exportFileName(tileset, city->filters(), "buildings", "csv"), "text/csv", text);
   return text;
 }
 
@@ -164,18 +167,8 @@ void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory
 void ControlPanel::drawShakingProvenance(const ResponseInfo& r, ui::Widgets& w) {
   // Whether the shaking is a scenario or an actual event, always in view: confusing the two is the
   // worst error this product can make.
-  const bool imported = r.method.rfind("imported", 0) == 0;
-  if (r.eventType == "ACTUAL") {
-    w.textColored(0.80f, 0.05f, 0.05f, "Shaking: ACTUAL EVENT (ShakeMap of a recorded earthquake)");
-  } else if (r.eventType == "SCENARIO" || (r.eventType.empty() && !imported && r.shakingField != "shakemap")) {
-    w.textColored(0.55f, 0.25f, 0.0f,
-                  r.shakingField == "shakemap" ? "Shaking: SCENARIO (a ShakeMap scenario, not a recorded event)"
-                                               : "Shaking: SCENARIO (computed, not a recorded event)");
-  } else if (imported) {
-    w.textColored(0.55f, 0.25f, 0.0f, "Shaking: IMPORTED RESULTS (not stated whether a scenario or an actual event)");
-  } else {
-    w.textColored(0.55f, 0.25f, 0.0f, "Shaking: NOT STATED whether a scenario or an actual event");
-  }
+  const bool actual = r.eventType == "ACTUAL";
+  w.textColored(actual ? 0.80f : 0.55f, actual ? 0.05f : 0.25f, 0.0f, "Shaking: " + shakingStatement(r));
   if (r.shakemap) {
     w.textWrapped("ShakeMap: " + r.shakemap->eventId + " version " + r.shakemap->version + ", processed " +
                   r.shakemap->processTimestamp +
@@ -327,7 +320,10 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
             districtRows);
   }
   if (w.button("Export totals (CSV)")) {
-    host.download("quakeview-consequences.csv", "text/csv", exportConsequencesCsv(*file, &view));
+    // The totals are the whole city's (and the view's): the list filters do not apply to them.
+    const ExportProvenance provenance = exportProvenance(*tileset, BuildingFilters{});
+    host.download(exportFileName(*tileset, BuildingFilters{}, "consequences", "csv"), "text/csv",
+                  exportConsequencesCsv(*file, &view, &provenance));
   }
 }
 
@@ -706,13 +702,7 @@ void ControlPanel::drawFilterChips(Viewer& viewer, ui::Widgets& w) {
   CityScene* city = viewer.city();
   if (city == nullptr || !city->filters().active()) return;
   const BuildingFilters& f = city->filters();
-  std::string chips;
-  auto add = [&chips](const std::string& chip) { chips += (chips.empty() ? "" : "  |  ") + chip; };
-  if (f.minDamage >= 0 && f.minDamage <= 4) {
-    add("damage at least " + std::string(damageStateName(static_cast<DamageState>(f.minDamage))));
-  }
-  if (!f.use.empty()) add("use: " + f.use);
-  if (f.criticalOnly) add("critical facilities only");
+  const std::string chips = describeFilters(f);
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(display.x * 0.5f, 10.0f), ImGuiCond_Always, ImVec2(0.5f, 0.0f));
   ImGui::SetNextWindowBgAlpha(0.85f);

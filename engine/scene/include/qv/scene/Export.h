@@ -10,28 +10,71 @@
 
 namespace qv {
 
-/// RFC 4180 CSV with a header row: id, name, address, use, importance, damage_state,
-/// peak_drift_ratio, peak_roof_displacement_m, pga_g, height_m, storeys, lon, lat, x_m, y_m, then the
-/// HAZUS columns (blank for a building without probabilities): p_none … p_complete, p_collapse,
+/// Where an export's numbers came from. Every export carries it (docs/formats.md "Exports"): a
+/// file forwarded by e-mail must still say whether its shaking is a scenario or an actual event.
+struct ExportProvenance {
+  std::string city;        ///< the city's name ("" when the manifest has none)
+  std::string shaking;     ///< shakingStatement(): "SCENARIO (computed, not a recorded event)", ...
+  std::string earthquake;  ///< the ShakeMap (id, version, description) or the scenario, or ""
+  std::string records;     ///< the ground-motion record(s), "; "-separated
+  std::string method;      ///< how responses were computed ("MDOF shear building, Bouc-Wen", "imported")
+  std::string filter;      ///< the active filters as describeFilters() says them ("none" when inactive)
+  std::string timeOfDay;   ///< the time of day the consequences assume, or ""
+};
+
+/// Whether the shaking is a SCENARIO or an ACTUAL event, in the words the panel shows:
+/// "ACTUAL EVENT (ShakeMap of a recorded earthquake)", "SCENARIO (a ShakeMap scenario, not a
+/// recorded event)", "SCENARIO (computed, not a recorded event)", "IMPORTED RESULTS (not stated
+/// whether a scenario or an actual event)" or "NOT STATED whether a scenario or an actual event".
+std::string shakingStatement(const ResponseInfo& response);
+
+/// The active filters as short phrases joined by " | " ("damage at least moderate | use: school"),
+/// "none" when no filter is active.
+std::string describeFilters(const BuildingFilters& filters);
+
+/// The provenance of exports from `tileset` (without a response: shaking "no response computed").
+ExportProvenance exportProvenance(const Tileset& tileset, const BuildingFilters& filters);
+
+/// A download's file name that says what it holds: "quakeview-<city>-<event>-<what>[-<filter>].<ext>",
+/// each part lower-case ASCII letters, digits and '-' ("quakeview-midtown-actual-us7000abcd-buildings-
+/// damage-moderate-use-school.csv"); <event> is "scenario", "actual" (with the ShakeMap's event id),
+/// "imported", "unstated" or "no-response". At most 150 characters before the extension.
+std::string exportFileName(const Tileset& tileset, const BuildingFilters& filters, std::string_view what,
+                           std::string_view extension);
+
+/// RFC 4180 CSV, UTF-8 with a byte-order mark (so spreadsheets read names as UTF-8). With a
+/// provenance, its first line is a comment, "# QuakeView building list | City: ... | Shaking: ...
+/// | Earthquake: ... | Records: ... | Method: ... | Filter: ..." (commas in its values become
+/// spaces so that it stays one cell wide per part; pandas: comment='#'). Then a header row: id, name, address, use,
+/// importance, damage_state, peak_drift_ratio, peak_roof_displacement_m, pga_g, height_m, storeys, lon, lat, x_m, y_m,
+/// then the HAZUS columns (blank for a building without probabilities): p_none … p_complete, p_collapse,
 /// expected_damage_state, p_tag_green, p_tag_yellow, p_tag_red, occupants, occupants_inferred (1/0),
 /// injuries_1 … injuries_3, deaths, repair_cost_usd, replacement_value_usd, value_inferred (1/0),
-/// repair_time_days.
+/// repair_time_days. A value that does not exist is a blank field, never a zero: a building without a
+/// result has blank peak_drift_ratio, peak_roof_displacement_m and pga_g, a building without
+/// storeys a blank storeys.
 /// Safe to open in a spreadsheet: a text field that begins with =, +, -, @, a tab or a carriage
 /// return is written as a quoted field with a leading apostrophe ("'=SUM(A1)"), so no formula
 /// runs; numeric columns are plain numbers (negative ones too). Invalid UTF-8 becomes U+FFFD.
-std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFrame& geo);
+std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFrame& geo,
+                      const ExportProvenance* provenance = nullptr);
 
 /// A GeoJSON FeatureCollection of Points (WGS84 lon/lat at each building's centroid) with the
-/// same fields as properties. Strings are valid UTF-8 (invalid bytes become U+FFFD) and kept
-/// otherwise as they are: a GIS shows them as text.
-std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const GeoFrame& geo);
+/// same fields as properties (null where the CSV is blank). Strings are valid UTF-8 (invalid bytes
+/// become U+FFFD) and kept otherwise as they are: a GIS shows them as text. With a provenance, the
+/// collection has a foreign member "quakeview" holding its fields (city, shaking, earthquake,
+/// records, method, filter, time_of_day).
+std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const GeoFrame& geo,
+                          const ExportProvenance* provenance = nullptr);
 
 /// The consequence totals as CSV, one row per area: the city, then the view when given, then each
 /// district; columns area_kind ("city", "view", "district"), area (the district's name), buildings,
 /// time_of_day, then for each quantity its expected value and the 5th
 /// and 95th percentiles (`_low`, `_high`): none, slight, moderate, extensive, complete (expected
 /// building counts), collapsed, tag_green, tag_yellow, tag_red, occupants, injuries_1 .. injuries_3,
-/// deaths, repair_cost_usd. Text fields are made safe as in exportCsv.
-std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, const seismic::LossTotals* view);
+/// deaths, repair_cost_usd. Text fields are made safe as in exportCsv; byte-order mark and
+/// provenance comment line as in exportCsv ("# QuakeView consequences | ...").
+std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, const seismic::LossTotals* view,
+                                  const ExportProvenance* provenance = nullptr);
 
 }  // namespace qv
