@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
+
 #include "qv/scene/CameraController.h"
 
 using namespace qv;
@@ -67,20 +69,45 @@ TEST_CASE("Two-finger pinch zooms and one finger pans", "[scene][camera]") {
   CHECK(s.y > y);
 }
 
-TEST_CASE("Held keys move the camera over time and R resets it", "[scene][camera]") {
+TEST_CASE("One key press moves by a fixed step whatever the frame time; held keys then move steadily; R resets",
+          "[scene][camera]") {
   CameraState s{0.0, 0.0, 1000.0, 0.0, 60.0, 45.0};
   CameraController c(s);
   c.setViewport(1000.0, 800.0);
   c.setHome(s);
-  c.key(Key::Up, true);
-  CHECK(c.update(0.1));
-  c.key(Key::Up, false);
-  CHECK(s.y == Approx(50.0));  // half the distance per second, for 0.1 s
+  // The same press at 60 frames per second and at 5: the same step (a tenth of the distance).
+  for (const double frame : {1.0 / 60.0, 0.2}) {
+    c.reset();
+    c.key(Key::Up, true);
+    CHECK(c.update(frame));
+    c.key(Key::Up, false);
+    CHECK(s.y == Approx(100.0));
+    CHECK_FALSE(c.update(frame));
+  }
+  // Q then E: back where it started (15° each), at any frame time.
+  c.reset();
   c.key(Key::TurnRight, true);
-  c.update(0.05);
+  c.update(0.1);
   c.key(Key::TurnRight, false);
-  CHECK(s.headingDeg == Approx(4.5));  // 90° per second
-  CHECK_FALSE(c.update(0.1));
+  CHECK(s.headingDeg == Approx(15.0));
+  c.key(Key::TurnLeft, true);
+  c.update(0.01);
+  c.key(Key::TurnLeft, false);
+  CHECK(s.headingDeg == Approx(0.0).margin(1e-9));
+  // + and = are the same key: one press zooms in by e^0.2, another press the same again.
+  c.key(Key::ZoomIn, true);
+  c.key(Key::ZoomIn, false);
+  CHECK(s.distance == Approx(1000.0 * std::exp(-0.2)));
+  c.key(Key::ZoomIn, true);
+  c.key(Key::ZoomIn, true);  // the browser's auto-repeat: no second step
+  c.key(Key::ZoomIn, false);
+  CHECK(s.distance == Approx(1000.0 * std::exp(-0.4)));
+  // Held for 1.35 s in frames of 0.05 s: the step, then 1 s of steady motion at half the distance per second.
+  c.reset();
+  c.key(Key::Up, true);
+  for (int i = 0; i < 27; ++i) c.update(0.05);
+  c.key(Key::Up, false);
+  CHECK(s.y == Approx(100.0 + 500.0));
   c.key(Key::Reset, true);
   CHECK(s.y == 0.0);
   CHECK(s.headingDeg == 0.0);

@@ -298,13 +298,20 @@ TEST_CASE("Exports say where their numbers came from and leave missing values bl
 
   const std::string json = exportGeoJson(list, geo, &provenance);
   simdjson::dom::parser parser;
-  const simdjson::dom::element doc = parser.parse(json);
-  CHECK(std::string_view(doc["quakeview"]["shaking"].get_string().value()).rfind("ACTUAL EVENT", 0) == 0);
-  CHECK(std::string_view(doc["quakeview"]["city"].get_string().value()) == "midtown");
-  const simdjson::dom::array features = doc["features"].get_array();
+  simdjson::dom::element doc;
+  REQUIRE(parser.parse(json).get(doc) == simdjson::SUCCESS);
+  std::string_view shaking, city;
+  REQUIRE(doc["quakeview"]["shaking"].get(shaking) == simdjson::SUCCESS);
+  REQUIRE(doc["quakeview"]["city"].get(city) == simdjson::SUCCESS);
+  CHECK(shaking.rfind("ACTUAL EVENT", 0) == 0);
+  CHECK(city == "midtown");
+  simdjson::dom::array features;
+  REQUIRE(doc["features"].get(features) == simdjson::SUCCESS);
   REQUIRE(features.size() == 2);
   for (const simdjson::dom::element feature : features) {
-    const bool noResult = std::string_view(feature["properties"]["id"].get_string().value()) == "w2";
+    std::string_view id;
+    REQUIRE(feature["properties"]["id"].get(id) == simdjson::SUCCESS);
+    const bool noResult = id == "w2";
     CHECK(feature["properties"]["pga_g"].is_null() == noResult);
     CHECK(feature["properties"]["storeys"].is_null() == noResult);
   }

@@ -90,53 +90,115 @@ void CameraController::touches(std::span<const TouchPoint> points) {
   lastTouchCount_ = count;
 }
 
-void CameraController::key(Key k, bool down) {
-  if (k == Key::Count) return;
-  held_[static_cast<std::size_t>(k)] = down;
-  if (down && k == Key::Reset) reset();
+namespace {
+
+// Per key: the step of one press and the rate while held (units of CameraController::applyKey).
+struct KeyMotion {
+  double step;
+  double perSecond;
+};
+constexpr double kKeyHoldDelaySeconds = 0.35;
+constexpr KeyMotion kPan{0.1, 0.5}, kTurn{15.0, 90.0}, kTilt{5.0, 40.0}, kZoom{0.2, 1.5};
+
+KeyMotion motionOf(Key k) {
+  switch (k) {
+    case Key::Left:
+    case Key::Right:
+    case Key::Up:
+    case Key::Down:
+      return kPan;
+    case Key::TurnLeft:
+    case Key::TurnRight:
+      return kTurn;
+    case Key::TiltUp:
+    case Key::TiltDown:
+      return kTilt;
+    case Key::ZoomIn:
+    case Key::ZoomOut:
+      return kZoom;
+    default:
+      return {0.0, 0.0};
+  }
 }
 
-bool CameraController::update(double dt) {
-  auto held = [&](Key k) { return held_[static_cast<std::size_t>(k)]; };
-  dt = std::clamp(dt, 0.0, 0.1);
-  bool moved = false;
-  // Pan at half the view distance per second, in the heading's frame.
-  const double step = state_.distance * 0.5 * dt;
+}  // namespace
+
+void CameraController::applyKey(Key k, double amount) {
   const double h = state_.headingDeg * 3.14159265358979323846 / 180.0;
   const double fx = std::sin(h), fy = std::cos(h);   // forward on the ground
   const double rx = std::cos(h), ry = -std::sin(h);  // right on the ground
-  double dx = 0.0, dy = 0.0;
-  if (held(Key::Up)) {
-    dx += fx;
-    dy += fy;
+  const double d = state_.distance * amount;
+  const auto pan = [this, d](double dx, double dy) {
+    state_.x += dx * d;
+    state_.y += dy * d;
+  };
+  switch (k) {
+    case Key::Up:
+      pan(fx, fy);
+      break;
+    case Key::Down:
+      pan(-fx, -fy);
+      break;
+    case Key::Right:
+      pan(rx, ry);
+      break;
+    case Key::Left:
+      pan(-rx, -ry);
+      break;
+    // orbit() takes pixels of drag, a quarter of a degree each.
+    case Key::TurnRight:
+      camera_gestures::orbit(state_, 4.0 * amount, 0.0, limits_);
+      break;
+    case Key::TurnLeft:
+      camera_gestures::orbit(state_, -4.0 * amount, 0.0, limits_);
+      break;
+    case Key::TiltUp:
+      camera_gestures::orbit(state_, 0.0, 4.0 * amount, limits_);
+      break;
+    case Key::TiltDown:
+      camera_gestures::orbit(state_, 0.0, -4.0 * amount, limits_);
+      break;
+    case Key::ZoomOut:
+    case Key::ZoomIn: {
+      const double sign = k == Key::ZoomOut ? 1.0 : -1.0;
+      state_.distance = std::clamp(state_.distance * std::exp(sign * amount), limits_.minDistance, limits_.maxDistance);
+      break;
+    }
+    default:
+      break;
   }
-  if (held(Key::Down)) {
-    dx -= fx;
-    dy -= fy;
+}
+
+void CameraController::key(Key k, bool down) {
+  if (k == Key::Count) return;
+  const auto i = static_cast<std::size_t>(k);
+  if (down && !held_[i]) {
+    heldSeconds_[i] = 0.0;
+    if (k == Key::Reset) {
+      reset();
+    } else {
+      applyKey(k, motionOf(k).step);
+    }
+    keyMoved_ = true;
   }
-  if (held(Key::Right)) {
-    dx += rx;
-    dy += ry;
-  }
-  if (held(Key::Left)) {
-    dx -= rx;
-    dy -= ry;
-  }
-  if (dx != 0.0 || dy != 0.0) {
-    state_.x += dx * step;
-    state_.y += dy * step;
-    moved = true;
-  }
-  const double turn = (held(Key::TurnRight) ? 1.0 : 0.0) - (held(Key::TurnLeft) ? 1.0 : 0.0);
-  const double tilt = (held(Key::TiltUp) ? 1.0 : 0.0) - (held(Key::TiltDown) ? 1.0 : 0.0);
-  if (turn != 0.0 || tilt != 0.0) {
-    camera_gestures::orbit(state_, turn * 360.0 * dt, tilt * 160.0 * dt, limits_);
-    moved = true;
-  }
-  const double zoom = (held(Key::ZoomOut) ? 1.0 : 0.0) - (held(Key::ZoomIn) ? 1.0 : 0.0);
-  if (zoom != 0.0) {
-    state_.distance = std::clamp(state_.distance * std::exp(zoom * 1.5 * dt), limits_.minDistance, limits_.maxDistance);
-    moved = true;
+  held_[i] = down;
+}
+
+bool CameraController::update(double dt) {
+  dt = std::clamp(dt, 0.0, 0.1);
+  bool moved = keyMoved_;
+  keyMoved_ = false;
+  for (std::size_t i = 0; i < held_.size(); ++i) {
+    if (!held_[i]) continue;
+    // The part of this frame after the hold delay moves at the steady rate.
+    const double before = heldSeconds_[i];
+    heldSeconds_[i] += dt;
+    const double steady = heldSeconds_[i] - std::max(before, kKeyHoldDelaySeconds);
+    const Key k = static_cast<Key>(i);
+    if (steady > 0.0 && motionOf(k).perSecond > 0.0) {
+      applyKey(k, motionOf(k).perSecond * steady);
+      moved = true;
+    }
   }
   return moved;
 }

@@ -3,6 +3,9 @@
 //          wheel zooms about the cursor;
 //   touch: one finger pans, two fingers pinch to zoom and twist to turn, move both up/down to tilt;
 //   keys:  arrows / WASD pan, Q / E turn, PageUp / PageDown tilt, + / - zoom, R or Home resets.
+//          One press moves by a fixed step, whatever the frame rate (pan a tenth of the view
+//          distance, turn 15°, tilt 5°, zoom by e^0.2 ≈ 1.22); a key held longer than 0.35 s then
+//          moves at a steady rate (half the distance, 90°, 40°, e^1.5 per second).
 // Coordinates are CSS pixels relative to the canvas's top-left corner; the controller is told
 // the viewport in the same units.
 #pragma once
@@ -52,8 +55,11 @@ class CameraController {
   void wheel(double x, double y, double deltaY);
   /// The full set of current touches after any touch event.
   void touches(std::span<const TouchPoint> points);
+  /// A key went down or up. A key that goes down (and was not already held: the browser's
+  /// auto-repeat is ignored) moves the camera by its step at once.
   void key(Key key, bool down);
-  /// Applies held keys for a frame of dtSeconds; returns true if the camera moved.
+  /// Applies held keys for a frame of dtSeconds (their steady motion, after the hold delay);
+  /// returns true if the camera moved since the last update (key steps included).
   bool update(double dtSeconds);
   void reset() { state_ = home_; }
 
@@ -64,6 +70,9 @@ class CameraController {
  private:
   enum class Mode { None, Pan, Orbit, Touch };
   [[nodiscard]] CameraView view() const;
+  /// Moves for key k by `amount`: a fraction of the view distance (pan), degrees (turn, tilt) or
+  /// a natural-log zoom factor.
+  void applyKey(Key k, double amount);
 
   CameraState& state_;
   CameraState home_;
@@ -77,6 +86,8 @@ class CameraController {
   std::array<TouchPoint, 2> lastTouches_{};
   int lastTouchCount_ = 0;
   std::array<bool, static_cast<std::size_t>(Key::Count)> held_{};
+  std::array<double, static_cast<std::size_t>(Key::Count)> heldSeconds_{};
+  bool keyMoved_ = false;  ///< a key step since the last update
 };
 
 }  // namespace qv
