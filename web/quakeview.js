@@ -187,10 +187,12 @@
       if (!engine) return null;
       return JSON.parse(engine.UTF8ToString(engine._qv_filtered_json(limit)));
     },
-    // Downloads the filtered list ("csv" or "geojson") as the panel's Export buttons do; returns it.
+    // Downloads the filtered list ("csv" or "geojson") as the panel's Export buttons do; returns
+    // its text. The downloaded CSV file starts with a UTF-8 byte-order mark for spreadsheets; the
+    // returned string does not (a JavaScript string has no byte order).
     exportList(format = 'csv') {
       if (!engine) return '';
-      return engine.ccall('qv_export', 'string', ['string'], [format]);
+      return engine.ccall('qv_export', 'string', ['string'], [format]).replace(/^\uFEFF/, '');
     },
   };
   Object.defineProperty(window, 'quakeview', { value: api, writable: false, configurable: false });
