@@ -113,7 +113,6 @@ GlRenderDevice::GlRenderDevice() {
   u_.amplitude = glGetUniformLocation(p, "u_amplitude");
   u_.sunDirection = glGetUniformLocation(p, "u_sunDirection");
   u_.eye = glGetUniformLocation(p, "u_eye");
-  u_.anyDimmed = glGetUniformLocation(p, "u_anyDimmed");
   u_.showModels = glGetUniformLocation(p, "u_showModels");
   g_.viewProjection = glGetUniformLocation(groundProgram_, "u_viewProjection");
   g_.rect = glGetUniformLocation(groundProgram_, "u_rect");
@@ -291,7 +290,6 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
     glUniform1f(u_.amplitude, f.amplitude);
     glUniform3f(u_.sunDirection, f.sunDirection.x, f.sunDirection.y, f.sunDirection.z);
     glUniform3f(u_.eye, f.eye.x, f.eye.y, f.eye.z);
-    glUniform1i(u_.anyDimmed, f.anyDimmed ? 1 : 0);
     glUniform1i(u_.showModels, f.showModels ? 1 : 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, buildings_.texture);

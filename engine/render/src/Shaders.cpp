@@ -22,7 +22,6 @@ uniform sampler2D u_floors;
 uniform int u_colorMode;
 uniform float u_driftFullScale;
 uniform float u_amplitude;
-uniform bool u_anyDimmed;
 uniform bool u_showModels;  // LOD2 models (kind bit 0x20) or, instead, their extrusions (0x40)
 
 out vec3 v_normal;

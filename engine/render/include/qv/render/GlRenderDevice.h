@@ -66,10 +66,10 @@ class GlRenderDevice final : public RenderDevice {
 
   struct Uniforms {
     int viewProjection = -1, origin = -1, buildings = -1, floors = -1, colorMode = -1, driftFullScale = -1,
-        amplitude = -1, sunDirection = -1, eye = -1, anyDimmed = -1, showModels = -1;
+        amplitude = -1, sunDirection = -1, eye = -1, showModels = -1;
   } u_;
   struct GroundUniforms {
-    int viewProjection = -1, rect = -1, sunDirection = -1, eye = -1;
+    int viewProjection = -1, rect = -1, eye = -1;
   } g_;
 };
 

@@ -86,7 +86,6 @@ struct FrameUniforms {
   int viewportWidth = 1;
   int viewportHeight = 1;
   Rect ground;  ///< ground plane extent (empty: no ground)
-  bool anyDimmed = false;
   bool showModels = true;  ///< LOD2 models drawn (kKindModel vertices), else their LOD1 extrusions (kKindFallback)
 };
 
