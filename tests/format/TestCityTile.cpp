@@ -53,14 +53,15 @@ std::string hex(const std::vector<std::uint8_t>& bytes) {
 
 }  // namespace
 
-TEST_CASE("City tile format version 1 is pinned by golden bytes", "[format][tile]") {
-  // Every field checked by hand against docs/formats.md ("City tile").
+TEST_CASE("City tile format version 2 is pinned by golden bytes", "[format][tile]") {
+  // Every field checked by hand against docs/formats.md ("City tile"). Without a MESH section a
+  // version 2 tile differs from version 1 in the version field only (the CRC starts at byte 16).
   const std::string golden =
       "51564354"
-      "0100"
+      "0200"
       "0000"
       "dc000000"
-      "af959a75"  // "QVCT", version 1, flags 0, 220 bytes, CRC-32
+      "af959a75"  // "QVCT", version 2, flags 0, 220 bytes, CRC-32
       "01000000"
       "01000000"  // 1 building, 1 part
       "0000000000005940"
@@ -137,6 +138,15 @@ TEST_CASE("City tile format version 1 is pinned by golden bytes", "[format][tile
   const auto decoded = decodeCityTile(encodeCityTile(tinyTile()), "golden");
   REQUIRE(decoded.ok());
   CHECK(decoded->buildings[0].attributes.use == "office");
+
+  SECTION("the same tile written as version 1 is still read") {
+    std::vector<std::uint8_t> version1 = encodeCityTile(tinyTile());
+    version1[4] = 1;
+    const auto old = decodeCityTile(version1, "version 1");
+    REQUIRE(old.ok());
+    CHECK(old->buildings[0].attributes.use == "office");
+    CHECK(old->vertices == decoded->vertices);
+  }
 }
 
 TEST_CASE("City tiles round-trip through the codec", "[format][tile]") {
@@ -246,8 +256,12 @@ TEST_CASE("Corrupt, truncated and wrong-version tiles are rejected with a specif
   }
   SECTION("another version") {
     auto bad = good;
-    bad[4] = 2;
-    CHECK(messageFor(bad).find("unsupported city tile version 2 (this build reads version 1)") != std::string::npos);
+    bad[4] = 3;
+    CHECK(messageFor(bad).find("unsupported city tile version 3 (this build reads versions 1 to 2)") !=
+          std::string::npos);
+    bad[4] = 0;
+    CHECK(messageFor(bad).find("unsupported city tile version 0 (this build reads versions 1 to 2)") !=
+          std::string::npos);
   }
   SECTION("counts that do not match the sections, with a valid checksum") {
     auto bad = good;

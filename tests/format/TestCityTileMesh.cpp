@@ -38,7 +38,7 @@ CityTile tileWithoutMesh() {
   return t;
 }
 
-// A tetrahedron skinned to the building's 5 floor levels, with a one-triangle far mesh.
+// A tetrahedron from the ground to the roof of its 4-storey building, with a one-triangle far mesh.
 CityTile tinyMeshTile() {
   CityTile t = tileWithoutMesh();
   TileMesh m;
@@ -48,8 +48,6 @@ CityTile tinyMeshTile() {
   m.verticesBefore = 4;
   m.topM = 12.0f;
   m.positions = {{0.0f, 0.0f, 0.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 10.0f, 0.0f}, {0.0f, 0.0f, 12.0f}};
-  m.bones = {0, 0, 0, 4};
-  m.weights = {0.0f, 0.0f, 0.0f, 0.0f};
   m.triangles = {0, 1, 3, 1, 2, 3, 2, 0, 3, 0, 2, 1};  // 2 walls, 1 roof, 1 ground
   m.trianglesPerKind = {2, 1, 1, 0};
   m.farPositions = {{0.0f, 0.0f, 0.0f}, {10.0f, 0.0f, 0.0f}, {0.0f, 0.0f, 12.0f}};
@@ -87,13 +85,13 @@ std::size_t meshOffset(const std::vector<std::uint8_t>& bytes) {
 
 TEST_CASE("City tile MESH section is pinned by golden bytes", "[format][tile][mesh]") {
   // Checked by hand against docs/formats.md ("MESH"). The sections before MESH are those of the
-  // version 1 golden tile in TestCityTile.cpp (here with no strings but the id, LOD 2).
+  // version 2 golden tile in TestCityTile.cpp (here with no strings but the id, LOD 2).
   const std::string golden =
       "51564354"
-      "0100"
+      "0200"
       "0000"
-      "64010000"
-      "117f8469"  // "QVCT", version 1, flags 0, 356 bytes, CRC-32
+      "5c010000"
+      "af08de63"  // "QVCT", version 2, flags 0, 348 bytes, CRC-32
       "01000000"
       "01000000"
       "0000000000005940"
@@ -121,7 +119,7 @@ TEST_CASE("City tile MESH section is pinned by golden bytes", "[format][tile][me
       "09000000"
       "4d455348"
       "e4000000"
-      "80000000"                                                                          // MESH at 228, 128 bytes
+      "78000000"                                                                          // MESH at 228, 120 bytes
       "01000000000040410000000004000000000000000200000000004842000000000000000000000000"  // BLDG, LOD 2
       "0100000001000000000000000000404100000000"                                          // PART
       "03000000"                                                                          // RING
@@ -145,11 +143,11 @@ TEST_CASE("City tile MESH section is pinned by golden bytes", "[format][tile][me
       "01000000"
       "04000000"
       "00004041"
-      // skinned vertices (qx, qy, qz, bone, weight)
-      "0000000000000000"
-      "ffff000000000000"
-      "0000ffff00000000"
-      "00000000ffff0400"
+      // vertices (qx, qy, qz): 24 bytes, no padding needed
+      "000000000000"
+      "ffff00000000"
+      "0000ffff0000"
+      "00000000ffff"
       // triangles, u16 (4 vertices): walls 0 1 3, 1 2 3; roof 2 0 3; ground 0 2 1
       "000001000300"
       "010002000300"
@@ -168,10 +166,80 @@ TEST_CASE("City tile MESH section is pinned by golden bytes", "[format][tile][me
   CHECK(decoded->meshes[0].positions[3].z == 12.0f);
 }
 
+TEST_CASE("Version 1 MESH sections are still read, their bones and weights skipped", "[format][tile][mesh]") {
+  // The version 1 golden bytes, as written before version 2: each vertex followed by its bone and
+  // weight (the last vertex on the roof: bone 4, weight 0).
+  const std::string version1 =
+      "51564354"
+      "0100"
+      "0000"
+      "64010000"
+      "117f8469"  // "QVCT", version 1, flags 0, 356 bytes, CRC-32
+      "01000000"
+      "01000000"
+      "0000000000005940"
+      "0000000000006940"
+      "00002041"
+      "0700"
+      "0000"
+      "424c4447"
+      "84000000"
+      "28000000"
+      "50415254"
+      "ac000000"
+      "14000000"
+      "52494e47"
+      "c0000000"
+      "02000000"
+      "56455254"
+      "c4000000"
+      "0c000000"
+      "54524953"
+      "d0000000"
+      "06000000"
+      "53545253"
+      "d8000000"
+      "09000000"
+      "4d455348"
+      "e4000000"
+      "80000000"  // MESH at 228, 128 bytes
+      "01000000000040410000000004000000000000000200000000004842000000000000000000000000"
+      "0100000001000000000000000000404100000000"
+      "03000000"
+      "00000000ffff00000000ffff"
+      "0000010002000000"
+      "027331000000000000000000"
+      "01000000"
+      "00000000000004000400000002000000010000000100000000000000030000000100000004000000"
+      "00004041"          // the record, as in version 2
+      "0000000000000000"  // qx, qy, qz, bone, weight
+      "ffff000000000000"
+      "0000ffff00000000"
+      "00000000ffff0400"
+      "000001000300010002000300020000000300000002000100"
+      "000000000000ffff0000000000000000ffff000001000200";
+  std::vector<std::uint8_t> bytes;
+  for (std::size_t i = 0; i + 1 < version1.size(); i += 2)
+    bytes.push_back(static_cast<std::uint8_t>(std::stoi(version1.substr(i, 2), nullptr, 16)));
+  REQUIRE(bytes.size() == 356);
+  const auto old = decodeCityTile(bytes, "version 1");
+  REQUIRE(old.ok());
+  REQUIRE(old->meshes.size() == 1);
+  const TileMesh& m = old->meshes[0];
+  const TileMesh expected = tinyMeshTile().meshes[0];
+  CHECK(m.positions == expected.positions);
+  CHECK(m.triangles == expected.triangles);
+  CHECK(m.trianglesPerKind == expected.trianglesPerKind);
+  CHECK(m.farPositions == expected.farPositions);
+  CHECK(m.farTriangles == expected.farTriangles);
+  // Written again, it is the version 2 tile: the same model without the skin.
+  CHECK(encodeCityTile(*old) == encodeCityTile(tinyMeshTile()));
+}
+
 TEST_CASE("Tiles with LOD2 meshes round-trip through the codec", "[format][tile][mesh]") {
   const bool wide = GENERATE(false, true);
   CityTile t = tinyMeshTile();
-  // A second building with 3 storeys and a mesh with in-between weights.
+  // A second building with 3 storeys and a mesh with vertices between its floors.
   t.vertices.insert(t.vertices.end(), {{1, 1}, {9, 1}, {9, 9}});
   t.ringVertexCounts.push_back(3);
   t.roofTriangles.insert(t.roofTriangles.end(), {0, 1, 2});
@@ -199,10 +267,6 @@ TEST_CASE("Tiles with LOD2 meshes round-trip through the codec", "[format][tile]
   for (std::size_t i = 0; i < n; ++i) {
     const float z = 9.0f * static_cast<float>(i) / static_cast<float>(n - 1);
     m.positions.push_back({static_cast<float>(i % 10), static_cast<float>(i % 7), z});
-    const float level = std::min(z / 3.0f, 3.0f);
-    const auto bone = static_cast<std::uint8_t>(std::floor(level));
-    m.bones.push_back(bone);
-    m.weights.push_back(bone == 3 ? 0.0f : static_cast<float>(std::round((level - bone) * 255.0f) / 255.0f));
   }
   for (std::uint32_t i = 0; i + 2 < n; i += 3) m.triangles.insert(m.triangles.end(), {i, i + 1, i + 2});
   m.triangles.insert(m.triangles.end(), {static_cast<std::uint32_t>(n - 1), 0, 1});
@@ -225,10 +289,8 @@ TEST_CASE("Tiles with LOD2 meshes round-trip through the codec", "[format][tile]
   CHECK(d.topM == 9.0f);
   CHECK(d.triangles == m.triangles);
   CHECK(d.trianglesPerKind == m.trianglesPerKind);
-  CHECK(d.bones == m.bones);
   CHECK(d.farTriangles == m.farTriangles);
   REQUIRE(d.positions.size() == n);
-  REQUIRE(d.weights.size() == n);
   float worstXY = 0.0f, worstZ = 0.0f;
   for (std::size_t i = 0; i < n; ++i) {
     worstXY = std::max(
@@ -237,21 +299,10 @@ TEST_CASE("Tiles with LOD2 meshes round-trip through the codec", "[format][tile]
   }
   CHECK(worstXY <= 10.0f / 65535.0f);
   CHECK(worstZ <= 9.0f / 65535.0f);
-  CHECK(d.weights == m.weights);  // multiples of 1/255 come back exactly
   REQUIRE(d.farPositions.size() == 4);
   CHECK(d.farPositions[2].z == 9.0f);
   // Encoding the decoded tile again gives the same bytes (quantization is idempotent).
   CHECK(encodeCityTile(*decoded) == encodeCityTile(t));
-}
-
-TEST_CASE("A vertex on a floor keeps weight 0 and weights round to 1/255", "[format][tile][mesh]") {
-  CityTile t = tinyMeshTile();
-  t.meshes[0].weights = {0.0f, 0.5f, 1.0f / 510.0f, 0.0f};
-  const auto decoded = decodeCityTile(encodeCityTile(t), "weights");
-  REQUIRE(decoded.ok());
-  CHECK(decoded->meshes[0].weights[0] == 0.0f);
-  CHECK(decoded->meshes[0].weights[1] == 128.0f / 255.0f);
-  CHECK(std::fabs(decoded->meshes[0].weights[2] - 1.0f / 510.0f) <= 1.0f / 510.0f);
 }
 
 TEST_CASE("Tiles without meshes have no MESH section and readers skip unknown sections", "[format][tile][mesh]") {
@@ -268,7 +319,7 @@ TEST_CASE("Corrupt and truncated MESH sections are rejected with a specific mess
   REQUIRE(mesh == 228);
   const std::size_t record = mesh + 4;
   const std::size_t vertices = record + 44;
-  const std::size_t triangles = vertices + 4 * 8;
+  const std::size_t triangles = vertices + 4 * 6;
   const std::size_t farTriangles = triangles + 24 + 18;
   auto messageFor = [](std::vector<std::uint8_t> bytes) {
     fixCrc(bytes);
@@ -290,15 +341,15 @@ TEST_CASE("Corrupt and truncated MESH sections are rejected with a specific mess
     auto bad = good;
     setU32(bad, mesh, 3);
     CHECK(messageFor(bad) ==
-          "tiles/3-1-2.qvt: section MESH at byte 228: 3 models need 132 bytes of records, the section holds 124");
+          "tiles/3-1-2.qvt: section MESH at byte 228: 3 models need 132 bytes of records, the section holds 116");
   }
   SECTION("a vertex count beyond the bytes present") {
     auto bad = good;
     setU32(bad, record + 8, 1000);
     const std::string message = messageFor(bad);
     INFO(message);
-    CHECK(message.find("section MESH at byte 276: the models declare 8048 bytes of vertices and "
-                       "triangles, the section holds 80") != std::string::npos);
+    CHECK(message.find("section MESH at byte 276: the models declare 6048 bytes of vertices and "
+                       "triangles, the section holds 72") != std::string::npos);
   }
   SECTION("a vertex count beyond the limits") {
     auto bad = good;
@@ -308,9 +359,9 @@ TEST_CASE("Corrupt and truncated MESH sections are rejected with a specific mess
   }
   SECTION("a section cut short (the table says fewer bytes)") {
     auto bad = good;
-    setU32(bad, 48 + 6 * 12 + 8, 100);  // MESH size 128 -> 100
-    CHECK(messageFor(bad).find("section MESH at byte 276: the models declare 80 bytes of vertices and triangles, "
-                               "the section holds 52") != std::string::npos);
+    setU32(bad, 48 + 6 * 12 + 8, 92);  // MESH size 120 -> 92
+    CHECK(messageFor(bad).find("section MESH at byte 276: the models declare 72 bytes of vertices and triangles, "
+                               "the section holds 44") != std::string::npos);
   }
   SECTION("a building index beyond BLDG") {
     auto bad = good;
@@ -334,23 +385,17 @@ TEST_CASE("Corrupt and truncated MESH sections are rejected with a specific mess
     setU32(bad, record + 40, 0x00404000u);
     CHECK(messageFor(bad).find("model 0: top 0.000000 m is outside [0.01, 10000] m") != std::string::npos);
   }
-  SECTION("a bone beyond the storeys") {
-    auto bad = good;
-    bad[vertices + 3 * 8 + 6] = 5;
-    CHECK(messageFor(bad) ==
-          "tiles/3-1-2.qvt: section MESH at byte 300: model 0 vertex 3: bone 5 beyond its 4 storeys");
-  }
   SECTION("a triangle index beyond the vertices") {
     auto bad = good;
     bad[triangles + 2] = 4;
     CHECK(messageFor(bad) ==
-          "tiles/3-1-2.qvt: section MESH at byte 310: model 0: triangle index 4 beyond its 4 vertices");
+          "tiles/3-1-2.qvt: section MESH at byte 302: model 0: triangle index 4 beyond its 4 vertices");
   }
   SECTION("a far triangle index beyond the far vertices") {
     auto bad = good;
     bad[farTriangles + 4] = 3;
     CHECK(messageFor(bad) ==
-          "tiles/3-1-2.qvt: section MESH at byte 354: model 0: far triangle index 3 beyond its 3 far vertices");
+          "tiles/3-1-2.qvt: section MESH at byte 346: model 0: far triangle index 3 beyond its 3 far vertices");
   }
   SECTION("too many far vertices for u16 indices") {
     auto bad = good;
@@ -378,25 +423,23 @@ TEST_CASE("MESH indices are u16 up to 65535 vertices and u32 beyond", "[format][
     std::size_t sectionBytes;
     std::string indexBytes;
   };
-  // 4-byte count + 44-byte record + 8 bytes per vertex, then one triangle (last, 0, 1): three u16
-  // and 2 bytes of padding, or three u32.
-  const Case cases[] = {{65535, 4 + 44 + 65535 * 8 + 8, "feff000001000000"},
-                        {65536, 4 + 44 + 65536 * 8 + 12, "ffff00000000000001000000"}};
+  // 4-byte count + 44-byte record + 6 bytes per vertex padded to 4, then one triangle (last, 0,
+  // 1): three u16 and 2 bytes of padding, or three u32.
+  const Case cases[] = {{65535, 4 + 44 + 65535 * 6 + 2 + 8, "feff000001000000"},
+                        {65536, 4 + 44 + 65536 * 6 + 12, "ffff00000000000001000000"}};
   for (const Case& c : cases) {
     CityTile t = tileWithoutMesh();
     TileMesh m;
     m.storeys = 4;
     m.topM = 12.0f;
     m.positions.assign(c.vertices, glm::vec3(1.0f, 2.0f, 3.0f));
-    m.bones.assign(c.vertices, 1);
-    m.weights.assign(c.vertices, 0.0f);
     m.triangles = {c.vertices - 1, 0, 1};
     m.trianglesPerKind = {1, 0, 0, 0};
     t.meshes = {m};
     const auto bytes = encodeCityTile(t);
     const std::size_t mesh = meshOffset(bytes);
     CHECK(readU32(bytes, 48 + 6 * 12 + 8) == c.sectionBytes);
-    const std::size_t indices = mesh + 4 + 44 + std::size_t{c.vertices} * 8;
+    const std::size_t indices = mesh + 4 + 44 + (std::size_t{c.vertices} * 6 + 3) / 4 * 4;
     CHECK(hex(std::vector<std::uint8_t>(
               bytes.begin() + static_cast<std::ptrdiff_t>(indices),
               bytes.begin() + static_cast<std::ptrdiff_t>(indices + c.indexBytes.size() / 2))) == c.indexBytes);

@@ -38,13 +38,10 @@ inline void checkTileConsistent(const CityTile& t) {
     check(m.building < t.buildings.size(), "mesh building out of range");
     check(k == 0 || m.building > t.meshes[k - 1].building, "mesh buildings not increasing");
     check(m.storeys == t.buildings[m.building].attributes.storeys, "mesh storeys differ from the building's");
-    check(m.bones.size() == m.positions.size() && m.weights.size() == m.positions.size(), "mesh skin sizes");
     std::size_t triangles = 0;
     for (std::uint32_t n : m.trianglesPerKind) triangles += n;
     check(triangles * 3 == m.triangles.size(), "mesh triangles per kind do not add up");
     for (std::uint32_t i : m.triangles) check(i < m.positions.size(), "mesh index out of range");
-    for (std::uint8_t bone : m.bones) check(bone <= m.storeys, "bone beyond the storeys");
-    for (float w : m.weights) check(w >= 0.0f && w <= 1.0f, "weight outside [0, 1]");
     check(m.farTriangles.size() % 3 == 0, "far triangles are not triples");
     for (std::uint16_t i : m.farTriangles) check(i < m.farPositions.size(), "far index out of range");
     for (const auto& p : m.positions) {
@@ -99,10 +96,9 @@ inline void checkSameTile(const CityTile& a, const CityTile& b, float vertexTole
     const TileMesh& m = a.meshes[k];
     const TileMesh& n = b.meshes[k];
     check(m.building == n.building && m.source == n.source && m.storeys == n.storeys &&
-              m.verticesBefore == n.verticesBefore && m.topM == n.topM && m.bones == n.bones &&
-              m.triangles == n.triangles && m.trianglesPerKind == n.trianglesPerKind &&
-              m.farTriangles == n.farTriangles && m.positions.size() == n.positions.size() &&
-              m.farPositions.size() == n.farPositions.size() && m.weights.size() == n.weights.size(),
+              m.verticesBefore == n.verticesBefore && m.topM == n.topM && m.triangles == n.triangles &&
+              m.trianglesPerKind == n.trianglesPerKind && m.farTriangles == n.farTriangles &&
+              m.positions.size() == n.positions.size() && m.farPositions.size() == n.farPositions.size(),
           "round trip changed a mesh");
     const float zTolerance = m.topM / 65535.0f;
     for (std::size_t i = 0; i < m.positions.size(); ++i) {
@@ -110,7 +106,6 @@ inline void checkSameTile(const CityTile& a, const CityTile& b, float vertexTole
                 std::fabs(m.positions[i].y - n.positions[i].y) <= vertexTolerance &&
                 std::fabs(m.positions[i].z - n.positions[i].z) <= zTolerance,
             "round trip moved a mesh vertex");
-      check(std::fabs(m.weights[i] - n.weights[i]) <= 0.5f / 255.0f + 1e-6f, "round trip changed a weight");
     }
     for (std::size_t i = 0; i < m.farPositions.size(); ++i) {
       check(std::fabs(m.farPositions[i].x - n.farPositions[i].x) <= vertexTolerance &&

@@ -97,8 +97,6 @@ CityTile makeTile(FuzzedDataProvider& in) {
       m.positions.push_back({in.ConsumeFloatingPointInRange(0.0f, t.extent),
                              in.ConsumeFloatingPointInRange(0.0f, t.extent),
                              in.ConsumeFloatingPointInRange(0.0f, m.topM)});
-      m.bones.push_back(in.ConsumeIntegralInRange<std::uint8_t>(0, static_cast<std::uint8_t>(storeys)));
-      m.weights.push_back(in.ConsumeFloatingPointInRange(0.0f, 1.0f));
     }
     for (std::uint32_t& n : m.trianglesPerKind) {
       n = in.ConsumeIntegralInRange<std::uint32_t>(0, 20);

@@ -11,7 +11,6 @@
 #include "qv/prep/Lod2FarMesh.h"
 #include "qv/prep/Lod2Finish.h"
 #include "qv/prep/Lod2Remesh.h"
-#include "qv/prep/Lod2Skinning.h"
 
 namespace qv::prep::test {
 namespace {
@@ -64,24 +63,6 @@ std::size_t unmatchedDirectedEdges(const Lod2Mesh& mesh) {
 
 }  // namespace
 
-TEST_CASE("lod2: boneWeightAt: linear between floors, exact at floors, clamped at the ends", "[lod2][skin]") {
-  const FloorLevels floors{2.0, 3.0, 4};  // levels 2, 5, 8, 11, 14
-  struct Row {
-    double z;
-    int bone;
-    float weight;
-  };
-  const Row rows[] = {{-1.0, 0, 0.0f},  {2.0, 0, 0.0f}, {3.5, 0, 0.5f},  {5.0, 1, 0.0f},  {5.0 + 5e-7, 1, 0.0f},
-                      {7.25, 1, 0.75f}, {8.0, 2, 0.0f}, {13.7, 3, 0.9f}, {14.0, 4, 0.0f}, {20.0, 4, 0.0f}};
-  for (const Row& row : rows) {
-    INFO("z = " << row.z);
-    const BoneWeight bw = boneWeightAt(row.z, floors);
-    CHECK(bw.bone == row.bone);
-    CHECK(bw.weight == Approx(row.weight).margin(1e-6));
-  }
-  CHECK(boneWeightAt(5.0, floors).weight == 0.0f);  // exactly, not nearly
-}
-
 TEST_CASE("lod2: A synthetic tower: cut at every floor, split, skinned, area and volume kept", "[lod2][remesh]") {
   const Lod2Mesh tower = syntheticTower();
   const double area = surfaceAreaM2(tower);
@@ -123,11 +104,12 @@ TEST_CASE("lod2: A synthetic tower: cut at every floor, split, skinned, area and
     if (remeshed->kinds[t] == SurfaceKind::Wall) CHECK(z <= 50.0 + 1e-9);
   }
 
-  const Result<SkinnedMesh> skinned = skinToFloors(*remeshed, floors);
-  REQUIRE(skinned.ok());
-  const std::size_t onFloors = requireSkinningRule(*skinned, floors);
-  CHECK(onFloors > 8 * 16);  // at least the octagon's corners at every level
-  CHECK(*std::max_element(skinned->bone.begin(), skinned->bone.end()) == 15);  // the apex: the roof bone
+  SkinnedMesh skinned;
+  skinned.mesh = *remeshed;
+  skinned.finished = true;
+  const std::size_t onFloors = requireSkinningRule(skinned, floors);
+  CHECK(onFloors > 8 * 16);                                            // at least the octagon's corners at every level
+  CHECK(heightRange(skinned.mesh).maxZ == Approx(floors.levelM(15)));  // the apex follows the roof
 }
 
 TEST_CASE("lod2: Real CityJSON models keep area and volume through re-meshing", "[lod2][remesh][data]") {
@@ -196,7 +178,7 @@ TEST_CASE("lod2: The far mesh is a simplification within the error bound", "[lod
   }
 }
 
-TEST_CASE("lod2: Re-meshing and skinning refuse what they cannot do", "[lod2][remesh]") {
+TEST_CASE("lod2: Re-meshing and finishing refuse what they cannot do", "[lod2][remesh]") {
   const Lod2Mesh tower = syntheticTower();
   RemeshOptions tiny;
   tiny.maxEdgeM = 0.01;
@@ -204,9 +186,6 @@ TEST_CASE("lod2: Re-meshing and skinning refuse what they cannot do", "[lod2][re
   const Result<Lod2Mesh> tooMany = remeshForFloors(tower, FloorLevels{0.0, 3.0, 19}, tiny);
   REQUIRE_FALSE(tooMany.ok());
   CHECK(tooMany.error().find("would exceed 20000 vertices") != std::string::npos);
-  const Result<SkinnedMesh> tooTall = skinToFloors(tower, FloorLevels{0.0, 0.1, 300});
-  REQUIRE_FALSE(tooTall.ok());
-  CHECK(tooTall.error() == "300 storeys: a skinned mesh holds at most 255 (one byte per bone index)");
   Lod2Model flat;
   flat.id = "cj:flat";
   flat.skinned.mesh = tower;

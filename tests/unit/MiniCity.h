@@ -240,12 +240,6 @@ struct MiniCity {
                        {cx + 10, cy + 10, 0},
                        {cx - 10, cy + 10, 0},
                        {cx, cy, kSpireTopM}};
-        for (const glm::vec3& q : m.positions) {
-          const float floorLevel = std::min(q.z / kStoreyHeight, static_cast<float>(kStoreys));
-          const auto bone = static_cast<std::uint8_t>(std::min(static_cast<int>(floorLevel), kStoreys));
-          m.bones.push_back(bone);
-          m.weights.push_back(bone == kStoreys ? 0.0f : floorLevel - static_cast<float>(bone));
-        }
         // Four walls (counter-clockwise from outside), then the two ground triangles.
         m.triangles = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4, 0, 2, 1, 0, 3, 2};
         m.trianglesPerKind = {4, 0, 2, 0};

@@ -1,8 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <array>
 #include <cmath>
 #include <vector>
 
+#include "qv/anim/FloorBlend.h"
 #include "qv/anim/FloorDisplacements.h"
 #include "qv/anim/HistorySampling.h"
 
@@ -141,5 +143,51 @@ TEST_CASE("Floor displacements from modal coordinates equal the plain dot produc
       CHECK(rows[kFloors].dxMeters == 42.0f);
       for (const Row& row : rows) CHECK(row.other == 7.0f);  // only dx and dy are written
     }
+  }
+}
+
+TEST_CASE("Skinning by height: a vertex follows the floors below and above it by its height", "[anim][skin]") {
+  // Levels 2, 5, 8, 11, 14 m (base 2 m, 3 m storeys, 4 storeys); displacements not linear in the
+  // level, so a wrong pair of floors or a wrong weight shows.
+  const float baseZ = 2.0f, storeyHeight = 3.0f;
+  const int storeys = 4;
+  const std::array<float, 5> dx = {0.0f, 0.01f, 0.04f, 0.09f, 0.16f};
+  struct Row {
+    float z;
+    int lower, upper;
+    float weight;
+  };
+  const Row rows[] = {{-1.0f, 0, 1, 0.0f}, {2.0f, 0, 1, 0.0f},   {3.5f, 0, 1, 0.5f},
+                      {5.0f, 1, 2, 0.0f},  {7.25f, 1, 2, 0.75f}, {8.0f, 2, 3, 0.0f},
+                      {13.7f, 3, 4, 0.9f}, {14.0f, 4, 4, 0.0f},  {20.0f, 4, 4, 0.0f}};
+  for (const Row& row : rows) {
+    INFO("z = " << row.z);
+    const FloorBlend b = floorBlendAt(row.z, baseZ, storeyHeight, storeys);
+    CHECK(b.lower == row.lower);
+    CHECK(b.upper == row.upper);
+    CHECK(b.upperWeight == Approx(row.weight).margin(1e-6));
+  }
+
+  SECTION("a vertex midway between two floors moves by half of each") {
+    const FloorBlend b = floorBlendAt(6.5f, baseZ, storeyHeight, storeys);  // between 5 m and 8 m
+    CHECK(blendedDisplacement(b, dx) == Approx(0.5f * dx[1] + 0.5f * dx[2]));
+    CHECK(blendedDisplacement(b, dx) != Approx(dx[1]));
+    CHECK(blendedDisplacement(b, dx) != Approx(dx[2]));
+  }
+  SECTION("a vertex on a floor follows that floor alone") {
+    for (int k = 0; k <= storeys; ++k) {
+      const float z = baseZ + static_cast<float>(k) * storeyHeight;
+      CHECK(blendedDisplacement(floorBlendAt(z, baseZ, storeyHeight, storeys), dx) == dx[static_cast<std::size_t>(k)]);
+    }
+  }
+  SECTION("below the ground it follows the ground, above the roof the roof") {
+    CHECK(blendedDisplacement(floorBlendAt(0.0f, baseZ, storeyHeight, storeys), dx) == dx[0]);
+    CHECK(blendedDisplacement(floorBlendAt(30.0f, baseZ, storeyHeight, storeys), dx) == dx[4]);
+  }
+  SECTION("the motion is continuous across a floor") {
+    const float below = blendedDisplacement(floorBlendAt(8.0f - 1e-3f, baseZ, storeyHeight, storeys), dx);
+    const float above = blendedDisplacement(floorBlendAt(8.0f + 1e-3f, baseZ, storeyHeight, storeys), dx);
+    CHECK(std::fabs(below - dx[2]) < 1e-4f);
+    CHECK(std::fabs(above - dx[2]) < 1e-4f);
   }
 }

@@ -47,8 +47,9 @@ const std::uint32_t kMesh = tag("MESH");
 
 // MESH: a u32 model count, the model records, then each model's data in record order.
 constexpr std::size_t kMeshRecordSize = 44;
-constexpr std::size_t kSkinnedVertexSize = 8;  // qx, qy, qz u16, bone u8, weight u8
-constexpr std::size_t kFarVertexSize = 6;      // qx, qy, qz u16
+constexpr std::size_t kMeshVertexSize = 6;          // qx, qy, qz u16
+constexpr std::size_t kMeshVertexSizeVersion1 = 8;  // qx, qy, qz u16, bone u8, weight u8 (read and ignored)
+constexpr std::size_t kFarVertexSize = 6;           // qx, qy, qz u16
 // A centimetre at least: below, top / 65535 nears the denormal floats and heights lose precision.
 constexpr float kMinMeshTopM = 0.01f;
 constexpr float kMaxMeshTopM = 10000.0f;
@@ -57,12 +58,18 @@ std::uint64_t padded4(std::uint64_t n) {
   return (n + 3) / 4 * 4;
 }
 
-/// Bytes of one model's data after the records; u32 indices when the skinned mesh has more
-/// vertices than u16 can index.
-std::uint64_t meshDataBytes(std::uint64_t vertices, std::uint64_t triangles, std::uint64_t farVertices,
-                            std::uint64_t farTriangles) {
+/// Bytes of one model's vertices in a tile of `version`: version 1 stored a bone and a weight per
+/// vertex (8 bytes, no padding needed), version 2 only the position (6 bytes, padded to 4).
+std::uint64_t meshVertexBytes(std::uint16_t version, std::uint64_t vertices) {
+  return version == 1 ? vertices * kMeshVertexSizeVersion1 : padded4(vertices * kMeshVertexSize);
+}
+
+/// Bytes of one model's data after the records; u32 indices when the mesh has more vertices than
+/// u16 can index.
+std::uint64_t meshDataBytes(std::uint16_t version, std::uint64_t vertices, std::uint64_t triangles,
+                            std::uint64_t farVertices, std::uint64_t farTriangles) {
   const std::uint64_t indexSize = vertices > 65535 ? 4 : 2;
-  return vertices * kSkinnedVertexSize + padded4(triangles * 3 * indexSize) +
+  return meshVertexBytes(version, vertices) + padded4(triangles * 3 * indexSize) +
          padded4(farVertices * kFarVertexSize + farTriangles * 3 * 2);
 }
 
@@ -108,9 +115,8 @@ void encodeMeshes(const CityTile& tile, float extent, ByteWriter& out) {
       out.u16(quantize(m.positions[i].x, extent));
       out.u16(quantize(m.positions[i].y, extent));
       out.u16(quantize(m.positions[i].z, top));
-      out.u8(m.bones[i]);
-      out.u8(static_cast<std::uint8_t>(std::round(std::clamp(m.weights[i], 0.0f, 1.0f) * 255.0f)));
     }
+    out.align(4);
     const bool wide = m.positions.size() > 65535;
     for (std::uint32_t index : m.triangles) {
       if (wide)
@@ -131,8 +137,8 @@ void encodeMeshes(const CityTile& tile, float extent, ByteWriter& out) {
 
 /// Decodes the MESH section into tile.meshes once the buildings are known. Every count is checked
 /// against the limits and the bytes left before anything is allocated.
-Status decodeMeshes(std::span<const std::uint8_t> data, std::size_t sectionOffset, CityTile& tile,
-                    const CityTileLimits& limits) {
+Status decodeMeshes(std::span<const std::uint8_t> data, std::size_t sectionOffset, std::uint16_t version,
+                    CityTile& tile, const CityTileLimits& limits) {
   auto error = [&](std::size_t at, const std::string& message) {
     return Error{"section MESH at byte " + std::to_string(at) + ": " + message};
   };
@@ -204,7 +210,7 @@ Status decodeMeshes(std::span<const std::uint8_t> data, std::size_t sectionOffse
                                    std::to_string(limits.maxMeshVertices) + " and " +
                                    std::to_string(limits.maxMeshTriangles));
     }
-    dataBytes += meshDataBytes(rec.vertices, rec.triangles, rec.farVertices, rec.farTriangles);
+    dataBytes += meshDataBytes(version, rec.vertices, rec.triangles, rec.farVertices, rec.farTriangles);
   }
   if (!r.ok()) return Error{"section MESH: " + r.error()};
   if (dataBytes != r.remaining()) {
@@ -218,21 +224,16 @@ Status decodeMeshes(std::span<const std::uint8_t> data, std::size_t sectionOffse
     const Record& rec = records[k];
     const float scaleZ = m.topM / 65535.0f;
     m.positions.resize(rec.vertices);
-    m.bones.resize(rec.vertices);
-    m.weights.resize(rec.vertices);
     for (std::uint32_t i = 0; i < rec.vertices; ++i) {
-      const std::size_t at = r.offset();
       const float x = static_cast<float>(r.u16("vertex x")) * scaleXY;
       const float y = static_cast<float>(r.u16("vertex y")) * scaleXY;
       const float z = static_cast<float>(r.u16("vertex z")) * scaleZ;
       m.positions[i] = {x, y, z};
-      m.bones[i] = r.u8("bone");
-      m.weights[i] = static_cast<float>(r.u8("weight")) / 255.0f;
-      if (m.bones[i] > m.storeys) {
-        return error(at, "model " + std::to_string(k) + " vertex " + std::to_string(i) + ": bone " +
-                             std::to_string(m.bones[i]) + " beyond its " + std::to_string(m.storeys) + " storeys");
-      }
+      // Version 1's bone and weight: a function of the height the viewer recomputes (docs/lod2.md).
+      if (version == 1) r.skip(2, "bone and weight");
     }
+    const std::uint64_t vertexBytes = std::uint64_t{rec.vertices} * kMeshVertexSize;
+    if (version != 1) r.skip(static_cast<std::size_t>(padded4(vertexBytes) - vertexBytes), "padding");
     const bool wide = rec.vertices > 65535;
     m.triangles.resize(static_cast<std::size_t>(rec.triangles) * 3);
     for (std::uint32_t& index : m.triangles) {
@@ -413,9 +414,9 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
   }
   ByteReader header(bytes.subspan(4, kHeaderSize - 4), 4);
   const std::uint16_t version = header.u16("version");
-  if (version != kCityTileVersion) {
-    return error("unsupported city tile version " + std::to_string(version) + " (this build reads version " +
-                 std::to_string(kCityTileVersion) + ")");
+  if (version < kOldestCityTileVersion || version > kCityTileVersion) {
+    return error("unsupported city tile version " + std::to_string(version) + " (this build reads versions " +
+                 std::to_string(kOldestCityTileVersion) + " to " + std::to_string(kCityTileVersion) + ")");
   }
   const std::uint16_t flags = header.u16("flags");
   const std::uint32_t fileSize = header.u32("file size");
@@ -649,7 +650,7 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
                  std::to_string(partCursor) + " parts, the header declares " + std::to_string(partCount));
   }
   if (mesh.present) {
-    const Status meshes = decodeMeshes(mesh.data, mesh.offset, tile, limits);
+    const Status meshes = decodeMeshes(mesh.data, mesh.offset, version, tile, limits);
     if (!meshes.ok()) return error(meshes.error());
   }
   return tile;

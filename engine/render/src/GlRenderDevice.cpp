@@ -8,6 +8,7 @@
 #include <string>
 
 #include "Shaders.h"
+#include "qv/scene/GpuConstants.h"
 #include "qv/scene/Palette.h"
 
 namespace qv {
@@ -86,8 +87,9 @@ std::string paletteGlsl() {
   return s;
 }
 
-std::string withPalette(const char* source) {
-  std::string s = source;
+// A shader source with its generated blocks: the tables' layout and the palette.
+std::string withGeneratedGlsl(const char* source) {
+  std::string s = withGlslConstants(source);
   const auto at = s.find("@PALETTE@");
   if (at != std::string::npos) s.replace(at, 9, paletteGlsl());
   return s;
@@ -96,7 +98,7 @@ std::string withPalette(const char* source) {
 }  // namespace
 
 GlRenderDevice::GlRenderDevice() {
-  const std::string vertex = withPalette(shaders::kBuildingVertex);
+  const std::string vertex = withGeneratedGlsl(shaders::kBuildingVertex);
   buildingProgram_ = linkProgram(vertex.c_str(), shaders::kBuildingFragment, error_);
   if (buildingProgram_ != 0) {
     groundProgram_ = linkProgram(shaders::kGroundVertex, shaders::kGroundFragment, error_);
@@ -113,13 +115,12 @@ GlRenderDevice::GlRenderDevice() {
   u_.amplitude = glGetUniformLocation(p, "u_amplitude");
   u_.sunDirection = glGetUniformLocation(p, "u_sunDirection");
   u_.eye = glGetUniformLocation(p, "u_eye");
-  u_.anyDimmed = glGetUniformLocation(p, "u_anyDimmed");
   u_.showModels = glGetUniformLocation(p, "u_showModels");
   g_.viewProjection = glGetUniformLocation(groundProgram_, "u_viewProjection");
   g_.rect = glGetUniformLocation(groundProgram_, "u_rect");
   g_.eye = glGetUniformLocation(groundProgram_, "u_eye");
 
-  GLint maxSize = 2048;
+  GLint maxSize = kTableWidth;  // WebGL2 guarantees at least 2048
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxSize);
   maxTextureSize_ = maxSize;
 
@@ -291,7 +292,6 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
     glUniform1f(u_.amplitude, f.amplitude);
     glUniform3f(u_.sunDirection, f.sunDirection.x, f.sunDirection.y, f.sunDirection.z);
     glUniform3f(u_.eye, f.eye.x, f.eye.y, f.eye.z);
-    glUniform1i(u_.anyDimmed, f.anyDimmed ? 1 : 0);
     glUniform1i(u_.showModels, f.showModels ? 1 : 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, buildings_.texture);

@@ -22,89 +22,88 @@ uniform sampler2D u_floors;
 uniform int u_colorMode;
 uniform float u_driftFullScale;
 uniform float u_amplitude;
-uniform bool u_anyDimmed;
-uniform bool u_showModels;  // LOD2 models (kind bit 0x20) or, instead, their extrusions (0x40)
+uniform bool u_showModels;  // LOD2 models (kind bit kKindModel) or, instead, their extrusions (kKindFallback)
 
 out vec3 v_normal;
 out vec3 v_world;
 flat out vec4 v_color;
 flat out float v_hatch;
 
-const int kWidth = 2048;
-
-vec4 texel(sampler2D table, int i) { return texelFetch(table, ivec2(i % kWidth, i / kWidth), 0); }
-
-// The palette (qv/scene/Palette.h), inserted by the device when it builds the program.
+// The tables' layout (qv/scene/GpuConstants.h) and the palette (qv/scene/Palette.h), inserted by
+// the device when it builds the program.
+@CONSTANTS@
 @PALETTE@
 
 void main() {
-  int slot = int(a_slot);
-  vec4 b0 = texel(u_buildings, slot * 2);
-  vec4 b1 = texel(u_buildings, slot * 2 + 1);
-  float storeyHeight = max(b0.x, 0.1);
-  int storeys = max(int(b0.y + 0.5), 1);
-  int floorBase = int(b0.z);
-  float peakValue = b0.w;
-  float damage = b1.x;
-  uint flags = uint(b1.y + 0.5);
-  float baseZ = b1.z;
-  float lossCode = b1.w;  // packLossCode (qv/scene/RenderDevice.h); -1 without probabilities
+  BuildingRow b = readBuilding(u_buildings, int(a_slot));
+  float storeyHeight = max(b.storeyHeightMeters, 0.1);
+  int storeys = max(int(b.storeys + 0.5), 1);
+  int floorBase = int(b.floorBase);
+  float peakValue = b.peakValue;
+  float damage = b.damageState;
+  uint flags = uint(b.flags + 0.5);
+  float baseZ = b.baseZ;
+  float lossCode = b.lossCode;  // packLossCode (qv/scene/RenderDevice.h); -1 without probabilities
 
   vec3 position = a_position;
   float drift = peakValue;
   float peakStorey = peakValue;
   if (floorBase >= 0) {
+    // Skinning by height: the floors below and above the vertex, blended linearly in height (the
+    // C++ mirror and its tests: qv::floorBlendAt in qv/anim/FloorBlend.h).
     float level = clamp((position.z - baseZ) / storeyHeight, 0.0, float(storeys));
     int f0 = min(int(floor(level)), storeys);
     int f1 = min(f0 + 1, storeys);
-    vec4 d0 = texel(u_floors, floorBase + f0);
-    vec4 d1 = texel(u_floors, floorBase + f1);
-    position.xy += mix(d0.xy, d1.xy, level - float(f0)) * u_amplitude;
+    FloorRow d0 = readFloor(u_floors, floorBase + f0);
+    FloorRow d1 = readFloor(u_floors, floorBase + f1);
+    position.xy += mix(vec2(d0.dxMeters, d0.dyMeters), vec2(d1.dxMeters, d1.dyMeters), level - float(f0)) * u_amplitude;
     // The storey above this vertex's level (the top ring belongs to the top storey).
     int s = min(int(floor(level + 0.01)), storeys - 1);
-    vec4 below = texel(u_floors, floorBase + s);
-    vec4 above = texel(u_floors, floorBase + s + 1);
-    drift = length(above.xy - below.xy) / storeyHeight;
-    peakStorey = below.z;
+    FloorRow below = readFloor(u_floors, floorBase + s);
+    FloorRow above = readFloor(u_floors, floorBase + s + 1);
+    drift = length(vec2(above.dxMeters - below.dxMeters, above.dyMeters - below.dyMeters)) / storeyHeight;
+    peakStorey = below.peakDriftAbove;
   }
 
   vec3 color;
-  if (u_colorMode == 0) color = ramp(drift / u_driftFullScale);
-  else if (u_colorMode == 1) color = ramp(peakStorey / u_driftFullScale);
-  else if (u_colorMode == 2) color = damage < -0.5 ? kNoResult : ramp(damage / 4.0);
-  else if (u_colorMode >= 4) {
+  if (u_colorMode == kModeCurrentDrift) color = ramp(drift / u_driftFullScale);
+  else if (u_colorMode == kModePeakDrift) color = ramp(peakStorey / u_driftFullScale);
+  else if (u_colorMode == kModeDamageState) color = damage < kDamageNoResult + 0.5 ? kNoResult : ramp(damage / kDamageComplete);
+  else if (u_colorMode >= kModeModerateOrWorse) {
     // Probabilistic modes: P(>= moderate), expected damage state / 4, the most likely inspection tag.
     float code = max(lossCode, 0.0);
-    float tag = floor(code / 65536.0);
-    float rest = code - tag * 65536.0;
-    float expected = floor(rest / 256.0);
-    float moderate = rest - expected * 256.0;
-    if (u_colorMode == 4) color = ramp(moderate / 255.0);
-    else if (u_colorMode == 5) color = ramp(expected / 255.0);
+    float tag = floor(code / kLossCodeTagFactor);
+    float rest = code - tag * kLossCodeTagFactor;
+    float expected = floor(rest / kLossCodeExpectedFactor);
+    float moderate = rest - expected * kLossCodeExpectedFactor;
+    if (u_colorMode == kModeModerateOrWorse) color = ramp(moderate / kLossCodeLevels);
+    else if (u_colorMode == kModeExpectedDamage) color = ramp(expected / kLossCodeLevels);
     else color = tag < 0.5 ? kTagGreen : (tag < 1.5 ? kTagYellow : kTagRed);
   }
   else color = vec3(0.82, 0.80, 0.76);
-  // Results not loaded yet (-2): plain, neither coloured nor marked as missing.
-  bool pending = damage < -1.5;
+  // Results not loaded yet (kDamagePending): plain, neither coloured nor marked as missing.
+  bool pending = damage < kDamagePending + 0.5;
   if (pending) color = vec3(0.82, 0.80, 0.76);
   // No response for this building: its own colour, whatever the mode (hatched in the fragment stage).
   // (The probabilistic modes also mark results without probabilities, e.g. imported ones.)
-  float noResult = (u_colorMode != 3 && (damage < -0.5 || (u_colorMode >= 4 && lossCode < -0.5)) && !pending) ? 1.0 : 0.0;
+  bool probabilistic = u_colorMode >= kModeModerateOrWorse;
+  bool missing = damage < kDamageNoResult + 0.5 || (probabilistic && lossCode < -0.5);
+  float noResult = (u_colorMode != kModeNeutral && missing && !pending) ? 1.0 : 0.0;
   if (noResult > 0.5) color = kNoResult;
 
-  int kind = a_normalKind.w & 0x1f;
-  bool otherLod = (a_normalKind.w & (u_showModels ? 0x40 : 0x20)) != 0;
-  if (kind == 1) color *= 1.08;  // roofs a touch lighter than walls
+  int kind = a_normalKind.w & kKindMask;
+  bool otherLod = (a_normalKind.w & (u_showModels ? kKindFallback : kKindModel)) != 0;
+  if (kind == kKindRoof) color *= 1.08;  // roofs a touch lighter than walls
   float alpha = 1.0;
-  if ((flags & 2u) != 0u) { color = mix(color, kDimmed, 0.85); noResult = 0.0; alpha = 0.0; }
-  if ((flags & 1u) != 0u) { color = mix(color, kSelected, 0.65); alpha = 2.0; }
+  if ((flags & kFlagDimmed) != 0u) { color = mix(color, kDimmed, 0.85); noResult = 0.0; alpha = 0.0; }
+  if ((flags & kFlagSelected) != 0u) { color = mix(color, kSelected, 0.65); alpha = 2.0; }
   v_color = vec4(color, alpha);
   v_hatch = noResult;
 
   vec3 world = position + u_origin;
   v_world = world;
   v_normal = vec3(a_normalKind.xyz) / 127.0;
-  gl_Position = (flags & 4u) != 0u || otherLod ? vec4(2.0, 2.0, 2.0, 1.0) : u_viewProjection * vec4(world, 1.0);
+  gl_Position = (flags & kFlagHidden) != 0u || otherLod ? vec4(2.0, 2.0, 2.0, 1.0) : u_viewProjection * vec4(world, 1.0);
 }
 )";
 

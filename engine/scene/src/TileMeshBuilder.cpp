@@ -26,9 +26,8 @@ Box buildingBox(const TileContent& tile, std::uint32_t b) {
 }
 
 // The LOD2 model of one building (the far mesh in coarse tiles), marked kKindModel. Its vertices
-// lie on the floor planes it was re-meshed at (one bone per floor level): the vertex shader blends
-// the displacements of the floors below and above each vertex by height, which are the bone
-// weights the model stores.
+// lie on the floor planes it was re-meshed at: the vertex shader blends the displacements of the
+// floors below and above each vertex by height (qv/anim/FloorBlend.h), so tiles store no skin.
 void appendModel(MeshData& mesh, const TileMesh& model, bool coarse, float groundZ, std::uint32_t slot) {
   const std::size_t first = mesh.vertices.size();
   const std::size_t firstTriangle = mesh.triangleCount();
@@ -156,7 +155,7 @@ std::uint64_t tileCpuBytes(const TileContent& tile) {
                         d.buildings.size() * (sizeof(TileBuilding) + 64) + d.buildings.size() * (sizeof(Box) * 2 + 12) +
                         tile.meshIndex.size() * 4;
   for (const TileMesh& m : d.meshes) {
-    bytes += sizeof(TileMesh) + m.positions.size() * (sizeof(glm::vec3) + 5) + m.triangles.size() * 4 +
+    bytes += sizeof(TileMesh) + m.positions.size() * sizeof(glm::vec3) + m.triangles.size() * 4 +
              m.farPositions.size() * sizeof(glm::vec3) + m.farTriangles.size() * 2;
   }
   return bytes;

@@ -74,8 +74,6 @@ Result<CityModel> readCityFromTiles(const std::string& dir, const Tileset& tiles
         mesh.verticesBefore = m->verticesBefore;
         for (const glm::vec3& p : m->positions)
           mesh.positions.emplace_back(p.x + tile->originX, p.y + tile->originY, p.z);
-        mesh.bones = m->bones;
-        mesh.weights = m->weights;
         mesh.triangles = m->triangles;
         mesh.trianglesPerKind = m->trianglesPerKind;
         for (const glm::vec3& p : m->farPositions) {

@@ -2,8 +2,6 @@
 
 #include <string>
 
-#include "qv/prep/Lod2Skinning.h"
-
 namespace qv::prep {
 
 Status finishModel(Lod2Model& model, const FinishOptions& options) {
@@ -14,15 +12,14 @@ Status finishModel(Lod2Model& model, const FinishOptions& options) {
   const FloorLevels floors = floorLevels(model.attributes);
   // Checked before the re-meshing, whose cost grows with the storeys.
   if (floors.storeys > kMaxSkinnedStoreys)
-    return Error{model.id + ": " + std::to_string(floors.storeys) + " storeys: a skinned mesh holds at most " +
-                 std::to_string(kMaxSkinnedStoreys) + " (one byte per bone index)"};
+    return Error{model.id + ": " + std::to_string(floors.storeys) + " storeys: a LOD2 model holds at most " +
+                 std::to_string(kMaxSkinnedStoreys) + " (the tile format's limit)"};
   Lod2Mesh original = weldVertices(model.skinned.mesh);
   Result<Lod2Mesh> remeshed = remeshForFloors(original, floors, options.remesh);
   if (!remeshed.ok()) return Error{model.id + ": " + remeshed.error()};
-  Result<SkinnedMesh> skinned = skinToFloors(std::move(*remeshed), floors);
-  if (!skinned.ok()) return Error{model.id + ": " + skinned.error()};
   model.farMesh = simplifyFarMesh(original, options.far);
-  model.skinned = std::move(*skinned);
+  model.skinned.mesh = std::move(*remeshed);
+  model.skinned.finished = true;
   model.verticesAfter = static_cast<std::uint32_t>(model.skinned.mesh.positions.size());
   return {};
 }

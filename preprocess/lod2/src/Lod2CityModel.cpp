@@ -19,9 +19,8 @@ MeshSource meshSourceOf(const Lod2Model& model) {
 Result<Building> buildingFromModel(const Lod2Model& model) {
   const SkinnedMesh& skinned = model.skinned;
   const std::size_t vertices = skinned.mesh.positions.size();
-  if (vertices == 0 || skinned.bone.size() != vertices || skinned.weight.size() != vertices ||
-      skinned.mesh.kinds.size() != skinned.mesh.triangleCount()) {
-    return Error{model.id + ": the model is not finished (no skinned mesh)"};
+  if (vertices == 0 || !skinned.finished || skinned.mesh.kinds.size() != skinned.mesh.triangleCount()) {
+    return Error{model.id + ": the model is not finished (not re-meshed at its floors)"};
   }
   if (model.footprint.size() < 3) return Error{model.id + ": the model has no footprint"};
   if (model.attributes.storeys == 0 || model.attributes.storeys > kMaxMeshStoreys) {
@@ -55,8 +54,6 @@ Result<Building> buildingFromModel(const Lod2Model& model) {
   mesh.source = meshSourceOf(model);
   mesh.verticesBefore = model.verticesBefore;
   mesh.positions = skinned.mesh.positions;
-  mesh.bones = skinned.bone;
-  mesh.weights = skinned.weight;
   // Triangles grouped by kind, each group in the model's order.
   mesh.triangles.reserve(skinned.mesh.triangles.size());
   for (std::size_t kind = 0; kind < kMeshSurfaceKinds; ++kind) {

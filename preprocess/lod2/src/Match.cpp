@@ -146,7 +146,7 @@ Result<MatchResult> matchModels(std::vector<Lod2Model>& models, const std::vecto
       continue;
     }
     const ExistingBuilding& target = existing[*assigned[m]];
-    const bool finished = !model.skinned.bone.empty();
+    const bool finished = model.skinned.finished;
     const FloorLevels before = floorLevels(model.attributes);
     const bool hasParts =
         ((model.attributes.importanceReasons | target.attributes.importanceReasons) & kReasonComplex) != 0;

@@ -178,16 +178,13 @@ void addAttributes(CityTile& tile, const Building& b, std::uint16_t partCount, b
   tile.buildings.push_back(std::move(tb));
 }
 
-// The building just added to `tile` gets its LOD2 model: the skinned mesh in leaves, only the far
-// mesh in coarse tiles. Models whose bones do not match the building's storeys are not written
-// (the building keeps its LOD1 prism).
+// The building just added to `tile` gets its LOD2 model: the full mesh in leaves, only the far mesh
+// in coarse tiles. Models of buildings with more storeys than a tile holds are not written (the
+// building keeps its LOD1 prism).
 void addMesh(CityTile& tile, const Building& b, bool coarse) {
   if (!b.mesh || b.attributes.storeys == 0 || b.attributes.storeys > kMaxMeshStoreys) return;
   const BuildingMesh& m = *b.mesh;
   if (m.farPositions.size() > 65535) return;
-  for (std::uint8_t bone : m.bones) {
-    if (bone > b.attributes.storeys) return;
-  }
   TileMesh tm;
   tm.building = static_cast<std::uint32_t>(tile.buildings.size() - 1);
   tm.source = m.source;
@@ -205,8 +202,6 @@ void addMesh(CityTile& tile, const Building& b, bool coarse) {
   if (!coarse) {
     tm.positions.reserve(m.positions.size());
     for (const glm::dvec3& p : m.positions) tm.positions.push_back(local(p));
-    tm.bones = m.bones;
-    tm.weights = m.weights;
     tm.triangles = m.triangles;
     tm.trianglesPerKind = m.trianglesPerKind;
   }

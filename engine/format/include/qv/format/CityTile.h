@@ -22,7 +22,10 @@
 
 namespace qv {
 
-inline constexpr std::uint16_t kCityTileVersion = 1;
+/// The version encodeCityTile writes. Version 2 dropped the bone and weight of every LOD2 vertex
+/// (MESH); decodeCityTile still reads version 1 and ignores them.
+inline constexpr std::uint16_t kCityTileVersion = 2;
+inline constexpr std::uint16_t kOldestCityTileVersion = 1;
 
 /// Largest counts a tile may declare; a decoder refuses more before allocating.
 struct CityTileLimits {
@@ -32,8 +35,8 @@ struct CityTileLimits {
   std::uint32_t maxVertices = 1u << 25;
   std::uint32_t maxTriangles = 1u << 25;
   std::uint32_t maxMeshes = 1u << 16;         ///< LOD2 models (MESH section)
-  std::uint32_t maxMeshVertices = 1u << 24;   ///< skinned and far vertices, all models together
-  std::uint32_t maxMeshTriangles = 1u << 24;  ///< skinned and far triangles, all models together
+  std::uint32_t maxMeshVertices = 1u << 24;   ///< model and far vertices, all models together
+  std::uint32_t maxMeshTriangles = 1u << 24;  ///< model and far triangles, all models together
 };
 
 enum class RoofShape : std::uint8_t {
@@ -83,23 +86,22 @@ std::string_view meshSourceName(MeshSource source);
 enum class MeshSurfaceKind : std::uint8_t { Wall = 0, Roof = 1, Ground = 2, Other = 3 };
 inline constexpr std::size_t kMeshSurfaceKinds = 4;
 
-/// At most this many storeys in a skinned mesh (bones 0 … storeys fit one byte).
+/// At most this many storeys in a LOD2 model (the limit of version 1's one-byte bones, kept).
 inline constexpr std::uint16_t kMaxMeshStoreys = 255;
 
-/// A LOD2 building model (MESH section): a skinned mesh with one bone per floor level (0 = ground,
-/// storeys = roof) and a simplified static far mesh. Positions are tile-local metres in x and y
-/// (like `CityTile::vertices`) and metres above the building's ground in z, in [0, topM].
-/// Triangles are counter-clockwise seen from outside. Inner (coarse) tiles carry only far meshes.
+/// A LOD2 building model (MESH section): a mesh re-meshed at the building's floor levels and a
+/// simplified static far mesh. Positions are tile-local metres in x and y (like
+/// `CityTile::vertices`) and metres above the building's ground in z, in [0, topM]. The viewer
+/// animates each vertex by the floors below and above it, weighted by its height
+/// (qv/anim/FloorBlend.h): no per-vertex bones or weights are stored. Triangles are
+/// counter-clockwise seen from outside. Inner (coarse) tiles carry only far meshes.
 struct TileMesh {
   std::uint32_t building = 0;  ///< index into CityTile::buildings; strictly increasing over meshes
   MeshSource source = MeshSource::Other;
   std::uint16_t storeys = 1;         ///< = the building's storeys, ≤ kMaxMeshStoreys
   std::uint32_t verticesBefore = 0;  ///< vertex count as imported, before re-meshing (for `info`)
   float topM = 1.0f;                 ///< z quantization extent: qz × topM / 65535, [0.01, 10000] m
-  std::vector<glm::vec3> positions;  ///< skinned vertices
-  std::vector<std::uint8_t> bones;   ///< per vertex: floor level at or below it, ≤ storeys
-  /// Per vertex: weight of bone + 1, in [0, 1]; bone gets 1 - weight. Stored as round(w × 255).
-  std::vector<float> weights;
+  std::vector<glm::vec3> positions;  ///< the model's vertices
   /// 3 indices per triangle into `positions`, grouped by kind: trianglesPerKind[0] wall
   /// triangles first, then roof, ground, other.
   std::vector<std::uint32_t> triangles;
@@ -123,10 +125,10 @@ struct CityTile {
   std::vector<TileMesh> meshes;
 };
 
-/// Serializes a tile. Vertices outside [0, extent] are clamped (mesh z outside [0, topM] too); the
-/// caller chooses origin and extent to cover its buildings and meshes (quantization step =
-/// extent / 65535). Meshes must satisfy the contract of TileMesh (sizes, indices, order). The decoder accepts
-/// |origin| <= 1e7 m and extent in [1e-6, 1e8] m, part and building heights in [-1000, 10000] m.
+/// Serializes a tile (version kCityTileVersion). Vertices outside [0, extent] are clamped (mesh z outside [0, topM]
+/// too); the caller chooses origin and extent to cover its buildings and meshes (quantization step = extent / 65535).
+/// Meshes must satisfy the contract of TileMesh (sizes, indices, order). The decoder accepts |origin| <= 1e7 m and
+/// extent in [1e-6, 1e8] m, part and building heights in [-1000, 10000] m.
 std::vector<std::uint8_t> encodeCityTile(const CityTile& tile);
 
 /// Parses and validates a tile. `name` (a file name or URL) prefixes every error message, which

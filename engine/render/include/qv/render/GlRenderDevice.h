@@ -1,8 +1,8 @@
 // The WebGL2 (OpenGL ES 3.0) implementation of RenderDevice.
 //
 // Meshes live in one VAO + vertex buffer + index buffer each (a tile's merged geometry). The
-// per-building table and the per-floor displacement table are RGBA32F data textures 2048 texels
-// wide that the vertex shader reads with texelFetch; CPU shadows let them grow and let only the
+// per-building table and the per-floor displacement table are RGBA32F data textures kGpuTableWidth
+// texels wide that the vertex shader reads with texelFetch; CPU shadows let them grow and let only the
 // changed rows be re-sent each frame. Must be created and used with a current WebGL2 context.
 #pragma once
 
@@ -34,8 +34,8 @@ class GlRenderDevice final : public RenderDevice {
   [[nodiscard]] DeviceFrameStats lastFrameStats() const override { return last_; }
   [[nodiscard]] std::size_t gpuBytes() const override;
 
-  /// Texels per row of both data textures (the shaders hard-code the same number).
-  static constexpr int kTableWidth = 2048;
+  /// Texels per row of both data textures (the shaders get the same number from glslConstants()).
+  static constexpr int kTableWidth = kGpuTableWidth;
 
  private:
   struct Mesh {
@@ -62,14 +62,14 @@ class GlRenderDevice final : public RenderDevice {
   std::uint64_t pendingUpload_ = 0;
   std::size_t meshBytes_ = 0;
   DeviceFrameStats last_;
-  int maxTextureSize_ = 2048;
+  int maxTextureSize_ = kTableWidth;
 
   struct Uniforms {
     int viewProjection = -1, origin = -1, buildings = -1, floors = -1, colorMode = -1, driftFullScale = -1,
-        amplitude = -1, sunDirection = -1, eye = -1, anyDimmed = -1, showModels = -1;
+        amplitude = -1, sunDirection = -1, eye = -1, showModels = -1;
   } u_;
   struct GroundUniforms {
-    int viewProjection = -1, rect = -1, sunDirection = -1, eye = -1;
+    int viewProjection = -1, rect = -1, eye = -1;
   } g_;
 };
 

@@ -23,6 +23,12 @@ struct MeshHandle {
   friend bool operator==(MeshHandle, MeshHandle) = default;
 };
 
+/// Texels per row of both data textures (the building and the floor table): texel i sits at
+/// (i mod kGpuTableWidth, i div kGpuTableWidth). The shaders get it from glslConstants().
+inline constexpr int kGpuTableWidth = 2048;
+/// Bytes of one RGBA32F texel of the data textures.
+inline constexpr int kGpuTexelBytes = 16;
+
 /// Per-building row of the GPU building table (two RGBA32F texels). Slots index this table.
 struct BuildingGpuRecord {
   float storeyHeightMeters = 3.0f;  ///< height of one storey (floor level k sits at baseZ + k × this)
@@ -35,7 +41,13 @@ struct BuildingGpuRecord {
   float lossCode = -1.0f;           ///< packLossCode of its HAZUS probabilities, -1 without them
 };
 static_assert(sizeof(BuildingGpuRecord) == 32);
+/// Texels per building: slot s occupies texels [s × kBuildingTexels, (s + 1) × kBuildingTexels).
+inline constexpr int kBuildingTexels = static_cast<int>(sizeof(BuildingGpuRecord)) / kGpuTexelBytes;
 
+/// BuildingGpuRecord::damageState of the top of the damage ramp (complete damage), of a building
+/// without a result and of one whose results are not loaded yet.
+inline constexpr float kDamageComplete = 4.0f;
+inline constexpr float kDamageNoResult = -1.0f;
 inline constexpr float kDamagePending = -2.0f;
 
 enum BuildingFlag : unsigned { kFlagSelected = 1u, kFlagDimmed = 2u, kFlagHidden = 4u };
@@ -64,16 +76,24 @@ enum class ColorMode : int {
 };
 inline constexpr int kColorModeCount = 7;
 
+/// The packing of packLossCode: each fraction quantized to 0 … kLossCodeLevels, the expected
+/// state's field and the tag's field scaled by these factors.
+inline constexpr int kLossCodeLevels = 255;
+inline constexpr int kLossCodeExpectedFactor = 256;
+inline constexpr int kLossCodeTagFactor = 65536;
+
 /// The HAZUS probabilities of a building packed into one float of the building table, exactly
 /// representable (< 2^24): round(255 P(DS >= moderate)) + 256 round(255 E[DS] / 4) + 65536 tag, with
 /// tag the most likely of green (0), yellow (1), red (2). The shader unpacks it for modes 4 to 6.
 inline float packLossCode(float moderateOrWorse, float expectedState, int mostLikelyTag) {
   auto quantize = [](float x) {
     const float c = x < 0.0f ? 0.0f : (x > 1.0f ? 1.0f : x);
-    return static_cast<int>(c * 255.0f + 0.5f);
+    return static_cast<int>(c * static_cast<float>(kLossCodeLevels) + 0.5f);
   };
   const int tag = mostLikelyTag < 0 ? 0 : (mostLikelyTag > 2 ? 2 : mostLikelyTag);
-  return static_cast<float>(quantize(moderateOrWorse) + 256 * quantize(expectedState / 4.0f) + 65536 * tag);
+  return static_cast<float>(quantize(moderateOrWorse) +
+                            kLossCodeExpectedFactor * quantize(expectedState / kDamageComplete) +
+                            kLossCodeTagFactor * tag);
 }
 
 struct FrameUniforms {
@@ -85,8 +105,7 @@ struct FrameUniforms {
   float driftFullScale = 0.02f;  ///< drift ratio shown as the top of the colour ramp (kDriftFullScale)
   int viewportWidth = 1;
   int viewportHeight = 1;
-  Rect ground;  ///< ground plane extent (empty: no ground)
-  bool anyDimmed = false;
+  Rect ground;             ///< ground plane extent (empty: no ground)
   bool showModels = true;  ///< LOD2 models drawn (kKindModel vertices), else their LOD1 extrusions (kKindFallback)
 };
 

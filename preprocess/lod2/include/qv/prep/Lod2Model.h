@@ -40,14 +40,12 @@ struct Lod2Mesh {
   [[nodiscard]] std::size_t triangleCount() const { return triangles.size() / 3; }
 };
 
+/// The full-detail mesh the viewer skins to the building's floors. Its skin is not stored: the
+/// viewer derives each vertex's two floors and weight from its height (qv/anim/FloorBlend.h), so
+/// re-meshing at the floor levels is all the skinning preprocessing does.
 struct SkinnedMesh {
-  Lod2Mesh mesh;  ///< after re-meshing
-  /// Per vertex: the floor level k at or below it (0 = ground, storeys = roof).
-  std::vector<std::uint8_t> bone;
-  /// Per vertex: weight of bone + 1 (0..1); bone k gets 1 - weight. A vertex exactly at floor level
-  /// k has bone k and weight 0; vertices below the base or at/above the roof clamp to the first or
-  /// last bone with weight 0.
-  std::vector<float> weight;
+  Lod2Mesh mesh;          ///< as imported, then after re-meshing
+  bool finished = false;  ///< re-meshed at the building's floor levels (finishModel)
 };
 
 struct Lod2Model {
@@ -61,8 +59,8 @@ struct Lod2Model {
   /// Outer ring of the model's ground projection (counter-clockwise, first point not repeated),
   /// for matching and as the LOD1 fallback.
   std::vector<glm::dvec2> footprint;
-  /// Full detail, one bone per floor level. Before finishModel() (Lod2Finish.h) `mesh` holds the
-  /// model as imported and bone/weight are empty.
+  /// Full detail. Before finishModel() (Lod2Finish.h) `mesh` holds the model as imported and
+  /// `finished` is false.
   SkinnedMesh skinned;
   Lod2Mesh farMesh;                  ///< simplified static mesh for far views (meshoptimizer, no skin)
   std::uint32_t verticesBefore = 0;  ///< vertices as imported (CityJSON: the vertices its faces use)

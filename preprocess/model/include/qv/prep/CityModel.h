@@ -36,15 +36,14 @@ struct BuildingPart {
   [[nodiscard]] std::size_t ringCount() const { return ringEnds.size(); }
 };
 
-/// A LOD2 model of a building as the tiles store it (docs/formats.md, "MESH"): a mesh skinned to
-/// one bone per floor level and a simplified far mesh. Positions are in the city frame (metres
-/// east and north of the origin) with z in metres above the building's ground.
+/// A LOD2 model of a building as the tiles store it (docs/formats.md, "MESH"): a mesh re-meshed at
+/// the building's floor levels (the viewer skins it by height) and a simplified far mesh. Positions
+/// are in the city frame (metres east and north of the origin) with z in metres above the
+/// building's ground.
 struct BuildingMesh {
   MeshSource source = MeshSource::Other;
   std::uint32_t verticesBefore = 0;  ///< as imported, before re-meshing
   std::vector<glm::dvec3> positions;
-  std::vector<std::uint8_t> bones;  ///< per vertex: floor level at or below it (0 … storeys)
-  std::vector<float> weights;       ///< per vertex: weight of bone + 1, [0, 1]
   /// 3 indices per triangle, grouped by kind (wall, roof, ground, other) as counted below.
   std::vector<std::uint32_t> triangles;
   std::array<std::uint32_t, kMeshSurfaceKinds> trianglesPerKind{};
@@ -55,8 +54,8 @@ struct BuildingMesh {
 struct Building {
   BuildingAttributes attributes;
   std::vector<BuildingPart> parts;  ///< at least one (a LOD2 building: its footprint, the LOD1 fallback)
-  /// LOD2 model (attributes.lod == 2), written to the tiles' MESH section; its bones follow
-  /// attributes.storeys.
+  /// LOD2 model (attributes.lod == 2), written to the tiles' MESH section; animated by the floors
+  /// of attributes.storeys.
   std::optional<BuildingMesh> mesh;
 };
 

@@ -1,0 +1,126 @@
+#include "qv/scene/GpuConstants.h"
+
+#include <array>
+#include <cstddef>
+
+#include "qv/geometry/BuildingMesh.h"
+#include "qv/scene/RenderDevice.h"
+
+namespace qv {
+namespace {
+
+struct Field {
+  const char* name;  // the C++ member's name, used as the GLSL member's
+  std::size_t offsetBytes;
+};
+
+constexpr std::array<Field, 8> kBuildingFields = {{
+    {"storeyHeightMeters", offsetof(BuildingGpuRecord, storeyHeightMeters)},
+    {"storeys", offsetof(BuildingGpuRecord, storeys)},
+    {"floorBase", offsetof(BuildingGpuRecord, floorBase)},
+    {"peakValue", offsetof(BuildingGpuRecord, peakValue)},
+    {"damageState", offsetof(BuildingGpuRecord, damageState)},
+    {"flags", offsetof(BuildingGpuRecord, flags)},
+    {"baseZ", offsetof(BuildingGpuRecord, baseZ)},
+    {"lossCode", offsetof(BuildingGpuRecord, lossCode)},
+}};
+static_assert(kBuildingFields.size() * sizeof(float) == sizeof(BuildingGpuRecord), "a field is missing");
+
+constexpr std::array<Field, 4> kFloorFields = {{
+    {"dxMeters", offsetof(FloorGpuRecord, dxMeters)},
+    {"dyMeters", offsetof(FloorGpuRecord, dyMeters)},
+    {"peakDriftAbove", offsetof(FloorGpuRecord, peakDriftAbove)},
+    {"reserved", offsetof(FloorGpuRecord, reserved)},
+}};
+static_assert(kFloorFields.size() * sizeof(float) == sizeof(FloorGpuRecord), "a field is missing");
+static_assert(sizeof(FloorGpuRecord) == kGpuTexelBytes, "a floor row is one texel");
+
+struct ColorModeName {
+  ColorMode mode;
+  const char* name;
+};
+constexpr std::array<ColorModeName, kColorModeCount> kColorModeNames = {{
+    {ColorMode::CurrentDrift, "kModeCurrentDrift"},
+    {ColorMode::PeakDrift, "kModePeakDrift"},
+    {ColorMode::DamageState, "kModeDamageState"},
+    {ColorMode::Neutral, "kModeNeutral"},
+    {ColorMode::ModerateOrWorse, "kModeModerateOrWorse"},
+    {ColorMode::ExpectedDamage, "kModeExpectedDamage"},
+    {ColorMode::InspectionTag, "kModeInspectionTag"},
+}};
+
+std::string intConstant(const char* name, long long value) {
+  return "const int " + std::string(name) + " = " + std::to_string(value) + ";\n";
+}
+
+std::string uintConstant(const char* name, unsigned value) {
+  return "const uint " + std::string(name) + " = " + std::to_string(value) + "u;\n";
+}
+
+// Floats here are whole numbers (exact in float); GLSL needs the decimal point.
+std::string floatConstant(const char* name, float value) {
+  return "const float " + std::string(name) + " = " + std::to_string(static_cast<long long>(value)) + ".0;\n";
+}
+
+// A struct holding `fields` and its reader: row i's texels start at texel `firstTexel` (GLSL of i).
+template <std::size_t N>
+std::string rowReader(const char* structName, const char* readerName, const char* firstTexel,
+                      const std::array<Field, N>& fields) {
+  std::string s = "struct " + std::string(structName) + " {";
+  for (const Field& f : fields) s += " float " + std::string(f.name) + ";";
+  s += " };\n";
+  s += std::string(structName) + " " + readerName + "(sampler2D table, int i) {\n";
+  const std::size_t texels = (N * sizeof(float) + kGpuTexelBytes - 1) / kGpuTexelBytes;
+  for (std::size_t t = 0; t < texels; ++t) {
+    s += "  vec4 t" + std::to_string(t) + " = texel(table, " + firstTexel + " + " + std::to_string(t) + ");\n";
+  }
+  s += "  " + std::string(structName) + " r;\n";
+  for (const Field& f : fields) {
+    const std::size_t texel = f.offsetBytes / kGpuTexelBytes;
+    const char component = "xyzw"[f.offsetBytes % kGpuTexelBytes / sizeof(float)];
+    s += "  r." + std::string(f.name) + " = t" + std::to_string(texel) + "." + component + ";\n";
+  }
+  s += "  return r;\n}\n";
+  return s;
+}
+
+}  // namespace
+
+std::string glslConstants() {
+  std::string s = "// Generated from qv/scene/RenderDevice.h and qv/geometry/BuildingMesh.h (qv::glslConstants).\n";
+  s += intConstant("kTableWidth", kGpuTableWidth);
+  s += intConstant("kBuildingTexels", kBuildingTexels);
+  s += uintConstant("kFlagSelected", kFlagSelected);
+  s += uintConstant("kFlagDimmed", kFlagDimmed);
+  s += uintConstant("kFlagHidden", kFlagHidden);
+  // The kind's low bits hold the VertexKind, below the first of the LOD2 bits.
+  s += intConstant("kKindMask", kKindModel - 1);
+  s += intConstant("kKindWall", kWall);
+  s += intConstant("kKindRoof", kRoof);
+  s += intConstant("kKindGround", kGround);
+  s += intConstant("kKindModel", kKindModel);
+  s += intConstant("kKindFallback", kKindFallback);
+  for (const ColorModeName& m : kColorModeNames) s += intConstant(m.name, static_cast<int>(m.mode));
+  s += floatConstant("kDamageComplete", kDamageComplete);
+  s += floatConstant("kDamageNoResult", kDamageNoResult);
+  s += floatConstant("kDamagePending", kDamagePending);
+  s += floatConstant("kLossCodeLevels", static_cast<float>(kLossCodeLevels));
+  s += floatConstant("kLossCodeExpectedFactor", static_cast<float>(kLossCodeExpectedFactor));
+  s += floatConstant("kLossCodeTagFactor", static_cast<float>(kLossCodeTagFactor));
+  s += "vec4 texel(sampler2D table, int i) { return texelFetch(table, ivec2(i % kTableWidth, i / kTableWidth), 0); }\n";
+  s += rowReader("BuildingRow", "readBuilding", "i * kBuildingTexels", kBuildingFields);
+  s += rowReader("FloorRow", "readFloor", "i", kFloorFields);
+  return s;
+}
+
+std::string withGlslConstants(std::string_view source) {
+  static constexpr std::string_view kMarker = "@CONSTANTS@";
+  std::string s(source);
+  const std::string block = glslConstants();
+  for (auto at = s.find(kMarker); at != std::string::npos; at = s.find(kMarker, at + block.size())) {
+    s.replace(at, kMarker.size(), block);
+  }
+  return s;
+}
+
+}  // namespace qv
