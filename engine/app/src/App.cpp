@@ -138,6 +138,7 @@ void App::dispatchKey(const InputEvent& e) {
   if (down && e.code == "Slash") panel_.focusSearch();
   viewer_->controller().key(cameraKeyForCode(e.code), down);
 }
+
 void App::frame() {
   const double now = browser::nowSeconds();
   const double dt = std::clamp(now - lastFrameSeconds_, 0.0, 0.25);
