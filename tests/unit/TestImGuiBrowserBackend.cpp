@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "HeadlessImGui.h"
 #include "qv/ui/ImGuiBrowserBackend.h"
 
 using namespace qv;
@@ -15,19 +16,8 @@ namespace {
 // A headless ImGui context with the browser backend installed, as the app sets it up (no
 // renderer backend: frames are built and thrown away).
 struct BackendFixture {
-  BackendFixture() {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    unsigned char* pixels = nullptr;
-    int w = 0, h = 0;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-    installed = ui::imguiBrowserInit();
-  }
-  ~BackendFixture() {
-    ui::imguiBrowserShutdown();
-    ImGui::DestroyContext();
-  }
+  BackendFixture() : installed(ui::imguiBrowserInit()) {}
+  ~BackendFixture() { ui::imguiBrowserShutdown(); }
   BackendFixture(const BackendFixture&) = delete;
   BackendFixture& operator=(const BackendFixture&) = delete;
 
@@ -50,6 +40,7 @@ struct BackendFixture {
     end(draw);
   }
 
+  HeadlessImGui imgui;  // before `installed`: the backend installs on this context
   bool installed = false;
 };
 
