@@ -2,6 +2,7 @@
 
 #include <imgui.h>
 
+#include "HeadlessImGui.h"
 #include "MiniCity.h"
 #include "qv/scene/NullRenderDevice.h"
 #include "qv/ui/ControlPanel.h"
@@ -10,21 +11,6 @@
 using namespace qv;
 
 namespace {
-
-// A headless ImGui frame: no renderer backend, just the widget logic.
-struct HeadlessImGui {
-  HeadlessImGui() {
-    ImGui::CreateContext();
-    ImGuiIO& io = ImGui::GetIO();
-    io.IniFilename = nullptr;
-    io.DisplaySize = ImVec2(1280.0f, 720.0f);
-    io.DeltaTime = 1.0f / 60.0f;
-    unsigned char* pixels = nullptr;
-    int w = 0, h = 0;
-    io.Fonts->GetTexDataAsRGBA32(&pixels, &w, &h);
-  }
-  ~HeadlessImGui() { ImGui::DestroyContext(); }
-};
 
 struct RecordingHost final : UiHost {
   std::vector<std::string> urls;

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "qv/options/AppOptions.h"
 #include "qv/platform/Browser.h"
 #include "qv/platform/BrowserFetcher.h"
 #include "qv/platform/BrowserInput.h"
@@ -18,24 +19,6 @@
 
 namespace qv {
 
-struct AppOptions {
-  std::string scene;    ///< "test" for the built-in test scene
-  std::string dataUrl;  ///< tileset.json URL
-  bool antialias = true;
-  double benchSeconds = 0.0;  ///< > 0: run the benchmark flight
-  CitySceneOptions city;
-  // The shareable view (from the URL hash), applied once the city is there.
-  std::optional<CameraState> camera;
-  std::optional<double> timeSeconds;
-  bool playing = true;  ///< false: the link was copied while paused, and opens paused
-  std::string select;
-  std::optional<BuildingFilters> filters;
-};
-
-/// Parses the engine's arguments (set by the shell from the page URL). Unknown arguments are
-/// reported in `errors` and ignored.
-AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std::string>& errors);
-
 /// The UI's host services in the browser.
 class BrowserUiHost final : public UiHost {
  public:
@@ -44,9 +27,6 @@ class BrowserUiHost final : public UiHost {
     browser::downloadText(filename, mimeType, content);
   }
 };
-
-/// Parses "minDamage,use,critical" filter text of the URL ("2,hospital,1"; empty fields: any).
-std::optional<BuildingFilters> parseFilters(const std::string& text);
 
 class App {
  public:
@@ -61,6 +41,7 @@ class App {
 
  private:
   void dispatchInput();
+  void dispatchKey(const InputEvent& e);
 
   std::unique_ptr<GlRenderDevice> device_;
   BrowserFetcher fetcher_;

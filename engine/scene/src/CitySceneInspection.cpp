@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "CitySceneState.h"
+#include "qv/spatial/RayIntersection.h"
 
 namespace qv {
 

@@ -2,9 +2,7 @@
 // The shape of `quakeview.building(id)` / `pick(x, y)` and of the inspection window.
 #pragma once
 
-#include <glm/vec3.hpp>
 #include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -39,22 +37,5 @@ struct BuildingInfo {
 /// damageProbabilities, collapseProbability, expectedDamageState, mostLikelyDamageState and
 /// consequences (README's table).
 std::string buildingInfoJson(const BuildingInfo& info);
-
-/// Picking: where a ray first meets a building (an extruded polygon with holes between two
-/// heights), as the ray parameter t >= 0, or nullopt. Coordinates in any one frame.
-struct PrismView {
-  const float* xy = nullptr;  ///< interleaved x, y of all rings' points
-  const std::uint16_t* ringCounts = nullptr;
-  std::uint32_t ringCount = 0;
-  float offsetX = 0.0f, offsetY = 0.0f;  ///< added to every point
-  float minZ = 0.0f, maxZ = 0.0f;
-};
-std::optional<float> rayPrism(const float origin[3], const float direction[3], const PrismView& prism);
-
-/// Picking a LOD2 model: where a ray first meets a triangle of `positions` (+ `offset`), either
-/// side, as t >= 0, or nullopt. `triangles` holds 3 indices per triangle (out-of-range skipped).
-template <typename Index>
-std::optional<float> rayTriangles(const float origin[3], const float direction[3], std::span<const glm::vec3> positions,
-                                  std::span<const Index> triangles, const glm::vec3& offset);
 
 }  // namespace qv

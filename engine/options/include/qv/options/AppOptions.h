@@ -1,0 +1,69 @@
+// The viewer's start-up options. The page shell (web/quakeview.js) turns the page's URL and its
+// config.json into engine arguments ("--camera", "12,34,900,0,45"); this parses and checks them.
+// The URL names are a contract with everyone who shares a link (README, "URL options" and
+// "Sharing a view"):
+//   query: ?data=URL ?scene=test ?aa=0 ?memory=MB ?bench=SECONDS
+//   hash:  #cam=x,y,distance,heading,pitch[,fov] &t=seconds &play=0|1 &sel=id &f=minDamage,use,critical
+// A bad value never stops the viewer: the option keeps its default and a message for the person
+// reading the page names the URL parameter and the value given ("The time in the link (t=-3) is
+// not a number of seconds from 0; starting at 0 s.").
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "qv/core/Result.h"
+#include "qv/geometry/OrbitCamera.h"
+#include "qv/scene/CityIndex.h"
+#include "qv/scene/CityScene.h"
+
+namespace qv {
+
+struct AppOptions {
+  std::string scene;    ///< "test" for the built-in test scene (then dataUrl is empty)
+  std::string dataUrl;  ///< tileset.json URL, as the page gave it (checked later by the origin policy)
+  bool antialias = true;
+  double benchSeconds = 0.0;  ///< > 0: run the benchmark flight for this long
+  CitySceneOptions city;      ///< memoryBudgetBytes and the data origin policy set here
+  // The shareable view (from the URL hash), applied once the city is there.
+  std::optional<CameraState> camera;
+  std::optional<double> timeSeconds;  ///< >= 0
+  bool playing = true;                ///< false: the link was copied while paused, and opens paused
+  std::string select;                 ///< building id; empty: none
+  std::optional<BuildingFilters> filters;
+};
+
+/// Where the shell takes an engine argument from.
+enum class ArgumentSource : std::uint8_t {
+  UrlQuery,  ///< ?name=value
+  UrlHash,   ///< #name=value (the shareable view)
+  Shell,     ///< the shell itself: the page's origin, config.json, its own problems
+};
+
+/// One engine argument and the URL parameter behind it.
+struct AppArgument {
+  std::string_view argument;  ///< "--camera"
+  ArgumentSource source = ArgumentSource::Shell;
+  std::string_view urlName;  ///< "cam"; empty for Shell
+  bool takesValue = true;    ///< false: a flag ("--no-antialias", from ?aa=0)
+};
+
+/// Every argument parseAppOptions understands (a fixed table; the strings are static).
+std::span<const AppArgument> appArguments();
+
+/// Parses the engine's arguments in order (a later repeat of an option wins; --allow-origin
+/// accumulates). Each unknown argument, argument without its value and bad value adds one message
+/// to `errors` and is otherwise ignored; a --shell-error value is passed through as a message.
+AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std::string>& errors);
+
+/// Parses the hash's filter text "minDamage,use,critical": exactly three fields, each empty for
+/// "any": minDamage a digit 0..4 (none .. complete), use lower-case letters and '_' ("hospital"),
+/// critical "0" or "1". At most 100 characters. The error names the field at fault and its value
+/// ("minDamage '9' is not a damage state 0 to 4").
+Result<BuildingFilters> parseFilters(std::string_view text);
+
+}  // namespace qv

@@ -1,0 +1,226 @@
+#include "qv/options/AppOptions.h"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+
+#include "qv/core/Text.h"
+
+namespace qv {
+namespace {
+
+constexpr std::array<AppArgument, 14> kArguments = {{
+    {"--data", ArgumentSource::UrlQuery, "data", true},
+    {"--scene", ArgumentSource::UrlQuery, "scene", true},
+    {"--no-antialias", ArgumentSource::UrlQuery, "aa", false},
+    {"--memory-mb", ArgumentSource::UrlQuery, "memory", true},
+    {"--bench", ArgumentSource::UrlQuery, "bench", true},
+    {"--camera", ArgumentSource::UrlHash, "cam", true},
+    {"--time", ArgumentSource::UrlHash, "t", true},
+    {"--playing", ArgumentSource::UrlHash, "play", true},
+    {"--select", ArgumentSource::UrlHash, "sel", true},
+    {"--filters", ArgumentSource::UrlHash, "f", true},
+    {"--page-origin", ArgumentSource::Shell, "", true},
+    {"--data-origin", ArgumentSource::Shell, "", true},
+    {"--allow-origin", ArgumentSource::Shell, "", true},
+    {"--shell-error", ArgumentSource::Shell, "", true},
+}};
+
+const AppArgument* findArgument(std::string_view argument) {
+  for (const AppArgument& a : kArguments) {
+    if (a.argument == argument) return &a;
+  }
+  return nullptr;
+}
+
+// A value from the URL as it may appear inside a message: display-safe, at most about 60 bytes.
+std::string shown(std::string_view value) {
+  constexpr std::size_t kLimit = 60;
+  if (value.size() <= kLimit) return displaySafe(value);
+  std::size_t cut = kLimit;
+  while (cut > 0 && (static_cast<unsigned char>(value[cut]) & 0xC0u) == 0x80u) --cut;  // a whole UTF-8 character
+  return displaySafe(value.substr(0, cut)) + "…";
+}
+
+// "name=value" of the URL parameter behind an argument, for messages.
+std::string named(const AppArgument& a, std::string_view value) {
+  return std::string(a.urlName) + "=" + shown(value);
+}
+
+// A whole-string finite number (strtod's syntax), or nullopt.
+std::optional<double> parseNumber(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  char* end = nullptr;
+  const double number = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size() || !std::isfinite(number)) return std::nullopt;
+  return number;
+}
+
+std::vector<std::string_view> splitCommas(std::string_view text) {
+  std::vector<std::string_view> parts;
+  std::size_t start = 0;
+  while (true) {
+    const std::size_t comma = text.find(',', start);
+    parts.push_back(text.substr(start, comma == std::string_view::npos ? std::string_view::npos : comma - start));
+    if (comma == std::string_view::npos) return parts;
+    start = comma + 1;
+  }
+}
+
+// x,y,distance,headingDeg,pitchDeg[,fovDeg], each field a number within CameraLimits.
+Result<CameraState> parseCamera(std::string_view text) {
+  const std::vector<std::string_view> parts = splitCommas(text);
+  if (parts.size() != 5 && parts.size() != 6) {
+    return Error{std::to_string(parts.size()) + " values where 5 or 6 are expected (x,y,distance,heading,pitch[,fov])"};
+  }
+  static const char* const kFields[6] = {"x", "y", "distance", "heading", "pitch", "fov"};
+  std::array<double, 6> v{0.0, 0.0, 0.0, 0.0, 0.0, 45.0};
+  for (std::size_t k = 0; k < parts.size(); ++k) {
+    const std::optional<double> number = parseNumber(std::string(parts[k]));
+    if (!number) return Error{std::string(kFields[k]) + " '" + shown(parts[k]) + "' is not a number"};
+    v[k] = *number;
+  }
+  const CameraState given{v[0], v[1], v[2], v[3], v[4], v[5]};
+  CameraState checked = given;
+  if (!sanitizeCamera(checked, given)) {
+    const std::array<double, 6> c{checked.x,          checked.y,        checked.distance,
+                                  checked.headingDeg, checked.pitchDeg, checked.fovDeg};
+    // A heading of any size is wrapped into [0, 360), not refused.
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      if (k != 3 && c[k] != v[k]) {
+        return Error{std::string(kFields[k]) + " " + shown(parts[k]) + " is outside the camera's limits"};
+      }
+    }
+    return Error{"a value is outside the camera's limits"};
+  }
+  return checked;
+}
+
+// What one argument's value does to the options; `a` is its table entry.
+void applyValue(const AppArgument& a, const std::string& v, AppOptions& options, std::vector<std::string>& errors) {
+  const std::string_view name = a.argument;
+  if (name == "--data") {
+    options.dataUrl = v;
+  } else if (name == "--scene") {
+    options.scene = "test";
+    if (v != "test")
+      errors.push_back("The scene in the URL (" + named(a, v) +
+                       ") is not known (known: test); showing the test scene.");
+  } else if (name == "--memory-mb") {
+    const std::optional<double> mb = parseNumber(v);
+    if (!mb || !(*mb >= 16.0 && *mb <= 4096.0)) {
+      errors.push_back("The memory budget in the URL (" + named(a, v) +
+                       ") is not a number of megabytes from 16 to 4096; using " +
+                       std::to_string(options.city.memoryBudgetBytes >> 20) + " MB.");
+    } else {
+      options.city.memoryBudgetBytes = static_cast<std::uint64_t>(*mb * 1048576.0);
+    }
+  } else if (name == "--bench") {
+    const std::optional<double> seconds = parseNumber(v);
+    if (!seconds || !(*seconds >= 1.0 && *seconds <= 3600.0)) {
+      errors.push_back("The benchmark length in the URL (" + named(a, v) +
+                       ") is not a number of seconds from 1 to 3600; no benchmark run.");
+    } else {
+      options.benchSeconds = *seconds;
+    }
+  } else if (name == "--camera") {
+    Result<CameraState> camera = parseCamera(v);
+    if (camera) {
+      options.camera = *camera;
+    } else {
+      errors.push_back("The camera in the link (" + named(a, v) + ") is not valid: " + camera.error() +
+                       "; showing the default view.");
+    }
+  } else if (name == "--time") {
+    const std::optional<double> t = parseNumber(v);
+    if (!t || *t < 0.0) {
+      errors.push_back("The time in the link (" + named(a, v) +
+                       ") is not a number of seconds from 0; starting at 0 s.");
+    } else {
+      options.timeSeconds = *t;
+    }
+  } else if (name == "--playing") {
+    if (v == "0" || v == "1") {
+      options.playing = v == "1";
+    } else {
+      errors.push_back("The play state in the link (" + named(a, v) + ") is not 0 or 1; playing.");
+    }
+  } else if (name == "--select") {
+    if (v.empty() || v.size() > 200 || v.find_first_of("\n\r\t") != std::string::npos) {
+      errors.push_back("The selected building in the link (" + named(a, v) +
+                       ") is not a valid id (1 to 200 bytes, no tab or line break); nothing is selected.");
+    } else {
+      options.select = v;
+    }
+  } else if (name == "--filters") {
+    Result<BuildingFilters> filters = parseFilters(v);
+    if (filters) {
+      options.filters = *filters;
+    } else {
+      options.filters.reset();
+      errors.push_back("The filters in the link (" + named(a, v) + ") are not valid: " + filters.error() +
+                       "; showing every building.");
+    }
+  } else if (name == "--page-origin") {
+    options.city.origin.pageOrigin = v;
+  } else if (name == "--data-origin") {
+    options.city.origin.urlOrigin = v;
+  } else if (name == "--allow-origin") {
+    options.city.origin.allowedOrigins.push_back(v);
+  } else if (name == "--shell-error") {
+    errors.push_back(v);  // a message of the page shell (a broken config.json)
+  }
+}
+
+}  // namespace
+
+std::span<const AppArgument> appArguments() {
+  return kArguments;
+}
+
+Result<BuildingFilters> parseFilters(std::string_view text) {
+  if (text.size() > 100) return Error{"longer than 100 characters"};
+  const std::vector<std::string_view> parts = splitCommas(text);
+  if (parts.size() != 3) {
+    return Error{std::to_string(parts.size()) + (parts.size() == 1 ? " field" : " fields") +
+                 " where 3 are expected (minDamage,use,critical)"};
+  }
+  BuildingFilters f;
+  if (!parts[0].empty()) {
+    if (parts[0].size() != 1 || parts[0][0] < '0' || parts[0][0] > '4') {
+      return Error{"minDamage '" + shown(parts[0]) + "' is not a damage state 0 to 4"};
+    }
+    f.minDamage = parts[0][0] - '0';
+  }
+  for (const char c : parts[1]) {
+    if (!((c >= 'a' && c <= 'z') || c == '_')) {
+      return Error{"use '" + shown(parts[1]) + "' has characters other than a to z and _"};
+    }
+  }
+  f.use = std::string(parts[1]);
+  if (!parts[2].empty() && parts[2] != "0" && parts[2] != "1") {
+    return Error{"critical '" + shown(parts[2]) + "' is not 0 or 1"};
+  }
+  f.criticalOnly = parts[2] == "1";
+  return f;
+}
+
+AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std::string>& errors) {
+  AppOptions options;
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const AppArgument* a = findArgument(args[i]);
+    if (a == nullptr) {
+      errors.push_back("Ignored unknown engine argument '" + shown(args[i]) + "'.");
+    } else if (!a->takesValue) {
+      options.antialias = false;  // --no-antialias, the only flag
+    } else if (i + 1 >= args.size()) {
+      errors.push_back("Ignored engine argument '" + args[i] + "' without a value.");
+    } else {
+      applyValue(*a, args[++i], options, errors);
+    }
+  }
+  if (options.scene == "test") options.dataUrl.clear();
+  return options;
+}
+
+}  // namespace qv

@@ -1,0 +1,171 @@
+#include "qv/ui/ImGuiBrowserBackend.h"
+
+#include <imgui.h>
+#include <imgui_internal.h>  // ImGuiContext::Windows, for imguiBrowserCovers
+
+#include <algorithm>
+#include <array>
+#include <string>
+#include <vector>
+
+namespace qv::ui {
+namespace {
+
+constexpr const char* kBackendName = "quakeview-browser";
+
+// ImGui 1.86 keyboard: our own indices into io.KeysDown (1-based positions in this table) for the
+// keys ImGui needs, by KeyboardEvent.code.
+struct ImGuiKeyCode {
+  const char* code;
+  int imguiKey;
+};
+constexpr std::array<ImGuiKeyCode, 22> kImGuiKeys = {{
+    {"Tab", ImGuiKey_Tab},
+    {"ArrowLeft", ImGuiKey_LeftArrow},
+    {"ArrowRight", ImGuiKey_RightArrow},
+    {"ArrowUp", ImGuiKey_UpArrow},
+    {"ArrowDown", ImGuiKey_DownArrow},
+    {"PageUp", ImGuiKey_PageUp},
+    {"PageDown", ImGuiKey_PageDown},
+    {"Home", ImGuiKey_Home},
+    {"End", ImGuiKey_End},
+    {"Insert", ImGuiKey_Insert},
+    {"Delete", ImGuiKey_Delete},
+    {"Backspace", ImGuiKey_Backspace},
+    {"Space", ImGuiKey_Space},
+    {"Enter", ImGuiKey_Enter},
+    {"Escape", ImGuiKey_Escape},
+    {"NumpadEnter", ImGuiKey_KeyPadEnter},
+    {"KeyA", ImGuiKey_A},
+    {"KeyC", ImGuiKey_C},
+    {"KeyV", ImGuiKey_V},
+    {"KeyX", ImGuiKey_X},
+    {"KeyY", ImGuiKey_Y},
+    {"KeyZ", ImGuiKey_Z},
+}};
+
+// What was pressed since the last imguiBrowserNewFrame (io.BackendPlatformUserData).
+struct BackendData {
+  std::array<bool, 5> buttonsPressed{};
+  std::vector<std::string> keysPressed;
+};
+
+BackendData* backendData() {
+  if (ImGui::GetCurrentContext() == nullptr) return nullptr;
+  return static_cast<BackendData*>(ImGui::GetIO().BackendPlatformUserData);
+}
+
+std::size_t buttonIndex(int button) {
+  return static_cast<std::size_t>(std::clamp(button, 0, 4));
+}
+
+int keysDownIndex(std::string_view code) {
+  for (std::size_t i = 0; i < kImGuiKeys.size(); ++i) {
+    if (code == kImGuiKeys[i].code) return static_cast<int>(i) + 1;
+  }
+  return -1;
+}
+
+ImVec2 point(double x, double y) {
+  return ImVec2(static_cast<float>(x), static_cast<float>(y));
+}
+
+}  // namespace
+
+bool imguiBrowserInit() {
+  if (ImGui::GetCurrentContext() == nullptr) return false;
+  ImGuiIO& io = ImGui::GetIO();
+  if (io.BackendPlatformUserData != nullptr || io.BackendPlatformName != nullptr) return false;
+  io.BackendPlatformUserData = new BackendData();
+  io.BackendPlatformName = kBackendName;
+  for (std::size_t i = 0; i < kImGuiKeys.size(); ++i) io.KeyMap[kImGuiKeys[i].imguiKey] = static_cast<int>(i) + 1;
+  return true;
+}
+
+void imguiBrowserShutdown() {
+  BackendData* data = backendData();
+  if (data == nullptr) return;
+  ImGuiIO& io = ImGui::GetIO();
+  delete data;
+  io.BackendPlatformUserData = nullptr;
+  io.BackendPlatformName = nullptr;
+}
+
+void imguiBrowserNewFrame(double cssWidth, double cssHeight, double devicePixelRatio, double deltaSeconds) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.DisplaySize = point(cssWidth, cssHeight);
+  const auto scale = static_cast<float>(devicePixelRatio);
+  io.DisplayFramebufferScale = ImVec2(scale, scale);
+  io.DeltaTime = static_cast<float>(std::max(deltaSeconds, 1e-4));
+  if (BackendData* data = backendData()) {
+    data->buttonsPressed.fill(false);
+    data->keysPressed.clear();
+  }
+}
+
+bool imguiBrowserCovers(double x, double y) {
+  const ImGuiContext* context = ImGui::GetCurrentContext();
+  if (context == nullptr) return false;
+  const ImVec2 p = point(x, y);
+  for (const ImGuiWindow* window : context->Windows) {
+    if (window->WasActive && !window->Hidden && window->Rect().Contains(p)) return true;
+  }
+  return false;
+}
+
+bool imguiBrowserMustDeferButtonUp(int button) {
+  const BackendData* data = backendData();
+  return data != nullptr && data->buttonsPressed[buttonIndex(button)];
+}
+
+bool imguiBrowserMustDeferKeyUp(std::string_view code) {
+  const BackendData* data = backendData();
+  return data != nullptr &&
+         std::find(data->keysPressed.begin(), data->keysPressed.end(), code) != data->keysPressed.end();
+}
+
+void imguiBrowserPointerDown(int button, double x, double y) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = point(x, y);
+  io.MouseDown[buttonIndex(button)] = true;
+  if (BackendData* data = backendData()) data->buttonsPressed[buttonIndex(button)] = true;
+}
+
+void imguiBrowserPointerUp(int button) {
+  ImGui::GetIO().MouseDown[buttonIndex(button)] = false;
+}
+
+void imguiBrowserPointerMove(double x, double y) {
+  ImGui::GetIO().MousePos = point(x, y);
+}
+
+bool imguiBrowserWheel(double x, double y, double wheelY) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.MousePos = point(x, y);
+  if (!imguiBrowserCovers(x, y)) return false;
+  io.MouseWheel -= static_cast<float>(wheelY / 100.0);
+  return true;
+}
+
+void imguiBrowserKey(std::string_view code, bool down, bool shift, bool ctrl, bool alt) {
+  ImGuiIO& io = ImGui::GetIO();
+  io.KeyShift = shift;
+  io.KeyCtrl = ctrl;
+  io.KeyAlt = alt;
+  const int index = keysDownIndex(code);
+  if (index >= 0) io.KeysDown[index] = down;
+  if (BackendData* data = backendData(); data != nullptr && down) data->keysPressed.emplace_back(code);
+}
+
+void imguiBrowserText(std::string_view utf8) {
+  ImGuiIO& io = ImGui::GetIO();
+  if (!io.WantCaptureKeyboard) return;
+  const std::string text(utf8);  // ImGui wants a terminated string
+  io.AddInputCharactersUTF8(text.c_str());
+}
+
+bool imguiBrowserWantsTextInput() {
+  return ImGui::GetIO().WantTextInput;
+}
+
+}  // namespace qv::ui

@@ -1,0 +1,144 @@
+#include <catch2/catch.hpp>
+
+#include <imgui.h>
+
+#include <cstring>
+#include <functional>
+#include <string>
+
+#include "HeadlessImGui.h"
+#include "qv/ui/ImGuiBrowserBackend.h"
+
+using namespace qv;
+
+namespace {
+
+// A headless ImGui context with the browser backend installed, as the app sets it up (no
+// renderer backend: frames are built and thrown away).
+struct BackendFixture {
+  BackendFixture() : installed(ui::imguiBrowserInit()) {}
+  ~BackendFixture() { ui::imguiBrowserShutdown(); }
+  BackendFixture(const BackendFixture&) = delete;
+  BackendFixture& operator=(const BackendFixture&) = delete;
+
+  // One frame of a 1280 x 720 canvas with a 200 x 150 window at (100, 100) holding what `draw`
+  // adds. The app feeds a frame's events between begin() and end(), as here between frames.
+  void begin() {
+    ui::imguiBrowserNewFrame(1280.0, 720.0, 2.0, 1.0 / 60.0);
+    ImGui::NewFrame();
+  }
+  void end(const std::function<void()>& draw) {
+    ImGui::SetNextWindowPos(ImVec2(100.0f, 100.0f));
+    ImGui::SetNextWindowSize(ImVec2(200.0f, 150.0f));
+    ImGui::Begin("Panel");
+    draw();
+    ImGui::End();
+    ImGui::Render();
+  }
+  void frame(const std::function<void()>& draw) {
+    begin();
+    end(draw);
+  }
+
+  HeadlessImGui imgui;  // before `installed`: the backend installs on this context
+  bool installed = false;
+};
+
+}  // namespace
+
+TEST_CASE("The browser backend installs once per ImGui context", "[ui][backend]") {
+  CHECK_FALSE(ui::imguiBrowserInit());  // no context
+  BackendFixture fixture;
+  CHECK(fixture.installed);
+  CHECK(std::strcmp(ImGui::GetIO().BackendPlatformName, "quakeview-browser") == 0);
+  CHECK_FALSE(ui::imguiBrowserInit());
+  ui::imguiBrowserShutdown();
+  CHECK(ImGui::GetIO().BackendPlatformName == nullptr);
+  CHECK(ui::imguiBrowserInit());
+}
+
+TEST_CASE("Each frame ImGui gets the canvas's CSS size, its pixel ratio and a positive time step", "[ui][backend]") {
+  BackendFixture fixture;
+  ui::imguiBrowserNewFrame(800.0, 600.0, 1.5, 0.0);
+  const ImGuiIO& io = ImGui::GetIO();
+  CHECK(io.DisplaySize.x == 800.0f);
+  CHECK(io.DisplaySize.y == 600.0f);
+  CHECK(io.DisplayFramebufferScale.x == 1.5f);
+  CHECK(io.DeltaTime > 0.0f);
+  ui::imguiBrowserNewFrame(800.0, 600.0, 1.5, 0.02);
+  CHECK(io.DeltaTime == Approx(0.02f));
+}
+
+TEST_CASE("Events over a drawn window go to the UI, events beside it to the scene", "[ui][backend]") {
+  BackendFixture fixture;
+  fixture.frame([] {});
+  fixture.begin();  // the app routes events after NewFrame: the window drawn last frame counts
+  CHECK(ui::imguiBrowserCovers(150.0, 150.0));
+  CHECK(ui::imguiBrowserCovers(299.0, 249.0));
+  CHECK_FALSE(ui::imguiBrowserCovers(50.0, 50.0));
+  CHECK_FALSE(ui::imguiBrowserCovers(350.0, 150.0));
+  // The wheel scrolls the window under the pointer; elsewhere it is left to the scene (the camera).
+  CHECK(ui::imguiBrowserWheel(150.0, 150.0, 100.0));
+  CHECK(ImGui::GetIO().MouseWheel == Approx(-1.0f));
+  CHECK_FALSE(ui::imguiBrowserWheel(600.0, 400.0, 100.0));
+  CHECK(ImGui::GetIO().MouseWheel == Approx(-1.0f));
+  CHECK(ImGui::GetIO().MousePos.x == 600.0f);
+  fixture.end([] {});
+}
+
+TEST_CASE("A click whose press and release arrive in one frame still presses a button", "[ui][backend]") {
+  BackendFixture fixture;
+  ImVec2 centre;
+  int clicks = 0;
+  auto draw = [&] {
+    if (ImGui::Button("Play")) ++clicks;
+    const ImVec2 min = ImGui::GetItemRectMin(), max = ImGui::GetItemRectMax();
+    centre = ImVec2((min.x + max.x) / 2.0f, (min.y + max.y) / 2.0f);
+  };
+  fixture.frame(draw);
+  // Both events were queued by the browser before this frame: the release has to wait.
+  ui::imguiBrowserPointerMove(centre.x, centre.y);
+  ui::imguiBrowserPointerDown(0, centre.x, centre.y);
+  CHECK(ui::imguiBrowserMustDeferButtonUp(0));
+  CHECK_FALSE(ui::imguiBrowserMustDeferButtonUp(2));
+  fixture.frame(draw);
+  CHECK_FALSE(ui::imguiBrowserMustDeferButtonUp(0));
+  ui::imguiBrowserPointerUp(0);
+  fixture.frame(draw);
+  CHECK(clicks == 1);
+}
+
+TEST_CASE("Typing reaches a focused text field, and its keys are not the viewer's shortcuts", "[ui][backend]") {
+  BackendFixture fixture;
+  char buffer[32] = "";
+  bool focus = true;
+  auto draw = [&] {
+    if (focus) ImGui::SetKeyboardFocusHere();
+    focus = false;
+    ImGui::InputText("##search", buffer, sizeof buffer);
+  };
+  SECTION("focused") {
+    for (int i = 0; i < 3; ++i) fixture.frame(draw);
+    REQUIRE(ui::imguiBrowserWantsTextInput());
+    ui::imguiBrowserText("ab");
+    fixture.frame(draw);
+    CHECK(std::string(buffer) == "ab");
+    // Backspace pressed and released within one frame: the release waits, the key still edits.
+    ui::imguiBrowserKey("Backspace", true, false, false, false);
+    CHECK(ui::imguiBrowserMustDeferKeyUp("Backspace"));
+    CHECK_FALSE(ui::imguiBrowserMustDeferKeyUp("Tab"));
+    fixture.frame(draw);
+    CHECK_FALSE(ui::imguiBrowserMustDeferKeyUp("Backspace"));
+    ui::imguiBrowserKey("Backspace", false, false, false, false);
+    fixture.frame(draw);
+    CHECK(std::string(buffer) == "a");
+  }
+  SECTION("not focused") {
+    focus = false;
+    for (int i = 0; i < 3; ++i) fixture.frame(draw);
+    CHECK_FALSE(ui::imguiBrowserWantsTextInput());
+    ui::imguiBrowserText("ab");
+    fixture.frame(draw);
+    CHECK(std::string(buffer).empty());
+  }
+}
