@@ -153,13 +153,19 @@ void drawStoreyBars(const std::vector<float>& drifts, const std::array<double, 4
     }
   }
   const float line = ImGui::GetTextLineHeight();
+  // The lines' names sit above them at the right; a name that would overlap the one before (close
+  // thresholds) moves left of it.
+  float lastY = 1e9f, lastLeft = f.max.x;
   for (std::size_t k = 0; k < 4; ++k) {
     if (thresholds[k] > scaleMax || !(thresholds[k] > 0.0)) continue;
     const float py = yOf(thresholds[k]);
     draw->AddLine(ImVec2(f.min.x, py), ImVec2(f.max.x, py), colourOf(kDamagePalette[k + 1]), 1.5f);
     const char* name = kStateNames[k];
     const float w = ImGui::CalcTextSize(name).x;
-    draw->AddText(ImVec2(f.max.x - w - 2.0f, py - line), colourOf(kDamagePalette[k + 1]), name);
+    const float right = std::abs(lastY - py) < line ? lastLeft - 6.0f : f.max.x - 2.0f;
+    draw->AddText(ImVec2(right - w, py - line), colourOf(kDamagePalette[k + 1]), name);
+    lastY = py;
+    lastLeft = right - w;
   }
   // Storey numbers under the bars: the first, the last and a few between.
   const std::size_t every = std::max<std::size_t>(1, (n + 5) / 6);
@@ -344,7 +350,7 @@ void ControlPanel::drawResponse(Viewer& viewer, const BuildingInfo& info, ui::Wi
   const double bound = historyDriftErrorBound(r.peakRoofDisplacementM, std::max(a.storeyHeightM(), 0.1f));
   const float driftTop = *std::max_element(series->maxDriftRatio.begin(), series->maxDriftRatio.end());
   const double driftAxisTop = std::max(static_cast<double>(std::max(driftTop, r.peakDriftRatio)) * 100.0 * 1.05, 0.01);
-  w.text("Largest inter-storey drift over time (%), now " + driftPercentText(series->maxDriftRatio[at]));
+  w.textWrapped("Largest inter-storey drift over time (%), now " + driftPercentText(series->maxDriftRatio[at]));
   const Axis driftAxis = makeAxis(0.0, driftAxisTop, 4);
   drawSeries(series->maxDriftRatio, 100.0, driftAxis, "%", series->durationSeconds, now, 70.0f, &t);
   w.textWrapped(
@@ -362,8 +368,8 @@ void ControlPanel::drawResponse(Viewer& viewer, const BuildingInfo& info, ui::Wi
   const float roofTop = std::max(*std::max_element(series->roofDisplacementM.begin(), series->roofDisplacementM.end()),
                                  r.peakRoofDisplacementM);
   const DisplayUnit unit = displacementUnit(roofTop, feet);
-  w.text(std::string("Roof displacement over time (") + unit.name + "), now " +
-         displacementText(series->roofDisplacementM[at], feet));
+  w.textWrapped(std::string("Roof displacement over time (") + unit.name + "), now " +
+                displacementText(series->roofDisplacementM[at], feet));
   const Axis roofAxis = makeAxis(0.0, std::max(static_cast<double>(roofTop) / unit.metresPerUnit * 1.05, 0.1), 4);
   drawSeries(series->roofDisplacementM, 1.0 / unit.metresPerUnit, roofAxis, unit.name, series->durationSeconds, now,
              70.0f);
