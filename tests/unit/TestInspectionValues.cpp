@@ -47,7 +47,7 @@ TEST_CASE("Axis ticks are round numbers inside the range", "[inspection][axes]")
   CHECK(b[1] == Approx(1.0));
   CHECK(b.back() == Approx(2.0));
   CHECK(axisTicks(0.0, 2.3, 5).size() == 5);  // 0, 0.5, ... 2
-  const auto c = axisTicks(-0.31, 0.31, 8);  // a ground motion in g: symmetric, through 0
+  const auto c = axisTicks(-0.31, 0.31, 8);   // a ground motion in g: symmetric, through 0
   REQUIRE(c.size() == 7);
   CHECK(c.front() == Approx(-0.3));
   CHECK(c[3] == 0.0);
