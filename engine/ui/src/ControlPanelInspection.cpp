@@ -67,9 +67,9 @@ PlotFrame beginPlotFrame(float height, const Axis& y, const char* yUnit) {
     draw->AddLine(ImVec2(f.min.x, py), ImVec2(f.max.x, py), IM_COL32(90, 95, 105, 140));
     const std::string label = tickLabel(t, y.step);
     const float w = ImGui::CalcTextSize(label.c_str()).x;
-    draw->AddText(ImVec2(f.min.x - w - 3.0f, py - line * 0.5f), IM_COL32(200, 200, 205, 255), label.c_str());
+    draw->AddText(ImVec2(f.min.x - w - 3.0f, py - line * 0.5f), ImGui::GetColorU32(ImGuiCol_Text), label.c_str());
   }
-  draw->AddText(ImVec2(origin.x, origin.y - line * 0.55f), IM_COL32(200, 200, 205, 255), yUnit);
+  draw->AddText(ImVec2(origin.x, origin.y - line * 0.55f), ImGui::GetColorU32(ImGuiCol_Text), yUnit);
   draw->AddRect(f.min, f.max, IM_COL32(120, 125, 135, 255));
   return f;
 }
@@ -82,13 +82,13 @@ void drawTimeAxis(const PlotFrame& f, double durationSeconds, double nowSeconds)
   const auto xOf = [&](double t) { return f.min.x + static_cast<float>(t / (x.high - x.low)) * (f.max.x - f.min.x); };
   for (double t : x.ticks) {
     const float px = xOf(t);
-    draw->AddLine(ImVec2(px, f.max.y), ImVec2(px, f.max.y + 3.0f), IM_COL32(200, 200, 205, 255));
+    draw->AddLine(ImVec2(px, f.max.y), ImVec2(px, f.max.y + 3.0f), ImGui::GetColorU32(ImGuiCol_Text));
     const std::string label = tickLabel(t, x.step);
     const float w = ImGui::CalcTextSize(label.c_str()).x;
-    draw->AddText(ImVec2(std::min(px - w * 0.5f, f.max.x - w), f.max.y + 3.0f), IM_COL32(200, 200, 205, 255),
+    draw->AddText(ImVec2(std::min(px - w * 0.5f, f.max.x - w), f.max.y + 3.0f), ImGui::GetColorU32(ImGuiCol_Text),
                   label.c_str());
   }
-  draw->AddText(ImVec2(f.min.x - ImGui::CalcTextSize("s ").x - 2.0f, f.max.y + 3.0f), IM_COL32(200, 200, 205, 255),
+  draw->AddText(ImVec2(f.min.x - ImGui::CalcTextSize("s ").x - 2.0f, f.max.y + 3.0f), ImGui::GetColorU32(ImGuiCol_Text),
                 "s");
   if (nowSeconds >= 0.0 && nowSeconds <= durationSeconds + 1e-9) {
     const float px = xOf(nowSeconds);
@@ -172,7 +172,7 @@ void drawStoreyBars(const std::vector<float>& drifts, const std::array<double, 4
   for (std::size_t s = 0; s < n; s += every) {
     const std::string label = std::to_string(s + 1);
     const float px = f.min.x + slot * (static_cast<float>(s) + 0.5f) - ImGui::CalcTextSize(label.c_str()).x * 0.5f;
-    draw->AddText(ImVec2(px, f.max.y + 2.0f), IM_COL32(200, 200, 205, 255), label.c_str());
+    draw->AddText(ImVec2(px, f.max.y + 2.0f), ImGui::GetColorU32(ImGuiCol_Text), label.c_str());
   }
   ImGui::Dummy(ImVec2(f.max.x - ImGui::GetCursorScreenPos().x, f.max.y - ImGui::GetCursorScreenPos().y + line + 4.0f));
 }
