@@ -3,6 +3,7 @@
 // served by a fake fetcher: scene tests run natively and in WASM without files or a server.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -98,14 +99,17 @@ struct MiniCity {
   static constexpr const char* kLod2Id = "s1";
 
   /// `rootLimit`: how many buildings the coarse root draws (the first ones of the first leaves), as
-  /// a large city's coarse tiles hold only some of theirs.
-  explicit MiniCity(bool withResponse = true, bool withLod2 = false, std::size_t rootLimit = kSide * kSide)
-      : withLod2_(withLod2) {
+  /// a large city's coarse tiles hold only some of theirs. `heightsM`: cells (i, j) whose prism
+  /// rises to another height than kStoreys x kStoreyHeight (towers; still kStoreys storeys).
+  explicit MiniCity(bool withResponse = true, bool withLod2 = false, std::size_t rootLimit = kSide * kSide,
+                    std::map<std::pair<int, int>, float> heightsM = {})
+      : withLod2_(withLod2), heightsM_(std::move(heightsM)) {
     const std::string prefix = "city/";
     tileset.generator = "test";
     tileset.originLon = -74.0;
     tileset.originLat = 40.7;
     tileset.maxHeightM = kStoreys * kStoreyHeight;
+    for (const auto& [cell, h] : heightsM_) tileset.maxHeightM = std::max(tileset.maxHeightM, h);
     tileset.buildings = kSide * kSide;
     if (withResponse) {
       ResponseInfo r;
@@ -146,7 +150,7 @@ struct MiniCity {
         e.use = "office";
         e.x = static_cast<float>(centreX(i));
         e.y = static_cast<float>(centreY(j));
-        e.heightM = kStoreys * kStoreyHeight;
+        e.heightM = heightOf(i, j);
         e.storeys = kStoreys;
         e.lod = withLod2_ && i == 0 && j == 0 ? 2 : 1;
         e.leaf = q + 1;
@@ -188,6 +192,11 @@ struct MiniCity {
     return r.peakDriftRatio * (1.0f + 0.1f * static_cast<float>(storey));
   }
   static double centreY(int j) { return (j - kSide / 2 + 0.5) * 40.0; }
+  /// Height of building (i, j)'s prism (metres).
+  [[nodiscard]] float heightOf(int i, int j) const {
+    const auto it = heightsM_.find({i, j});
+    return it == heightsM_.end() ? kStoreys * kStoreyHeight : it->second;
+  }
 
  private:
   TileNode makeNode(std::uint8_t level, std::uint32_t x, std::uint32_t y, const std::vector<std::pair<int, int>>& cells,
@@ -216,7 +225,7 @@ struct MiniCity {
       TilePart part;
       part.ringCount = 1;
       part.triangleCount = 2;
-      part.heightM = kStoreys * kStoreyHeight;
+      part.heightM = heightOf(i, j);
       tile.parts.push_back(part);
       TileBuilding b;
       b.partCount = 1;
@@ -274,6 +283,7 @@ struct MiniCity {
     n.bounds =
         Rect{static_cast<float>(minX), static_cast<float>(minY), static_cast<float>(maxX), static_cast<float>(maxY)};
     n.maxHeightM = kStoreys * kStoreyHeight;
+    for (const auto& [i, j] : cells) n.maxHeightM = std::max(n.maxHeightM, heightOf(i, j));
     n.coarse = coarse;
     n.geometricErrorM = coarse ? 20.0f : 0.0f;
     n.buildings = static_cast<std::uint32_t>(cells.size());
@@ -304,6 +314,7 @@ struct MiniCity {
   }
 
   bool withLod2_ = false;
+  std::map<std::pair<int, int>, float> heightsM_;
 };
 
 }  // namespace qv::test

@@ -689,3 +689,62 @@ TEST_CASE("building(id) says why a building has no result and when a result is a
   CHECK(approximate.find("\"unconvergedSteps\":12") != std::string::npos);
   CHECK(approximate.find("\"worstResidualRatio\":0.25") != std::string::npos);
 }
+
+TEST_CASE("Fly to shows a low-rise building surrounded by towers: no other building hides its centre",
+          "[scene][city][flyto]") {
+  // Building (3, 3), 17.5 m, with 120 m towers south, west and east of it (20 m gaps between them).
+  const std::map<std::pair<int, int>, float> towers{{{2, 2}, 120.0f}, {{3, 2}, 120.0f}, {{4, 2}, 120.0f},
+                                                    {{2, 3}, 120.0f}, {{4, 3}, 120.0f}, {{2, 4}, 120.0f}};
+  SceneRig rig(MiniCity(true, false, MiniCity::kSide * MiniCity::kSide, towers));
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
+  // The user looks north over the city, so flying straight in would look across the southern towers.
+  viewer.setCamera(CameraState{0.0, -300.0, 900.0, 0.0, 45.0, 45.0});
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+
+  // The first building a ray from the eye to the building's centre meets (the scene's own picking).
+  auto firstHit = [&](const std::string& id) -> std::string {
+    const auto info = viewer.building(id);
+    REQUIRE(info.has_value());
+    const CameraView view(viewer.camera(), 1280, 720);
+    const glm::vec3 centre(static_cast<float>(info->attributes.centroidX),
+                           static_cast<float>(info->attributes.centroidY), info->attributes.heightM * 0.5f);
+    const glm::vec3 eye = view.eye();
+    const auto ref = viewer.city()->pick(eye, glm::normalize(centre - eye));
+    if (!ref) return "(nothing)";
+    const auto hit = viewer.city()->info(*ref);
+    return hit ? hit->attributes.id : "(unknown)";
+  };
+  auto flyAndSettle = [&](const std::string& id) {
+    REQUIRE(viewer.select(id));
+    REQUIRE(viewer.flyToSelection());
+    runFrames(viewer, 120);  // the 1.2 s flight
+    for (int i = 0; i < 40 && !viewer.settled(); ++i) runFrames(viewer, 1);
+  };
+
+  const std::string low = MiniCity::idOf(3, 3);
+  // What the old Fly to did (keep heading and pitch, frame from 150 m): a tower is in the way.
+  viewer.setCamera(CameraState{MiniCity::centreX(3), MiniCity::centreY(3), 150.0, 0.0, 45.0, 45.0});
+  runFrames(viewer, 20);
+  CHECK(firstHit(low) == MiniCity::idOf(3, 2));
+
+  viewer.setCamera(CameraState{0.0, -300.0, 900.0, 0.0, 45.0, 45.0});
+  runFrames(viewer, 20);
+  flyAndSettle(low);
+  CHECK(viewer.camera().x == Approx(MiniCity::centreX(3)));
+  CHECK(viewer.camera().y == Approx(MiniCity::centreY(3)));
+  CHECK(firstHit(low) == low);
+  // From another side or height than the user's (through a gap between the towers, or the open north).
+  CHECK((viewer.camera().headingDeg != Approx(0.0).margin(1.0) || viewer.camera().pitchDeg != Approx(45.0)));
+
+  // A tower with nothing tall in front keeps the user's heading and pitch.
+  viewer.setCamera(CameraState{0.0, -300.0, 900.0, 0.0, 45.0, 45.0});
+  runFrames(viewer, 20);
+  const std::string tower = MiniCity::idOf(3, 2);
+  flyAndSettle(tower);
+  CHECK(viewer.camera().headingDeg == Approx(0.0).margin(1e-6));
+  CHECK(viewer.camera().pitchDeg == Approx(45.0));
+  CHECK(viewer.camera().distance == Approx(300.0));  // 2.5 x 120 m
+  CHECK(firstHit(tower) == tower);
+}

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <imgui.h>
+#include <imgui_internal.h>  // ImGuiWindow: the inspection window's size and scroll
 
 #include "HeadlessImGui.h"
 #include "MiniCity.h"
@@ -127,14 +128,27 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
   CHECK(text.find("Height: 17.5 m (inferred from storeys and use)") != std::string::npos);
   CHECK(text.find("Storeys: 5 (inferred from height and use)") != std::string::npos);
   CHECK(text.find("Damage state: ") != std::string::npos);
-  CHECK(text.find("Roof displacement over time: peak ") != std::string::npos);
-  CHECK(text.find("Peak drift per storey (ground to roof): largest") != std::string::npos);
+  // One peak drift, the solver's, in its storey (MiniCity: the summary's peak of building (1, 1),
+  // its largest storey drift in storey 5); the roof's 0.062 m in millimetres.
+  const double peakDrift = test::MiniCity::responseOf(1, 1).peakDriftRatio;
+  CHECK(text.find(ui::format("Peak inter-storey drift: %.2f %% in storey 5 (exact peak from the solver)",
+                             peakDrift * 100.0)) != std::string::npos);
+  CHECK(text.find("Peak inter-storey drift", text.find("Peak inter-storey drift") + 1) == std::string::npos);
+  CHECK(text.find("Peak roof displacement: 62 mm") != std::string::npos);
+  CHECK(text.find("Largest inter-storey drift over time (%), now ") != std::string::npos);
+  CHECK(text.find("Roof displacement over time (mm), now ") != std::string::npos);
+  CHECK(text.find("the peak above is the solver's exact value") != std::string::npos);
+  CHECK(text.find("Plot axes: time 0 to 10.0 s, the current time") != std::string::npos);
+  // Storey bars on the fixed scale of the building's type (C1 mid-rise for an unknown type).
+  CHECK(text.find("Peak drift per storey (storey 1 = ground, left), fixed scale 0 to ") != std::string::npos);
+  CHECK(text.find("Storeys by the state their drift reaches: ") != std::string::npos);
   CHECK(text.find("OpenStreetMap") == std::string::npos);  // a synthetic id has no OSM object
 
   // Feet on request.
   viewer.setShowFeet(true);
   text = drawPanel(viewer, mirror, panel, host);
   CHECK(text.find("Height: 57 ft (inferred from storeys and use)") != std::string::npos);
+  CHECK(text.find("Peak roof displacement: 2.4 in") != std::string::npos);  // 0.062 m
 
   // The export writes the filtered list (every building when no filter is set) with lon/lat.
   BuildingFilters f;
@@ -162,4 +176,54 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
   CHECK(csv.find(",-74.0") != std::string::npos);  // longitudes near the origin
   const std::string geojson = panel.exportList(viewer, "geojson", host);
   CHECK(geojson.find("\"type\":\"FeatureCollection\"") != std::string::npos);
+}
+
+TEST_CASE("The inspection window fits a short screen, scrolls with the wheel and starts at the top for each building",
+          "[ui][city][inspection]") {
+  HeadlessImGui imgui;
+  ImGui::GetIO().DisplaySize = ImVec2(1280.0f, 400.0f);
+  test::MiniCity city;
+  test::FakeFetcher fetcher;
+  city.serve(fetcher);
+  NullRenderDevice device;
+  Viewer viewer(device);
+  viewer.openCity("city/tileset.json", fetcher);
+  viewer.setViewport(1280, 400, 1280.0, 400.0);
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  for (int i = 0; i < 20; ++i) viewer.frame(1.0 / 60.0);
+  REQUIRE(viewer.settled());
+  TextMirror mirror;
+  ControlPanel panel;
+  RecordingHost host;
+  REQUIRE(viewer.select("s10"));
+  for (int i = 0; i < 5; ++i) viewer.frame(1.0 / 60.0);
+  for (int i = 0; i < 3; ++i) drawPanel(viewer, mirror, panel, host);
+  ImGuiWindow* window = ImGui::FindWindowByName("###inspection");
+  REQUIRE(window != nullptr);
+  // Within the screen, the content taller than the window.
+  CHECK(window->Pos.y >= 0.0f);
+  CHECK(window->Pos.y + window->Size.y <= 400.0f);
+  REQUIRE(window->ScrollMax.y > 0.0f);
+  CHECK(window->Scroll.y == 0.0f);
+
+  // The wheel over the window scrolls it (as the app feeds it: during the frame, after NewFrame).
+  ImGui::GetIO().MousePos = ImVec2(window->Pos.x + 100.0f, window->Pos.y + 150.0f);
+  drawPanel(viewer, mirror, panel, host);  // hovered from the next frame on
+  ImGui::NewFrame();
+  ImGui::GetIO().MouseWheel = -2.0f;
+  mirror.beginFrame();
+  {
+    ui::Widgets w(mirror);
+    panel.draw(viewer, w, MemoryInfo{}, host);
+  }
+  ImGui::Render();
+  mirror.endFrame();
+  drawPanel(viewer, mirror, panel, host);
+  CHECK(window->Scroll.y > 0.0f);
+
+  // The next building starts at the top.
+  REQUIRE(viewer.select("s11"));
+  for (int i = 0; i < 3; ++i) drawPanel(viewer, mirror, panel, host);
+  CHECK(window->Scroll.y == 0.0f);
+  CHECK(mirror.text().find("== Building s11 ==") != std::string::npos);
 }

@@ -168,6 +168,27 @@ std::optional<BuildingSeries> CityScene::selectionSeries(std::size_t samples) {
   return series_;
 }
 
+std::vector<Box> CityScene::buildingBoxesNear(double x, double y, double radiusM, std::string_view exceptId) const {
+  std::vector<Box> out;
+  auto near = [&](const Box& b) {
+    const double dx = std::max({0.0, static_cast<double>(b.minX) - x, x - static_cast<double>(b.maxX)});
+    const double dy = std::max({0.0, static_cast<double>(b.minY) - y, y - static_cast<double>(b.maxY)});
+    return dx * dx + dy * dy <= radiusM * radiusM;
+  };
+  for (const auto& t : tiles_) {
+    if (!t->loaded) continue;
+    const LoadedTile& tile = *t->loaded;
+    if (tile.tree.size() == 0 || !near(tile.tree.bounds())) continue;
+    for (std::uint32_t b = 0; b < tile.buildingCount(); ++b) {
+      const TileBuilding& tb = tile.data.buildings[b];
+      if (hiddenByLod(tb.attributes.lod) || tb.attributes.id == exceptId) continue;
+      const Box box = buildingBox(tile, b);
+      if (near(box)) out.push_back(box);
+    }
+  }
+  return out;
+}
+
 std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::vec3& direction) const {
   float best = INFINITY;
   std::optional<BuildingRef> hit;

@@ -5,26 +5,6 @@
 namespace qv {
 namespace {
 
-// The building's box in the city frame: its prisms and the LOD2 model the tile draws.
-Box buildingBox(const TileContent& tile, std::uint32_t b) {
-  const CityTile& d = tile.data;
-  const TileBuilding& tb = d.buildings[b];
-  Box box;
-  for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
-    const TilePart& part = d.parts[p];
-    for (std::uint32_t v = part.firstVertex; v < part.firstVertex + part.vertexCount; ++v) {
-      box.expand(d.vertices[v].x + tile.origin.x, d.vertices[v].y + tile.origin.y, part.minHeightM);
-      box.expand(d.vertices[v].x + tile.origin.x, d.vertices[v].y + tile.origin.y, part.heightM);
-    }
-  }
-  if (const TileMesh* m = tile.meshOf(b)) {
-    const float ground = tb.attributes.minHeightM;
-    for (const glm::vec3& q : d.coarse ? m->farPositions : m->positions)
-      box.expand(q.x + tile.origin.x, q.y + tile.origin.y, q.z + ground);
-  }
-  return box;
-}
-
 // The LOD2 model of one building (the far mesh in coarse tiles), marked kKindModel. Its vertices
 // lie on the floor planes it was re-meshed at: the vertex shader blends the displacements of the
 // floors below and above each vertex by height (qv/anim/FloorBlend.h), so tiles store no skin.
@@ -89,6 +69,25 @@ void appendExtrusions(MeshData& mesh, const CityTile& d, const TileBuilding& tb,
 }
 
 }  // namespace
+
+Box buildingBox(const TileContent& tile, std::uint32_t b) {
+  const CityTile& d = tile.data;
+  const TileBuilding& tb = d.buildings[b];
+  Box box;
+  for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
+    const TilePart& part = d.parts[p];
+    for (std::uint32_t v = part.firstVertex; v < part.firstVertex + part.vertexCount; ++v) {
+      box.expand(d.vertices[v].x + tile.origin.x, d.vertices[v].y + tile.origin.y, part.minHeightM);
+      box.expand(d.vertices[v].x + tile.origin.x, d.vertices[v].y + tile.origin.y, part.heightM);
+    }
+  }
+  if (const TileMesh* m = tile.meshOf(b)) {
+    const float ground = tb.attributes.minHeightM;
+    for (const glm::vec3& q : d.coarse ? m->farPositions : m->positions)
+      box.expand(q.x + tile.origin.x, q.y + tile.origin.y, q.z + ground);
+  }
+  return box;
+}
 
 TileContent indexTile(CityTile data) {
   TileContent tile;

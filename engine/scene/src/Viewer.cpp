@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "qv/core/JsonWriter.h"
+#include "qv/scene/FlyToPose.h"
 
 namespace qv {
 namespace {
@@ -153,6 +154,10 @@ void Viewer::frame(double dtSeconds) {
       camera_.y = a.y + (b.y - a.y) * s;
       // Distance interpolates geometrically (zooming feels even).
       camera_.distance = a.distance * std::pow(b.distance / a.distance, s);
+      // Heading the short way round, pitch linearly (Fly to may choose another side and height).
+      const double turn = std::remainder(b.headingDeg - a.headingDeg, 360.0);
+      camera_.headingDeg = std::fmod(a.headingDeg + turn * s + 360.0, 360.0);
+      camera_.pitchDeg = a.pitchDeg + (b.pitchDeg - a.pitchDeg) * s;
       if (f >= 1.0) flight_.reset();
     }
   }
@@ -291,17 +296,34 @@ void Viewer::flyTo(double x, double y, double distance) {
 
 bool Viewer::flyToSelection() {
   const auto info = building(selection());
-  if (!info) {
+  FlyToTarget target;
+  if (info) {
+    target.x = info->attributes.centroidX;
+    target.y = info->attributes.centroidY;
+    target.baseZ = info->attributes.minHeightM;
+    target.topZ = info->attributes.heightM;
+    target.footprintAreaM2 = info->attributes.footprintAreaM2;
+  } else {
     // Not loaded yet (a large city's far view holds only its largest buildings): the index knows where.
     const SearchEntry* e = city_ ? city_->indexEntry(selection()) : nullptr;
     if (e == nullptr) return false;
-    flyTo(e->x, e->y, std::max(static_cast<double>(e->heightM) * 2.5, 150.0));
-    return true;
+    target.x = e->x;
+    target.y = e->y;
+    target.topZ = e->heightM;
   }
-  const double size = std::max({static_cast<double>(info->attributes.heightM) * 2.5,
-                                std::sqrt(std::max(0.0f, info->attributes.footprintAreaM2)) * 6.0, 150.0});
-  flyTo(info->attributes.centroidX, info->attributes.centroidY, size);
+  // From the side where no loaded building stands between the eye and the building (FlyToPose.h).
+  const double reach = flyToDistance(target.topZ, target.footprintAreaM2);
+  const std::vector<Box> occluders =
+      city_ ? city_->buildingBoxesNear(target.x, target.y, reach, selection()) : std::vector<Box>{};
+  flyToPose(chooseFlyToPose(camera_, target, occluders).camera);
   return true;
+}
+
+void Viewer::flyToPose(const CameraState& pose) {
+  CameraState to = pose;
+  sanitizeCamera(to, camera_);
+  flight_ = Flight{camera_, to, 0.0, 1.2};
+  cameraSetByUser_ = true;
 }
 
 std::optional<glm::dvec2> Viewer::groundAt(double cssX, double cssY) const {

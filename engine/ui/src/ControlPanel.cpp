@@ -15,7 +15,6 @@ namespace {
 
 constexpr double kFeetPerMetre = 3.280839895;
 constexpr float kPanelWidth = 350.0f;
-constexpr float kInspectionWidth = 370.0f;
 
 // The record as the panel shows it: file names only. Responses written before the files stored
 // only the name carried the path of the machine that ran `response`; its directories are dropped
@@ -470,8 +469,9 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
         const std::string label = (hit.name.empty() ? hit.id : hit.name + " (" + hit.id + ")") +
                                   (hit.address.empty() ? "" : ", " + hit.address) + "##search" + hit.id;
         if (w.selectable(label.c_str(), hit.id == viewer.selection())) {
-          viewer.select(hit.id);
-          viewer.flyTo(hit.x, hit.y, std::max(200.0, static_cast<double>(hit.heightM) * 3.0));
+          // Framed from a side where it is seen (FlyToPose.h), like the window's Fly to.
+          if (!viewer.select(hit.id) || !viewer.flyToSelection())
+            viewer.flyTo(hit.x, hit.y, std::max(200.0, static_cast<double>(hit.heightM) * 3.0));
         }
       }
     }
@@ -500,8 +500,8 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
                      (e.name.empty() ? e.id : e.name).c_str(), percent(e.peakDriftRatio).c_str()) +
           "##list" + e.id;
       if (w.selectable(label.c_str(), e.id == viewer.selection())) {
-        viewer.select(e.id);
-        viewer.flyTo(e.x, e.y, std::max(200.0, static_cast<double>(e.heightM) * 3.0));
+        if (!viewer.select(e.id) || !viewer.flyToSelection())
+          viewer.flyTo(e.x, e.y, std::max(200.0, static_cast<double>(e.heightM) * 3.0));
       }
     }
     if (w.button("Export CSV")) exportList(viewer, "csv", host);
@@ -567,135 +567,6 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
         "R reset, F fly to the selection, Esc clear it, / search, Tab moves through the panel.");
   }
   w.end();
-}
-
-void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) {
-  const std::string id = viewer.selection();
-  if (id.empty()) return;
-  const auto info = viewer.building(id);
-  if (!info) return;
-  const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x - kInspectionWidth - 10.0f, 10.0f), ImGuiCond_Always);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kInspectionWidth, 0.0f), ImVec2(kInspectionWidth, display.y * 0.75f));
-  ImGui::SetNextWindowBgAlpha(0.92f);
-  bool open = true;
-  const std::string title = "Building " + id + "###inspection";
-  if (w.begin(title.c_str(), &open, ImGuiWindowFlags_AlwaysAutoResize)) {
-    const BuildingAttributes& a = info->attributes;
-    w.text(a.name.empty() ? std::string("(no name)") : a.name);
-    w.field("Use", a.use.empty() ? std::string("unknown") : a.use);
-    if (!a.address.empty()) w.field("Address", a.address);
-    if (!info->detailed) w.text("(loading the full record of this building)");
-    w.field("Height", lengthText(viewer, a.heightM) + (a.heightSource == ValueSource::Tagged
-                                                           ? std::string(" (tagged)")
-                                                           : std::string(" (inferred from storeys and use)")));
-    w.field("Storeys", ui::format("%u", a.storeys) + (a.storeysSource == ValueSource::Tagged
-                                                          ? std::string(" (tagged)")
-                                                          : std::string(" (inferred from height and use)")));
-    if (a.minHeightM > 0.0f) w.field("Base", lengthText(viewer, a.minHeightM));
-    w.field("Structure", std::string(structuralTypeCode(a.structuralType)) + ", " +
-                             std::string(structuralTypeDescription(a.structuralType)) + " (inferred)");
-    w.field("Code era", std::string(codeEraName(a.codeEra)) + (a.startYear > 0 ? ui::format(" (built %d)", a.startYear)
-                                                                               : std::string(" (year unknown)")));
-    std::string importance(importanceName(a.importance));
-    const std::pair<unsigned, const char*> reasons[] = {
-        {kReasonHospital, "hospital"}, {kReasonFireStation, "fire station"}, {kReasonPolice, "police"},
-        {kReasonSchool, "school"},     {kReasonTall, "over 100 m"},          {kReasonComplex, "several parts"},
-        {kReasonShelter, "shelter"}};
-    std::string why;
-    for (const auto& [bit, name] : reasons) {
-      if ((a.importanceReasons & bit) != 0) why += (why.empty() ? "" : ", ") + std::string(name);
-    }
-    if (!why.empty()) importance += " (" + why + ")";
-    w.field("Importance", importance);
-    // Why values were inferred or changed (docs/attributes.md, "Plausibility rules").
-    for (unsigned bit = 1; bit < 256; bit <<= 1) {
-      if ((a.notes & bit) != 0) w.textWrapped("Inferred: " + std::string(attributeNoteText(bit)));
-    }
-    if (a.lod == 2 && !info->modelSource.empty()) {
-      const std::string_view source = info->modelSource == "cityjson"    ? "CityJSON"
-                                      : info->modelSource == "obj"       ? "OBJ"
-                                      : info->modelSource == "osm-parts" ? "OpenStreetMap building parts"
-                                      : info->modelSource == "synthetic" ? "the synthetic city's tower generator"
-                                                                         : "other source";
-      w.field("Model", ui::format("LOD2 detailed model from %s, %u triangles%s", std::string(source).c_str(),
-                                  info->modelTriangles, info->detailed ? "" : " (simplified at this distance)"));
-    } else {
-      w.field("Model", a.lod == 2 ? "LOD2 detailed model" : "LOD1 extruded footprint");
-    }
-    if (a.id.size() > 1 && (a.id[0] == 'w' || a.id[0] == 'r') &&
-        a.id.find_first_not_of("0123456789", 1) == std::string::npos) {
-      const std::string path = (a.id[0] == 'w' ? "way/" : "relation/") + a.id.substr(1);
-      const std::string url = "https://www.openstreetmap.org/" + path;
-      if (w.button(("View on openstreetmap.org/" + path).c_str())) host.openUrl(url);
-    }
-    w.separator();
-    if (info->hasResponse && info->response.source != ResponseSource::None) {
-      const BuildingResponse& r = info->response;
-      const Rgb c =
-          r.damage == DamageState::NoResult ? kNoResultColor : kDamagePalette[static_cast<std::size_t>(r.damage)];
-      w.swatch(c.r, c.g, c.b, "Damage state: " + std::string(damageStateName(r.damage)));
-      const auto t = seismic::hazusDriftThresholds(a.structuralType, a.codeEra, a.storeys);
-      w.textWrapped(ui::format("Thresholds for %s, %s: slight %s, moderate %s, extensive %s, complete %s",
-                               std::string(structuralTypeCode(a.structuralType)).c_str(),
-                               std::string(codeEraName(a.codeEra)).c_str(), percent(t[0]).c_str(),
-                               percent(t[1]).c_str(), percent(t[2]).c_str(), percent(t[3]).c_str()));
-      w.field("Peak inter-storey drift", percent(r.peakDriftRatio));
-      w.field("Peak roof displacement", lengthText(viewer, r.peakRoofDisplacementM));
-      w.field("Peak ground acceleration", ui::format("%.3f g", static_cast<double>(r.pgaG)));
-      w.field("Residual drift", percent(r.residualDriftRatio));
-      w.field("Results from",
-              r.source == ResponseSource::Imported ? "imported analysis" : "MDOF shear-building model (simplified)");
-      if (r.approximate) {
-        w.textColored(0.6f, 0.35f, 0.0f,
-                      ui::format("Approximate (solver did not converge at %u steps, residual %.2g of the forces)",
-                                 r.unconvergedSteps, static_cast<double>(r.worstResidualRatio)));
-      }
-      drawShakingOfBuilding(*info, w);
-      if (info->loss) drawBuildingLoss(*info->loss, w);
-      if (CityScene* city = viewer.city()) {
-        if (const auto series = city->selectionSeries(240)) {
-          const float cursor = static_cast<float>(viewer.time() / std::max(series->durationSeconds, 1e-3));
-          const float roofPeak = *std::max_element(series->roofDisplacementM.begin(), series->roofDisplacementM.end());
-          const float driftPeak = *std::max_element(series->maxDriftRatio.begin(), series->maxDriftRatio.end());
-          const auto now =
-              std::min<std::size_t>(series->roofDisplacementM.size() - 1,
-                                    static_cast<std::size_t>(std::max(0.0f, cursor) *
-                                                             static_cast<float>(series->roofDisplacementM.size() - 1)));
-          w.plot("##roof", series->roofDisplacementM.data(), static_cast<int>(series->roofDisplacementM.size()), 0.0f,
-                 roofPeak * 1.05f + 1e-6f, 48.0f, cursor,
-                 "Roof displacement over time: peak " + lengthText(viewer, roofPeak) + ", now " +
-                     lengthText(viewer, series->roofDisplacementM[now]));
-          w.plot("##drift", series->maxDriftRatio.data(), static_cast<int>(series->maxDriftRatio.size()), 0.0f,
-                 driftPeak * 1.05f + 1e-9f, 48.0f, cursor,
-                 "Largest inter-storey drift over time: peak " + percent(driftPeak) + ", now " +
-                     percent(series->maxDriftRatio[now]));
-        } else {
-          w.text("(loading this building's motion)");
-        }
-      }
-      if (!info->storeyPeakDrift.empty()) {
-        const auto peak = *std::max_element(info->storeyPeakDrift.begin(), info->storeyPeakDrift.end());
-        const auto worst =
-            static_cast<std::size_t>(std::max_element(info->storeyPeakDrift.begin(), info->storeyPeakDrift.end()) -
-                                     info->storeyPeakDrift.begin());
-        w.bars("##storeys", info->storeyPeakDrift.data(), static_cast<int>(info->storeyPeakDrift.size()),
-               peak * 1.05f + 1e-9f, 48.0f,
-               ui::format("Peak drift per storey (ground to roof): largest %s in storey %zu", percent(peak).c_str(),
-                          worst + 1));
-      }
-    } else {
-      w.swatch(kNoResultColor.r, kNoResultColor.g, kNoResultColor.b, "No earthquake result for this building", true);
-      if (info->hasResponse) {
-        w.textWrapped("Reason: " + std::string(noResultReasonDescription(info->response.noResultReason)));
-      }
-    }
-    if (w.button("Fly to (F)")) viewer.flyToSelection();
-    w.sameLine();
-    if (w.button("Close (Esc)")) open = false;
-  }
-  w.end();
-  if (!open) viewer.select("");
 }
 
 void ControlPanel::drawFilterChips(Viewer& viewer, ui::Widgets& w) {

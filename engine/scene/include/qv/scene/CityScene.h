@@ -14,12 +14,14 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "qv/anim/HistorySampling.h"
 #include "qv/format/CityTile.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/format/Tileset.h"
+#include "qv/geometry/Bounds.h"
 #include "qv/geometry/OrbitCamera.h"
 #include "qv/lod/TileSelector.h"
 #include "qv/scene/BuildingInfo.h"
@@ -117,6 +119,10 @@ class CityScene {
   // Picking, lookup and inspection.
   /// The first building a ray (city frame, any direction length) meets among the drawn tiles.
   [[nodiscard]] std::optional<BuildingRef> pick(const glm::vec3& origin, const glm::vec3& direction) const;
+  /// The boxes (city frame) of every loaded building, other than `exceptId`, whose footprint box
+  /// comes within `radiusM` of (x, y): the occluders Fly to steers around (qv/scene/FlyToPose.h).
+  /// A building loaded in a coarse tile and its leaf gives a box from each.
+  [[nodiscard]] std::vector<Box> buildingBoxesNear(double x, double y, double radiusM, std::string_view exceptId) const;
   /// The best loaded copy of a building: its leaf when loaded, else a coarse tile holding it.
   [[nodiscard]] std::optional<BuildingRef> find(std::string_view id) const;
   [[nodiscard]] std::optional<BuildingInfo> info(BuildingRef ref) const;

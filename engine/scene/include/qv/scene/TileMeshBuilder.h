@@ -44,6 +44,10 @@ struct TileContent {
 /// tile draws it (the far mesh in coarse tiles), its LOD2 model.
 TileContent indexTile(CityTile tile);
 
+/// The building's box in the city frame: its prisms and the LOD2 model the tile draws (the far
+/// mesh in coarse tiles). `building` indexes tile.data.buildings and must be in range.
+Box buildingBox(const TileContent& tile, std::uint32_t building);
+
 /// The merged mesh of every building in position order: a LOD2 model (kKindModel) followed by its
 /// LOD1 extrusion (kKindFallback), or the extrusion alone. Leaves get a vertex ring at every floor
 /// level inside each part (the floors bend with their displacements); coarse tiles plain prisms.

@@ -88,8 +88,12 @@ class Viewer {
   [[nodiscard]] const std::string& selection() const;
   /// Moves the camera smoothly to look at (x, y) from `distance` metres (keeps heading/pitch).
   void flyTo(double x, double y, double distance);
-  /// Flies to the selected building.
+  /// Flies to the selected building so that it is seen: the framing distance, from the heading and
+  /// pitch nearest the current ones along which no loaded building hides its centre or roof
+  /// (qv::chooseFlyToPose). False when nothing is selected or the building is unknown.
   bool flyToSelection();
+  /// Moves the camera smoothly to `pose` (invalid fields keep the current values).
+  void flyToPose(const CameraState& pose);
   /// The ground point under a canvas point (CSS pixels), metres in the city frame.
   [[nodiscard]] std::optional<glm::dvec2> groundAt(double cssX, double cssY) const;
   /// The geographic frame of the city (invalid before the manifest arrives or for the test scene).

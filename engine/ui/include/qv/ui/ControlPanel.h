@@ -42,7 +42,12 @@ class ControlPanel {
 
  private:
   void drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);
+  /// The selected building's window (ControlPanelInspection.cpp); it starts at the top for each
+  /// newly selected building and scrolls when taller than the viewport.
   void drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host);
+  /// Its response: damage, the one peak drift and its source, peaks, plots with axes and the
+  /// current time, and the per-storey drifts on a fixed scale with the HAZUS thresholds.
+  void drawResponse(Viewer& viewer, const BuildingInfo& info, ui::Widgets& w);
   void drawOverlay(Viewer& viewer, ui::Widgets& w);
   /// The active filters as a strip at the top of the canvas, whatever the panel's state.
   void drawFilterChips(Viewer& viewer, ui::Widgets& w);
@@ -59,6 +64,7 @@ class ControlPanel {
   std::optional<std::pair<double, double>> cursor_;
   bool focusSearch_ = false;
   std::string search_;
+  std::string inspected_;  // the building the inspection window showed last frame
   QualityPreset quality_ = QualityPreset::High;
 };
 

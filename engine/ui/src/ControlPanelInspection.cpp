@@ -1,0 +1,380 @@
+// The inspection window of the selected building: what it is, its response with one peak drift
+// from a stated source, plots with axes, units and the current time, and the per-storey peak drifts
+// on a fixed scale with the building's HAZUS thresholds. Values and scales come from the pure
+// qv/scene/InspectionValues.h; this file only draws them (Dear ImGui) and mirrors them as text.
+#include <imgui.h>
+#include <imgui_internal.h>  // GImGui->WheelingWindow: whether ImGui handled the wheel itself
+
+#include <algorithm>
+#include <cmath>
+
+#include "qv/scene/InspectionValues.h"
+#include "qv/scene/Palette.h"
+#include "qv/seismic/Damage.h"
+#include "qv/ui/ControlPanel.h"
+
+namespace qv {
+namespace {
+
+constexpr float kInspectionWidth = 370.0f;
+constexpr float kMarginPx = 10.0f;
+// Room left under the window for the map overlay (north arrow, scale bar, cursor) at the bottom right.
+constexpr float kOverlayRoomPx = 78.0f;
+
+ImU32 colourOf(const Rgb& c, float alpha = 1.0f) {
+  return ImGui::GetColorU32(ImVec4(c.r, c.g, c.b, alpha));
+}
+
+const char* const kStateNames[4] = {"slight", "moderate", "extensive", "complete"};
+
+// A value axis: tick values and labels for [0, top] (or [-top, top]) in the axis's display unit.
+struct Axis {
+  double low = 0.0, high = 1.0;  // in display units
+  std::vector<double> ticks;
+  double step = 1.0;
+};
+
+Axis makeAxis(double low, double high, int maxTicks) {
+  Axis a;
+  a.low = low;
+  a.high = high > low ? high : low + 1.0;
+  a.ticks = axisTicks(a.low, a.high, maxTicks);
+  a.step = a.ticks.size() > 1 ? a.ticks[1] - a.ticks[0] : a.high - a.low;
+  return a;
+}
+
+// Frame of a plot: the area for the curve inside room for the value labels (left) and the time
+// labels (below). Returns the curve's rectangle.
+struct PlotFrame {
+  ImVec2 min, max;
+};
+
+PlotFrame beginPlotFrame(float height, const Axis& y, const char* yUnit) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const float width = ImGui::GetContentRegionAvail().x;
+  const float labelWidth = ImGui::CalcTextSize("0000.0").x;
+  const float line = ImGui::GetTextLineHeight();
+  PlotFrame f;
+  f.min = ImVec2(origin.x + labelWidth + 4.0f, origin.y + line * 0.5f);
+  f.max = ImVec2(origin.x + width - 4.0f, origin.y + height);
+  draw->AddRectFilled(f.min, f.max, IM_COL32(25, 28, 34, 255));
+  const auto yOf = [&](double v) {
+    return f.max.y - static_cast<float>((v - y.low) / (y.high - y.low)) * (f.max.y - f.min.y);
+  };
+  for (double t : y.ticks) {
+    const float py = yOf(t);
+    draw->AddLine(ImVec2(f.min.x, py), ImVec2(f.max.x, py), IM_COL32(90, 95, 105, 140));
+    const std::string label = tickLabel(t, y.step);
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    draw->AddText(ImVec2(f.min.x - w - 3.0f, py - line * 0.5f), ImGui::GetColorU32(ImGuiCol_Text), label.c_str());
+  }
+  draw->AddText(ImVec2(origin.x, origin.y - line * 0.55f), ImGui::GetColorU32(ImGuiCol_Text), yUnit);
+  draw->AddRect(f.min, f.max, IM_COL32(120, 125, 135, 255));
+  return f;
+}
+
+// The time axis under a plot: ticks in seconds and the current time as a vertical line.
+void drawTimeAxis(const PlotFrame& f, double durationSeconds, double nowSeconds) {
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const float line = ImGui::GetTextLineHeight();
+  const Axis x = makeAxis(0.0, std::max(durationSeconds, 1e-3), 6);
+  const auto xOf = [&](double t) { return f.min.x + static_cast<float>(t / (x.high - x.low)) * (f.max.x - f.min.x); };
+  for (double t : x.ticks) {
+    const float px = xOf(t);
+    draw->AddLine(ImVec2(px, f.max.y), ImVec2(px, f.max.y + 3.0f), ImGui::GetColorU32(ImGuiCol_Text));
+    const std::string label = tickLabel(t, x.step);
+    const float w = ImGui::CalcTextSize(label.c_str()).x;
+    draw->AddText(ImVec2(std::min(px - w * 0.5f, f.max.x - w), f.max.y + 3.0f), ImGui::GetColorU32(ImGuiCol_Text),
+                  label.c_str());
+  }
+  draw->AddText(ImVec2(f.min.x - ImGui::CalcTextSize("s ").x - 2.0f, f.max.y + 3.0f), ImGui::GetColorU32(ImGuiCol_Text),
+                "s");
+  if (nowSeconds >= 0.0 && nowSeconds <= durationSeconds + 1e-9) {
+    const float px = xOf(nowSeconds);
+    draw->AddLine(ImVec2(px, f.min.y), ImVec2(px, f.max.y), IM_COL32(60, 160, 255, 255), 2.0f);
+  }
+  ImGui::Dummy(ImVec2(f.max.x - ImGui::GetCursorScreenPos().x, f.max.y - ImGui::GetCursorScreenPos().y + line + 4.0f));
+}
+
+// A time series over [0, duration] as a line in display units (values × scale) with axes.
+void drawSeries(const std::vector<float>& values, double scale, const Axis& y, const char* yUnit,
+                double durationSeconds, double nowSeconds, float height,
+                const std::array<double, 4>* thresholds = nullptr) {
+  const PlotFrame f = beginPlotFrame(height, y, yUnit);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const auto yOf = [&](double v) {
+    const double c = std::clamp(v, y.low, y.high);
+    return f.max.y - static_cast<float>((c - y.low) / (y.high - y.low)) * (f.max.y - f.min.y);
+  };
+  if (thresholds != nullptr) {
+    for (std::size_t k = 0; k < 4; ++k) {
+      const double v = (*thresholds)[k] * scale;
+      if (v > y.high) continue;
+      draw->AddLine(ImVec2(f.min.x, yOf(v)), ImVec2(f.max.x, yOf(v)), colourOf(kDamagePalette[k + 1]), 1.5f);
+    }
+  }
+  const std::size_t n = values.size();
+  if (n >= 2) {
+    std::vector<ImVec2> points(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      points[i] = ImVec2(f.min.x + (f.max.x - f.min.x) * static_cast<float>(i) / static_cast<float>(n - 1),
+                         yOf(static_cast<double>(values[i]) * scale));
+    }
+    draw->AddPolyline(points.data(), static_cast<int>(n), IM_COL32(235, 235, 240, 255), 0, 1.5f);
+  }
+  drawTimeAxis(f, durationSeconds, nowSeconds);
+}
+
+// Peak drift per storey, ground storey on the left, on the fixed scale [0, scaleMax] (a ratio),
+// each bar in the colour of the damage state its drift reaches, the thresholds as lines.
+void drawStoreyBars(const std::vector<float>& drifts, const std::array<double, 4>& thresholds, double scaleMax,
+                    float height) {
+  const Axis y = makeAxis(0.0, scaleMax * 100.0, 5);
+  const PlotFrame f = beginPlotFrame(height, y, "%");
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const auto yOf = [&](double ratio) {
+    const double c = std::clamp(ratio / scaleMax, 0.0, 1.0);
+    return f.max.y - static_cast<float>(c) * (f.max.y - f.min.y);
+  };
+  const std::size_t n = drifts.size();
+  const float slot = (f.max.x - f.min.x) / static_cast<float>(std::max<std::size_t>(n, 1));
+  const float gap = slot > 4.0f ? std::max(1.0f, slot * 0.15f) : 0.0f;
+  for (std::size_t s = 0; s < n; ++s) {
+    const double d = static_cast<double>(drifts[s]);
+    const auto state = static_cast<std::size_t>(seismic::classifyDamage(d, thresholds));
+    const float x0 = f.min.x + slot * static_cast<float>(s) + gap * 0.5f;
+    const float top = yOf(d);
+    draw->AddRectFilled(ImVec2(x0, std::min(top, f.max.y - 1.0f)), ImVec2(x0 + std::max(slot - gap, 1.0f), f.max.y),
+                        colourOf(kDamagePalette[state]));
+    if (d > scaleMax) {  // beyond the scale: an arrow on top says so
+      draw->AddTriangleFilled(ImVec2(x0, f.min.y + 5.0f), ImVec2(x0 + std::max(slot - gap, 4.0f), f.min.y + 5.0f),
+                              ImVec2(x0 + std::max(slot - gap, 4.0f) * 0.5f, f.min.y), IM_COL32(255, 255, 255, 255));
+    }
+  }
+  const float line = ImGui::GetTextLineHeight();
+  // The lines' names sit above them at the right; a name that would overlap the one before (close
+  // thresholds) moves left of it.
+  float lastY = 1e9f, lastLeft = f.max.x;
+  for (std::size_t k = 0; k < 4; ++k) {
+    if (thresholds[k] > scaleMax || !(thresholds[k] > 0.0)) continue;
+    const float py = yOf(thresholds[k]);
+    draw->AddLine(ImVec2(f.min.x, py), ImVec2(f.max.x, py), colourOf(kDamagePalette[k + 1]), 1.5f);
+    const char* name = kStateNames[k];
+    const float w = ImGui::CalcTextSize(name).x;
+    const float right = std::abs(lastY - py) < line ? lastLeft - 6.0f : f.max.x - 2.0f;
+    draw->AddText(ImVec2(right - w, py - line), colourOf(kDamagePalette[k + 1]), name);
+    lastY = py;
+    lastLeft = right - w;
+  }
+  // Storey numbers under the bars: the first, the last and a few between.
+  const std::size_t every = std::max<std::size_t>(1, (n + 5) / 6);
+  for (std::size_t s = 0; s < n; s += every) {
+    const std::string label = std::to_string(s + 1);
+    const float px = f.min.x + slot * (static_cast<float>(s) + 0.5f) - ImGui::CalcTextSize(label.c_str()).x * 0.5f;
+    draw->AddText(ImVec2(px, f.max.y + 2.0f), ImGui::GetColorU32(ImGuiCol_Text), label.c_str());
+  }
+  ImGui::Dummy(ImVec2(f.max.x - ImGui::GetCursorScreenPos().x, f.max.y - ImGui::GetCursorScreenPos().y + line + 4.0f));
+}
+
+}  // namespace
+
+void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) {
+  const std::string id = viewer.selection();
+  if (id.empty()) {
+    inspected_.clear();
+    return;
+  }
+  const auto info = viewer.building(id);
+  if (!info) return;
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  // The window fits the screen: as tall as its content up to the viewport less the margins and
+  // the map overlay's room; beyond that it scrolls (wheel, scrollbar, keyboard).
+  const float maxHeight = std::max(160.0f, display.y - 2.0f * kMarginPx - kOverlayRoomPx);
+  ImGui::SetNextWindowPos(ImVec2(display.x - kInspectionWidth - kMarginPx, kMarginPx), ImGuiCond_Always);
+  ImGui::SetNextWindowSizeConstraints(ImVec2(kInspectionWidth, 0.0f), ImVec2(kInspectionWidth, maxHeight));
+  ImGui::SetNextWindowBgAlpha(0.92f);
+  bool open = true;
+  const std::string title = "Building " + id + "###inspection";
+  const bool newBuilding = id != inspected_;
+  inspected_ = id;
+  if (w.begin(title.c_str(), &open, ImGuiWindowFlags_AlwaysAutoResize)) {
+    // Each newly selected building starts at the top (its name), not where the last one was scrolled to.
+    if (newBuilding) ImGui::SetScrollY(0.0f);
+    // The wheel scrolls the window. ImGui scrolls the hovered window in NewFrame, but the app feeds
+    // the frame's input after NewFrame (engine/app), so ImGui never sees a wheel there and clears it
+    // at the end of the frame: scroll here, unless ImGui did (it then holds its wheeling window).
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.MouseWheel != 0.0f && !io.KeyCtrl && GImGui->WheelingWindow == nullptr &&
+        ImGui::IsWindowHovered(ImGuiHoveredFlags_ChildWindows)) {
+      const float step = std::floor(std::min(5.0f * ImGui::GetFontSize(), ImGui::GetWindowHeight() * 0.67f));
+      ImGui::SetScrollY(std::clamp(ImGui::GetScrollY() - io.MouseWheel * step, 0.0f, ImGui::GetScrollMaxY()));
+    }
+    const BuildingAttributes& a = info->attributes;
+    w.text(a.name.empty() ? std::string("(no name)") : a.name);
+    w.field("Use", a.use.empty() ? std::string("unknown") : a.use);
+    if (!a.address.empty()) w.field("Address", a.address);
+    if (!info->detailed) w.text("(loading the full record of this building)");
+    w.field("Height", lengthText(viewer, a.heightM) + (a.heightSource == ValueSource::Tagged
+                                                           ? std::string(" (tagged)")
+                                                           : std::string(" (inferred from storeys and use)")));
+    w.field("Storeys", ui::format("%u", a.storeys) + (a.storeysSource == ValueSource::Tagged
+                                                          ? std::string(" (tagged)")
+                                                          : std::string(" (inferred from height and use)")));
+    if (a.minHeightM > 0.0f) w.field("Base", lengthText(viewer, a.minHeightM));
+    w.field("Structure", std::string(structuralTypeCode(a.structuralType)) + ", " +
+                             std::string(structuralTypeDescription(a.structuralType)) + " (inferred)");
+    w.field("Code era", std::string(codeEraName(a.codeEra)) + (a.startYear > 0 ? ui::format(" (built %d)", a.startYear)
+                                                                               : std::string(" (year unknown)")));
+    std::string importance(importanceName(a.importance));
+    const std::pair<unsigned, const char*> reasons[] = {
+        {kReasonHospital, "hospital"}, {kReasonFireStation, "fire station"}, {kReasonPolice, "police"},
+        {kReasonSchool, "school"},     {kReasonTall, "over 100 m"},          {kReasonComplex, "several parts"},
+        {kReasonShelter, "shelter"}};
+    std::string why;
+    for (const auto& [bit, name] : reasons) {
+      if ((a.importanceReasons & bit) != 0) why += (why.empty() ? "" : ", ") + std::string(name);
+    }
+    if (!why.empty()) importance += " (" + why + ")";
+    w.field("Importance", importance);
+    // Why values were inferred or changed (docs/attributes.md, "Plausibility rules").
+    for (unsigned bit = 1; bit < 256; bit <<= 1) {
+      if ((a.notes & bit) != 0) w.textWrapped("Inferred: " + std::string(attributeNoteText(bit)));
+    }
+    if (a.lod == 2 && !info->modelSource.empty()) {
+      const std::string_view source = info->modelSource == "cityjson"    ? "CityJSON"
+                                      : info->modelSource == "obj"       ? "OBJ"
+                                      : info->modelSource == "osm-parts" ? "OpenStreetMap building parts"
+                                      : info->modelSource == "synthetic" ? "the synthetic city's tower generator"
+                                                                         : "other source";
+      w.field("Model", ui::format("LOD2 detailed model from %s, %u triangles%s", std::string(source).c_str(),
+                                  info->modelTriangles, info->detailed ? "" : " (simplified at this distance)"));
+    } else {
+      w.field("Model", a.lod == 2 ? "LOD2 detailed model" : "LOD1 extruded footprint");
+    }
+    if (a.id.size() > 1 && (a.id[0] == 'w' || a.id[0] == 'r') &&
+        a.id.find_first_not_of("0123456789", 1) == std::string::npos) {
+      const std::string path = (a.id[0] == 'w' ? "way/" : "relation/") + a.id.substr(1);
+      const std::string url = "https://www.openstreetmap.org/" + path;
+      if (w.button(("View on openstreetmap.org/" + path).c_str())) host.openUrl(url);
+    }
+    w.separator();
+    if (info->hasResponse && info->response.source != ResponseSource::None) {
+      drawResponse(viewer, *info, w);
+    } else {
+      w.swatch(kNoResultColor.r, kNoResultColor.g, kNoResultColor.b, "No earthquake result for this building", true);
+      if (info->hasResponse) {
+        w.textWrapped("Reason: " + std::string(noResultReasonDescription(info->response.noResultReason)));
+      }
+    }
+    if (w.button("Fly to (F)")) viewer.flyToSelection();
+    w.sameLine();
+    if (w.button("Close (Esc)")) open = false;
+  }
+  w.end();
+  if (!open) viewer.select("");
+}
+
+void ControlPanel::drawResponse(Viewer& viewer, const BuildingInfo& info, ui::Widgets& w) {
+  const BuildingAttributes& a = info.attributes;
+  const BuildingResponse& r = info.response;
+  const bool feet = viewer.showFeet();
+  const Rgb c = r.damage == DamageState::NoResult ? kNoResultColor : kDamagePalette[static_cast<std::size_t>(r.damage)];
+  w.swatch(c.r, c.g, c.b, "Damage state: " + std::string(damageStateName(r.damage)));
+  const auto t = seismic::hazusDriftThresholds(a.structuralType, a.codeEra, a.storeys);
+  w.textWrapped(ui::format("HAZUS thresholds for %s, %s: slight %s, moderate %s, extensive %s, complete %s",
+                           std::string(structuralTypeCode(a.structuralType)).c_str(),
+                           std::string(codeEraName(a.codeEra)).c_str(), driftPercentText(t[0]).c_str(),
+                           driftPercentText(t[1]).c_str(), driftPercentText(t[2]).c_str(),
+                           driftPercentText(t[3]).c_str()));
+  // The one peak drift of the window, with its source; the plots below say how they relate to it.
+  std::string where;
+  if (!info.storeyPeakDrift.empty()) {
+    const auto worst = static_cast<std::size_t>(
+        std::max_element(info.storeyPeakDrift.begin(), info.storeyPeakDrift.end()) - info.storeyPeakDrift.begin());
+    where = ui::format(" in storey %zu", worst + 1);
+  }
+  w.field("Peak inter-storey drift", driftPercentText(r.peakDriftRatio) + where +
+                                         (r.source == ResponseSource::Imported ? " (peak of the imported analysis)"
+                                                                               : " (exact peak from the solver)"));
+  w.field("Peak roof displacement", displacementText(r.peakRoofDisplacementM, feet));
+  w.field("Peak ground acceleration", ui::format("%.3f g", static_cast<double>(r.pgaG)));
+  w.field("Residual drift", driftPercentText(r.residualDriftRatio));
+  w.field("Results from",
+          r.source == ResponseSource::Imported ? "imported analysis" : "MDOF shear-building model (simplified)");
+  if (r.approximate) {
+    w.textColored(0.6f, 0.35f, 0.0f,
+                  ui::format("Approximate (solver did not converge at %u steps, residual %.2g of the forces)",
+                             r.unconvergedSteps, static_cast<double>(r.worstResidualRatio)));
+  }
+  drawShakingOfBuilding(info, w);
+  if (info.loss) drawBuildingLoss(*info.loss, w);
+
+  if (!info.storeyPeakDrift.empty()) {
+    w.separator();
+    const double scaleMax = storeyDriftScaleMax(t);
+    std::string lines;
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (t[k] <= scaleMax) lines += (lines.empty() ? "" : ", ") + std::string(kStateNames[k]);
+    }
+    w.textWrapped(
+        ui::format("Peak drift per storey (storey 1 = ground, left), fixed scale 0 to %s; lines: %s "
+                   "thresholds; bars coloured by the state they reach",
+                   driftPercentText(scaleMax).c_str(), lines.c_str()));
+    drawStoreyBars(info.storeyPeakDrift, t, scaleMax, 96.0f);
+    std::array<std::size_t, 5> reached{};
+    for (float d : info.storeyPeakDrift) ++reached[static_cast<std::size_t>(seismic::classifyDamage(d, t))];
+    std::string counts;
+    const char* const names[5] = {"none", "slight", "moderate", "extensive", "complete"};
+    for (std::size_t k = 0; k < 5; ++k) {
+      if (reached[k] > 0) counts += (counts.empty() ? "" : ", ") + ui::format("%zu %s", reached[k], names[k]);
+    }
+    w.mirror().line("Storeys by the state their drift reaches: " + counts);
+  }
+
+  CityScene* city = viewer.city();
+  if (city == nullptr) return;
+  const auto series = city->selectionSeries(240);
+  if (!series) {
+    w.text("(loading this building's motion)");
+    return;
+  }
+  const std::size_t n = series->roofDisplacementM.size();
+  const double now = viewer.time();
+  const auto at = std::min<std::size_t>(
+      n - 1,
+      static_cast<std::size_t>(
+          std::clamp(now / std::max(series->durationSeconds, 1e-3), 0.0, 1.0) * static_cast<double>(n - 1) + 0.5));
+  w.separator();
+  // Drift over time: the stored (compressed) history, which the peak above need not match exactly.
+  const double bound = historyDriftErrorBound(r.peakRoofDisplacementM, std::max(a.storeyHeightM(), 0.1f));
+  const float driftTop = *std::max_element(series->maxDriftRatio.begin(), series->maxDriftRatio.end());
+  const double driftAxisTop = std::max(static_cast<double>(std::max(driftTop, r.peakDriftRatio)) * 100.0 * 1.05, 0.01);
+  w.textWrapped("Largest inter-storey drift over time (%), now " + driftPercentText(series->maxDriftRatio[at]));
+  const Axis driftAxis = makeAxis(0.0, driftAxisTop, 4);
+  drawSeries(series->maxDriftRatio, 100.0, driftAxis, "%", series->durationSeconds, now, 70.0f, &t);
+  w.textWrapped(
+      ui::format("Plotted from the stored history (%zu samples): each floor within %.1f %% of the peak "
+                 "roof displacement, so drift within ±%s of the solver's; the peak above is the "
+                 "solver's exact value.",
+                 n, kHistoryRelativeErrorBound * 100.0, driftPercentText(bound).c_str()));
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip(
+        "The viewer stores each building's motion compressed (a few shape vectors x quantized time\n"
+        "series, docs/formats.md). Its highest point can differ from the solver's peak by up to the\n"
+        "bound, and the plot's samples can fall between the solver's steps.");
+  }
+  // Roof displacement over time, in the unit its peak reads best in.
+  const float roofTop = std::max(*std::max_element(series->roofDisplacementM.begin(), series->roofDisplacementM.end()),
+                                 r.peakRoofDisplacementM);
+  const DisplayUnit unit = displacementUnit(roofTop, feet);
+  w.textWrapped(std::string("Roof displacement over time (") + unit.name + "), now " +
+                displacementText(series->roofDisplacementM[at], feet));
+  const Axis roofAxis = makeAxis(0.0, std::max(static_cast<double>(roofTop) / unit.metresPerUnit * 1.05, 0.1), 4);
+  drawSeries(series->roofDisplacementM, 1.0 / unit.metresPerUnit, roofAxis, unit.name, series->durationSeconds, now,
+             70.0f);
+  w.mirror().line(
+      ui::format("Plot axes: time 0 to %.1f s, the current time %.1f s marked", series->durationSeconds, now));
+}
+
+}  // namespace qv
