@@ -48,6 +48,10 @@ constexpr std::array<ImGuiKeyCode, 22> kImGuiKeys = {{
 struct BackendData {
   std::array<bool, 5> buttonsPressed{};
   std::vector<std::string> keysPressed;
+  // Wheel steps over a window since the last imguiBrowserNewFrame. ImGui reads the wheel in
+  // NewFrame and clears it at the end of the frame, and the app feeds input after NewFrame: held
+  // here and handed over at the next frame's start, so that ImGui scrolls the window under it.
+  float pendingWheel = 0.0f;
 };
 
 BackendData* backendData() {
@@ -100,6 +104,8 @@ void imguiBrowserNewFrame(double cssWidth, double cssHeight, double devicePixelR
   if (BackendData* data = backendData()) {
     data->buttonsPressed.fill(false);
     data->keysPressed.clear();
+    io.MouseWheel += data->pendingWheel;
+    data->pendingWheel = 0.0f;
   }
 }
 
@@ -143,7 +149,12 @@ bool imguiBrowserWheel(double x, double y, double wheelY) {
   ImGuiIO& io = ImGui::GetIO();
   io.MousePos = point(x, y);
   if (!imguiBrowserCovers(x, y)) return false;
-  io.MouseWheel -= static_cast<float>(wheelY / 100.0);
+  const auto steps = static_cast<float>(-wheelY / 100.0);
+  if (BackendData* data = backendData()) {
+    data->pendingWheel += steps;
+  } else {
+    io.MouseWheel += steps;
+  }
   return true;
 }
 
