@@ -4,6 +4,34 @@
 
 namespace qv {
 
+namespace {
+
+// The HAZUS probabilities and consequences of one building (docs/losses.md).
+void writeLoss(JsonWriter& w, const BuildingLoss& l) {
+  static const char* const states[5] = {"none", "slight", "moderate", "extensive", "complete"};
+  w.key("damageProbabilities").beginObject();
+  for (std::size_t k = 0; k < 5; ++k) w.field(states[k], l.structural[k]);
+  w.endObject();
+  w.field("collapseProbability", l.collapse).field("expectedDamageState", l.expectedState());
+  std::size_t likely = 0;
+  for (std::size_t k = 1; k < 5; ++k) {
+    if (l.structural[k] > l.structural[likely]) likely = k;
+  }
+  w.field("mostLikelyDamageState", states[likely]);
+  w.key("consequences").beginObject();
+  w.field("occupants", l.occupants).field("occupantsInferred", (l.flags & kLossOccupantsInferred) != 0);
+  w.key("injuries").beginArray();
+  for (const float v : l.injuries) w.value(v);
+  w.endArray();
+  w.field("deaths", l.injuries[3]).field("replacementValueUsd", l.replacementValueUsd);
+  w.field("valueInferred", (l.flags & kLossValueInferred) != 0).field("repairCostUsd", l.repairCostUsd);
+  w.field("repairTimeDays", l.repairTimeDays);
+  w.key("tags").beginObject().field("green", l.tag[0]).field("yellow", l.tag[1]).field("red", l.tag[2]).endObject();
+  w.endObject();
+}
+
+}  // namespace
+
 std::string buildingInfoJson(const BuildingInfo& info) {
   const BuildingAttributes& a = info.attributes;
   JsonWriter w;
@@ -63,29 +91,7 @@ std::string buildingInfoJson(const BuildingInfo& info) {
     w.field("shownRecord", static_cast<unsigned>(info.spread->shownRecord));
     w.field("driftBeta", info.spread->driftBeta).field("accelerationBeta", info.spread->accelerationBeta).endObject();
   }
-  if (hasResult && info.loss) {
-    static const char* const states[5] = {"none", "slight", "moderate", "extensive", "complete"};
-    const BuildingLoss& l = *info.loss;
-    w.key("damageProbabilities").beginObject();
-    for (std::size_t k = 0; k < 5; ++k) w.field(states[k], l.structural[k]);
-    w.endObject();
-    w.field("collapseProbability", l.collapse).field("expectedDamageState", l.expectedState());
-    std::size_t likely = 0;
-    for (std::size_t k = 1; k < 5; ++k) {
-      if (l.structural[k] > l.structural[likely]) likely = k;
-    }
-    w.field("mostLikelyDamageState", states[likely]);
-    w.key("consequences").beginObject();
-    w.field("occupants", l.occupants).field("occupantsInferred", (l.flags & kLossOccupantsInferred) != 0);
-    w.key("injuries").beginArray();
-    for (const float v : l.injuries) w.value(v);
-    w.endArray();
-    w.field("deaths", l.injuries[3]).field("replacementValueUsd", l.replacementValueUsd);
-    w.field("valueInferred", (l.flags & kLossValueInferred) != 0).field("repairCostUsd", l.repairCostUsd);
-    w.field("repairTimeDays", l.repairTimeDays);
-    w.key("tags").beginObject().field("green", l.tag[0]).field("yellow", l.tag[1]).field("red", l.tag[2]).endObject();
-    w.endObject();
-  }
+  if (hasResult && info.loss) writeLoss(w, *info.loss);
   w.endObject();
   return w.take();
 }

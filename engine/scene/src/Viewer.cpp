@@ -115,52 +115,84 @@ void Viewer::reportError(std::string message, std::string key) {
   errorKeys_.push_back(std::move(key));
 }
 
+void Viewer::frameCityOnce() {
+  if (!city_ || !city_->manifestLoaded() || cityFramed_) return;
+  // The first frame with the manifest: the duration, and a camera that frames the whole city.
+  cityFramed_ = true;
+  duration_ = city_->duration();
+  const CameraState overview = city_->overviewCamera(camera_.fovDeg);
+  controller_.setHome(overview);
+  if (!cameraSetByUser_) camera_ = overview;
+  if (const Tileset* tileset = city_->tileset()) geo_ = GeoFrame(tileset->originLon, tileset->originLat);
+}
+
+void Viewer::advanceBench(double dtSeconds) {
+  if (benchSeconds_ <= 0.0 || !benchResult_.empty()) return;
+  // The flight starts on the first frame after the initial view has loaded.
+  if (!bench_ && settled_) {
+    bench_ = std::make_unique<BenchRun>(benchSeconds_, city_ ? city_->tileset() : nullptr, camera_.fovDeg);
+    benchElapsed_ = 0.0;
+    playing_ = true;
+  } else if (bench_) {
+    benchElapsed_ += std::max(0.0, dtSeconds);
+  }
+  if (bench_) camera_ = bench_->cameraAt(benchElapsed_);
+}
+
+void Viewer::advanceFlight(double dtSeconds) {
+  if (!flight_) return;
+  // Ease in and out; any gesture ends the flight.
+  if (controller_.dragging()) {
+    flight_.reset();
+    return;
+  }
+  flight_->elapsed += std::max(0.0, dtSeconds);
+  const double f = std::clamp(flight_->elapsed / flight_->duration, 0.0, 1.0);
+  const double s = f * f * (3.0 - 2.0 * f);
+  const CameraState& a = flight_->from;
+  const CameraState& b = flight_->to;
+  camera_.x = a.x + (b.x - a.x) * s;
+  camera_.y = a.y + (b.y - a.y) * s;
+  // Distance interpolates geometrically (zooming feels even).
+  camera_.distance = a.distance * std::pow(b.distance / a.distance, s);
+  // Heading the short way round, pitch linearly (Fly to may choose another side and height).
+  const double turn = std::remainder(b.headingDeg - a.headingDeg, 360.0);
+  camera_.headingDeg = std::fmod(a.headingDeg + turn * s + 360.0, 360.0);
+  camera_.pitchDeg = a.pitchDeg + (b.pitchDeg - a.pitchDeg) * s;
+  if (f >= 1.0) flight_.reset();
+}
+
+void Viewer::frameTestScene(const CameraView& view, FrameTimesMs& times, FrameCounts& counts,
+                            std::vector<DrawItem>& items, FrameUniforms& uniforms) {
+  auto t0 = Clock::now();
+  std::vector<std::size_t> visible;
+  for (std::size_t i = 0; i < test_->prisms.size(); ++i) {
+    if (view.frustum().intersects(test_->prisms[i].bounds)) visible.push_back(i);
+  }
+  counts.buildingsLoaded = static_cast<std::uint32_t>(test_->prisms.size());
+  counts.buildingsVisible = static_cast<std::uint32_t>(visible.size());
+  times.cull = msSince(t0);
+  // The test scene animates every visible prism: no LOD work.
+  counts.buildingsAnimated = counts.buildingsVisible;
+  t0 = Clock::now();
+  test_->floors.clear();
+  for (const TestPrism& p : test_->prisms) testPrismFloors(p, time_, test_->floors);
+  times.animate = msSince(t0);
+  t0 = Clock::now();
+  device_.writeFloors(0, test_->floors);
+  times.upload = msSince(t0);
+  uniforms.ground = Rect{-400.0f, -400.0f, 400.0f, 400.0f};
+  for (std::size_t i : visible) items.push_back(DrawItem{test_->meshes[i], glm::vec3(0.0f)});
+}
+
 void Viewer::frame(double dtSeconds) {
   const auto frameStart = Clock::now();
   FrameTimesMs times;
   FrameCounts counts;
 
-  if (city_ && city_->manifestLoaded() && !cityFramed_) {
-    // The first frame with the manifest: the duration, and a camera that frames the whole city.
-    cityFramed_ = true;
-    duration_ = city_->duration();
-    const CameraState overview = city_->overviewCamera(camera_.fovDeg);
-    controller_.setHome(overview);
-    if (!cameraSetByUser_) camera_ = overview;
-    if (const Tileset* tileset = city_->tileset()) geo_ = GeoFrame(tileset->originLon, tileset->originLat);
-  }
-  if (benchSeconds_ > 0.0 && benchResult_.empty()) {
-    // The flight starts on the first frame after the initial view has loaded.
-    if (!bench_ && settled_) {
-      bench_ = std::make_unique<BenchRun>(benchSeconds_, city_ ? city_->tileset() : nullptr, camera_.fovDeg);
-      benchElapsed_ = 0.0;
-      playing_ = true;
-    } else if (bench_) {
-      benchElapsed_ += std::max(0.0, dtSeconds);
-    }
-    if (bench_) camera_ = bench_->cameraAt(benchElapsed_);
-  }
-  if (flight_) {
-    // Ease in and out; any gesture ends the flight.
-    if (controller_.dragging()) {
-      flight_.reset();
-    } else {
-      flight_->elapsed += std::max(0.0, dtSeconds);
-      const double f = std::clamp(flight_->elapsed / flight_->duration, 0.0, 1.0);
-      const double s = f * f * (3.0 - 2.0 * f);
-      const CameraState& a = flight_->from;
-      const CameraState& b = flight_->to;
-      camera_.x = a.x + (b.x - a.x) * s;
-      camera_.y = a.y + (b.y - a.y) * s;
-      // Distance interpolates geometrically (zooming feels even).
-      camera_.distance = a.distance * std::pow(b.distance / a.distance, s);
-      // Heading the short way round, pitch linearly (Fly to may choose another side and height).
-      const double turn = std::remainder(b.headingDeg - a.headingDeg, 360.0);
-      camera_.headingDeg = std::fmod(a.headingDeg + turn * s + 360.0, 360.0);
-      camera_.pitchDeg = a.pitchDeg + (b.pitchDeg - a.pitchDeg) * s;
-      if (f >= 1.0) flight_.reset();
-    }
-  }
+  frameCityOnce();
+  advanceBench(dtSeconds);
+  advanceFlight(dtSeconds);
   controller_.update(dtSeconds);
   sanitizeCamera(camera_, controller_.home());
   if (playing_ && duration_ > 0.0 && std::isfinite(dtSeconds)) {
@@ -171,27 +203,7 @@ void Viewer::frame(double dtSeconds) {
   std::vector<DrawItem> items;
   FrameUniforms uniforms;
 
-  if (test_) {
-    auto t0 = Clock::now();
-    std::vector<std::size_t> visible;
-    for (std::size_t i = 0; i < test_->prisms.size(); ++i) {
-      if (view.frustum().intersects(test_->prisms[i].bounds)) visible.push_back(i);
-    }
-    counts.buildingsLoaded = static_cast<std::uint32_t>(test_->prisms.size());
-    counts.buildingsVisible = static_cast<std::uint32_t>(visible.size());
-    times.cull = msSince(t0);
-    // The test scene animates every visible prism: no LOD work.
-    counts.buildingsAnimated = counts.buildingsVisible;
-    t0 = Clock::now();
-    test_->floors.clear();
-    for (const TestPrism& p : test_->prisms) testPrismFloors(p, time_, test_->floors);
-    times.animate = msSince(t0);
-    t0 = Clock::now();
-    device_.writeFloors(0, test_->floors);
-    times.upload = msSince(t0);
-    uniforms.ground = Rect{-400.0f, -400.0f, 400.0f, 400.0f};
-    for (std::size_t i : visible) items.push_back(DrawItem{test_->meshes[i], glm::vec3(0.0f)});
-  }
+  if (test_) frameTestScene(view, times, counts, items, uniforms);
   if (city_) {
     city_->update(view, time_, times, counts, items);
     uniforms.showModels = city_->showLod2();

@@ -120,6 +120,13 @@ class Viewer {
   [[nodiscard]] std::optional<glm::dvec2> worldToScreen(double x, double y, double z) const;
 
  private:
+  // The steps of frame(), in order.
+  void frameCityOnce();                  ///< the first frame with a manifest: duration, home camera
+  void advanceBench(double dtSeconds);   ///< the ?bench flight moves the camera
+  void advanceFlight(double dtSeconds);  ///< Fly to's eased camera move
+  void frameTestScene(const CameraView& view, FrameTimesMs& times, FrameCounts& counts, std::vector<DrawItem>& items,
+                      FrameUniforms& uniforms);
+
   RenderDevice& device_;
   CameraState camera_;
   CameraController controller_;
