@@ -23,21 +23,26 @@ double geodesicMeters(double lon1, double lat1, double lon2, double lat2) {
 
 }  // namespace
 
-TEST_CASE("The projection round-trips and puts the origin at (0, 0)", "[ingest][projection]") {
-  const CityProjection projection(-73.997, 40.727);
-  const glm::dvec2 origin = projection.forward(-73.997, 40.727);
-  CHECK(origin.x == Approx(0.0).margin(1e-9));
-  CHECK(origin.y == Approx(0.0).margin(1e-9));
-  for (const auto& [lon, lat] :
-       {std::pair{-74.0170, 40.7033}, std::pair{-73.9630, 40.7590}, std::pair{-73.99, 40.75}}) {
-    const glm::dvec2 xy = projection.forward(lon, lat);
-    const auto back = projection.reverse(xy);
-    CHECK(back[0] == Approx(lon).margin(1e-11));  // 1e-11 degrees is about a micrometre
-    CHECK(back[1] == Approx(lat).margin(1e-11));
+TEST_CASE("The tools project exactly as the viewer does", "[ingest][projection]") {
+  // CityProjection is GeoFrame (engine/geometry, tested there: round trips, a published UTM point)
+  // without the checks: the same numbers, bit for bit, so a building sits where the viewer's
+  // coordinates say. Also for an origin beyond the viewer's 85°.
+  for (const auto& [lon0, lat0] : {std::pair{-73.997, 40.727}, std::pair{151.2, -33.9}, std::pair{20.0, 87.0}}) {
+    const CityProjection projection(lon0, lat0);
+    const qv::GeoFrame frame(lon0, lat0);
+    CHECK(projection.originLon() == lon0);
+    CHECK(projection.originLat() == lat0);
+    for (const auto& [lon, lat] : {std::pair{lon0 - 0.02, lat0 - 0.024}, std::pair{lon0 + 0.034, lat0 + 0.032}}) {
+      const glm::dvec2 xy = projection.forward(lon, lat);
+      CHECK(xy == frame.forwardUnchecked({lon, lat}));
+      if (frame.valid()) CHECK(xy == frame.forward({lon, lat}).value());
+      const auto back = projection.reverse(xy);
+      CHECK(back[0] == Approx(lon).margin(1e-11));  // 1e-11 degrees is about a micrometre
+      CHECK(back[1] == Approx(lat).margin(1e-11));
+      CHECK(back[0] == frame.reverseUnchecked(xy).lon);
+      CHECK(back[1] == frame.reverseUnchecked(xy).lat);
+    }
   }
-  // x grows east, y north.
-  CHECK(projection.forward(-73.99, 40.727).x > 0.0);
-  CHECK(projection.forward(-73.997, 40.75).y > 0.0);
 }
 
 TEST_CASE("Projected distances are true metres (geodesic within 0.05 %)", "[ingest][projection]") {

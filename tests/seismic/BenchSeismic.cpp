@@ -25,6 +25,7 @@
 #include <thread>
 #include <vector>
 
+#include "qv/core/SplitMix64.h"
 #include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/GroundMotionModel.h"
 #include "qv/seismic/GroundMotionReader.h"
@@ -37,14 +38,8 @@ namespace {
 
 // splitmix64: the benchmark's own reproducible random numbers.
 struct Random {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  double uniform() { return (static_cast<double>(next() >> 11) + 0.5) * 0x1.0p-53; }
+  SplitMix64 bits;
+  double uniform() { return bits.uniformOpen(); }
   double normal() {
     const double u1 = uniform();
     const double u2 = uniform();
@@ -61,7 +56,7 @@ struct CityBuilding {
 // class, eras uniform, footprints lognormal, sites uniform in 10 km × 10 km; M 6.9 scenario 8 km
 // south-west of the corner at 15 km depth (BSSA14 PGA, S-wave delay).
 std::vector<CityBuilding> synthesizeCity(std::size_t count, double recordPeakG) {
-  Random random{20240517};
+  Random random{SplitMix64{20240517}};
   std::vector<CityBuilding> city(count);
   Scenario scenario;
   scenario.magnitude = 6.9;

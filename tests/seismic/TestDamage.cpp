@@ -1,5 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <type_traits>
+
+#include "qv/format/ResponseTile.h"
 #include "qv/seismic/Damage.h"
 
 using namespace qv;
@@ -52,4 +55,21 @@ TEST_CASE("Damage states from drift are monotonic", "[seismic][damage]") {
   }
   CHECK(previous == DamageState::Complete);
   CHECK(damageStateName(DamageState::Extensive) == "extensive");
+}
+
+TEST_CASE("The damage state from drift is the one response tiles store, with one name each", "[seismic][damage]") {
+  // One type: a classification goes into a building's response without a conversion.
+  STATIC_REQUIRE(std::is_same_v<qv::seismic::DamageState, qv::DamageState>);
+  const auto t = hazusDriftThresholds(StructuralType::C1L, CodeEra::HighCode);
+  qv::BuildingResponse response;  // a building of a response tile
+  CHECK(response.damage == DamageState::NoResult);
+  response.damage = classifyDamage(0.05, t);
+  CHECK(response.damage == DamageState::Extensive);
+  // The names the tools and the viewer write, from both spellings of the function.
+  CHECK(qv::seismic::damageStateName(DamageState::None) == "none");
+  CHECK(qv::seismic::damageStateName(DamageState::Slight) == "slight");
+  CHECK(qv::seismic::damageStateName(DamageState::Moderate) == "moderate");
+  CHECK(qv::damageStateName(DamageState::Extensive) == "extensive");
+  CHECK(qv::damageStateName(DamageState::Complete) == "complete");
+  CHECK(qv::seismic::damageStateName(DamageState::NoResult) == "no_result");
 }

@@ -64,3 +64,20 @@ TEST_CASE("Site shaking: scale to the predicted PGA and S-wave delay", "[seismic
   CHECK_FALSE(shakingAtSite(s, -1.0, 0.5).ok());
   CHECK_FALSE(shakingAtSite(s, 10.0, 0.0).ok());
 }
+
+TEST_CASE("The S-wave delay is hypocentral distance over the wave speed, the same for every caller",
+          "[seismic][gmpe]") {
+  CHECK(shearWaveDelayS(30.0, 40.0, 5.0) == Approx(10.0));  // a 3-4-5 triangle: 50 km at 5 km/s
+  CHECK(shearWaveDelayS(0.0, 0.0, 3.5) == 0.0);
+  CHECK(shearWaveDelayS(7.0, 0.0, 3.5) == Approx(2.0));
+  // shakingAtSite's delay is this function's (quakeview-prep uses both and must not disagree).
+  Scenario s;
+  s.magnitude = 6.0;
+  s.depthKm = 12.0;
+  s.shearWaveSpeedKmPerS = 3.2;
+  for (const double km : {0.0, 3.7, 41.3, 250.0}) {
+    const auto site = shakingAtSite(s, km, 0.3);
+    REQUIRE(site.ok());
+    CHECK(site->delaySeconds == shearWaveDelayS(km, 12.0, 3.2));
+  }
+}

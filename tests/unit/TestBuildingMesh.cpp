@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <limits>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
@@ -125,4 +127,51 @@ TEST_CASE("Degenerate input yields nothing rather than garbage", "[geometry][mes
   std::vector<float> levels;
   floorLevelsBetween(0.0f, 1.0e9f, 3.0f, levels);
   CHECK(levels.size() < 1000);
+}
+
+TEST_CASE("Floor levels of a building standing on another start from its own lowest floor", "[geometry][mesh]") {
+  // A building on a podium: its lowest floor at 12 m, three storeys of 4 m (roof at 24 m).
+  const FloorGrid floors{12.0f, 4.0f, 3};
+  std::vector<float> levels;
+  floorLevelsBetween(floors, 12.0f, 24.0f, 0.01f, levels);
+  CHECK(levels == std::vector<float>{16.0f, 20.0f});
+  // A part of it from 14 m up, and one above its last storey: the storey count ends the levels.
+  levels.clear();
+  floorLevelsBetween(floors, 14.0f, 30.0f, 0.01f, levels);
+  CHECK(levels == std::vector<float>{16.0f, 20.0f});
+  // Appended, not replaced.
+  floorLevelsBetween(floors, 12.0f, 17.0f, 0.01f, levels);
+  CHECK(levels == std::vector<float>{16.0f, 20.0f, 16.0f});
+}
+
+TEST_CASE("Floor levels keep their margin from a part's base and top", "[geometry][mesh]") {
+  const FloorGrid floors{0.0f, 3.0f, 1000};
+  std::vector<float> levels;
+  // A part whose base is 5 mm under the 3 m floor: the floor counts with a 1 mm margin only.
+  floorLevelsBetween(floors, 2.995f, 9.0f, 0.01f, levels);
+  CHECK(levels == std::vector<float>{6.0f});
+  levels.clear();
+  floorLevelsBetween(floors, 2.995f, 9.0f, 0.001f, levels);
+  CHECK(levels == std::vector<float>{3.0f, 6.0f});
+  // The same at the top: 6 m is 5 mm under a top of 6.005 m.
+  levels.clear();
+  floorLevelsBetween(floors, 0.0f, 6.005f, 0.01f, levels);
+  CHECK(levels == std::vector<float>{3.0f});
+  // The short form is a building at z = 0 with a 1 mm margin.
+  std::vector<float> shortForm;
+  floorLevelsBetween(2.995f, 9.0f, 3.0f, shortForm);
+  CHECK(shortForm == std::vector<float>{3.0f, 6.0f});
+}
+
+TEST_CASE("Floor levels of corrupt heights stay few and defined", "[geometry][mesh]") {
+  std::vector<float> levels;
+  floorLevelsBetween(FloorGrid{0.0f, 0.05f, 1000}, 0.0f, 10.0f, 0.01f, levels);  // storeys of 5 cm
+  CHECK(levels.empty());
+  floorLevelsBetween(FloorGrid{0.0f, 3.0f, 1000}, 1.0e30f, 3.0e30f, 0.01f, levels);  // far above
+  CHECK(levels.empty());
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  floorLevelsBetween(FloorGrid{nan, 3.0f, 1000}, 0.0f, 10.0f, 0.01f, levels);
+  CHECK(levels.empty());
+  floorLevelsBetween(FloorGrid{0.0f, 3.0f, 1000000}, 0.0f, 1.0e9f, 0.01f, levels);
+  CHECK(levels.size() == 999);  // levels 1 to 999 at most
 }

@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <map>
+#include <set>
 
 #include "MiniCity.h"
 #include "qv/scene/TileMeshBuilder.h"
@@ -80,6 +81,14 @@ TEST_CASE("A tile's mesh draws each building at its place, in its own row, with 
   const int leafVertices = detailed.at(leaf.positionOf[0]).plain;
   const int coarseVertices = coarse.at(slotBase + root.positionOf[root.idIndex.at(id)]).plain;
   CHECK(leafVertices > coarseVertices);
+  // The rings sit at the building's floor levels: its base, every storey of 3.5 m, its roof.
+  std::set<float> heights;
+  for (const BuildingVertex& v : buildTileMesh(leaf, 0).vertices) {
+    if (v.slot == leaf.positionOf[0]) heights.insert(v.z);
+  }
+  std::set<float> levels;
+  for (int k = 0; k <= MiniCity::kStoreys; ++k) levels.insert(static_cast<float>(k) * MiniCity::kStoreyHeight);
+  CHECK(heights == levels);
 }
 
 TEST_CASE("A LOD2 model is meshed with its LOD1 fallback in the same row", "[scene][tilemesh][lod2]") {

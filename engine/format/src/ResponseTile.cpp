@@ -235,23 +235,6 @@ Status decodeOptionalSections(std::span<const std::uint8_t> bytes, const Parsed&
 
 }  // namespace
 
-std::string_view damageStateName(DamageState s) {
-  switch (s) {
-    case DamageState::None:
-      return "none";
-    case DamageState::Slight:
-      return "slight";
-    case DamageState::Moderate:
-      return "moderate";
-    case DamageState::Extensive:
-      return "extensive";
-    case DamageState::Complete:
-      return "complete";
-    default:
-      return "no_result";
-  }
-}
-
 std::string_view noResultReasonName(NoResultReason r) {
   switch (r) {
     case NoResultReason::None:

@@ -7,6 +7,7 @@
 #include <cstdlib>
 
 #include "qv/core/JsonWriter.h"
+#include "qv/core/NumberFormat.h"
 
 namespace qv {
 namespace {
@@ -313,10 +314,8 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
   if (!p.number(root, "version", version, "manifest")) return Error{p.error};
   if (version != kTilesetVersion) {
     // Printed as written: a hostile version (1e300) must not reach an integer conversion.
-    char written[32];
-    std::snprintf(written, sizeof written, "%.10g", version);
-    return Error{p.prefix + "manifest: unsupported tileset version " + written + " (this build reads version " +
-                 std::to_string(kTilesetVersion) + ")"};
+    return Error{p.prefix + "manifest: unsupported tileset version " + formatDouble(version, 10) +
+                 " (this build reads version " + std::to_string(kTilesetVersion) + ")"};
   }
   t.version = kTilesetVersion;
   p.text(root, "generator", t.generator, "manifest", false);

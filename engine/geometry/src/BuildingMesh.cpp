@@ -67,15 +67,25 @@ std::size_t appendExtrusion(MeshData& mesh, const ExtrusionInput& in) {
   return mesh.indices.size() / 3 - trianglesBefore;
 }
 
-void floorLevelsBetween(float baseZ, float topZ, float storeyHeight, std::vector<float>& out) {
-  if (!(storeyHeight > 0.1f)) return;
-  const auto firstLevel = static_cast<int>(std::floor(baseZ / storeyHeight)) + 1;
-  // A storey count beyond any real building (or a corrupt height) stops at 1000 levels.
-  for (int k = std::max(firstLevel, 1); k < 1000; ++k) {
-    const float z = static_cast<float>(k) * storeyHeight;
-    if (z >= topZ - 1e-3f) break;
-    if (z > baseZ + 1e-3f) out.push_back(z);
+void floorLevelsBetween(const FloorGrid& floors, float baseZ, float topZ, float marginM, std::vector<float>& out) {
+  if (!(floors.storeyHeightM > 0.1f)) return;
+  constexpr int kMaxLevels = 1000;  // beyond any real building: a corrupt count or height stops here
+  // Levels at or below the base are skipped without a loop (a part high up a tower). The clamp
+  // keeps the conversion defined for any height; NaN starts at the first level.
+  const float storeysBelowBase = std::floor((baseZ - floors.groundZ) / floors.storeyHeightM);
+  const int firstLevel =
+      storeysBelowBase > 0.0f ? static_cast<int>(std::min(storeysBelowBase, static_cast<float>(kMaxLevels))) + 1 : 1;
+  const int endLevel = std::min(floors.storeys, kMaxLevels);
+  // z grows with k, so the first level too close to the top ends the list.
+  for (int k = firstLevel; k < endLevel; ++k) {
+    const float z = floors.groundZ + static_cast<float>(k) * floors.storeyHeightM;
+    if (z >= topZ - marginM) break;
+    if (z > baseZ + marginM) out.push_back(z);
   }
+}
+
+void floorLevelsBetween(float baseZ, float topZ, float storeyHeight, std::vector<float>& out) {
+  floorLevelsBetween(FloorGrid{0.0f, storeyHeight, 1000}, baseZ, topZ, 1e-3f, out);
 }
 
 void triangulateConvexRing(std::uint32_t first, std::uint32_t count, std::vector<std::uint32_t>& out) {

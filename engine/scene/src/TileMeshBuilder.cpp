@@ -36,18 +36,13 @@ void appendModel(MeshData& mesh, const TileMesh& model, bool coarse, float groun
 // level inside each part in leaves.
 void appendExtrusions(MeshData& mesh, const CityTile& d, const TileBuilding& tb, std::uint32_t slot) {
   const BuildingAttributes& a = tb.attributes;
-  const float storeyHeight = std::max(a.storeyHeightM(), 0.5f);
+  const FloorGrid floors{a.minHeightM, std::max(a.storeyHeightM(), 0.5f), a.storeys};
   std::vector<float> levels;
   std::vector<std::uint32_t> ringEnds, roof;
   for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
     const TilePart& part = d.parts[pi];
     levels.clear();
-    if (!d.coarse) {
-      for (int k = 1; k < a.storeys && k < 1000; ++k) {
-        const float z = a.minHeightM + static_cast<float>(k) * storeyHeight;
-        if (z > part.minHeightM + 0.01f && z < part.heightM - 0.01f) levels.push_back(z);
-      }
-    }
+    if (!d.coarse) floorLevelsBetween(floors, part.minHeightM, part.heightM, 0.01f, levels);
     ringEnds.clear();
     std::uint32_t end = 0;
     for (std::uint32_t r = part.firstRing; r < part.firstRing + part.ringCount; ++r) {

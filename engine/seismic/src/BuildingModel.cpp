@@ -2,11 +2,11 @@
 
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "Tridiagonal.h"
+#include "qv/core/NumberFormat.h"
 #include "qv/seismic/Damage.h"
 
 namespace qv::seismic {
@@ -237,12 +237,6 @@ Family familyOf(StructuralType t) {
     default:
       return Family::ConcreteMoment;  // C1 and (resolved) Unknown
   }
-}
-
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
 }
 
 }  // namespace

@@ -14,22 +14,6 @@ static_assert(hazus::kStructuralTypes + 1 == static_cast<std::size_t>(Structural
 
 }  // namespace
 
-std::string_view damageStateName(DamageState state) {
-  switch (state) {
-    case DamageState::None:
-      return "none";
-    case DamageState::Slight:
-      return "slight";
-    case DamageState::Moderate:
-      return "moderate";
-    case DamageState::Extensive:
-      return "extensive";
-    case DamageState::Complete:
-      return "complete";
-  }
-  return "none";
-}
-
 std::array<double, 4> hazusDriftThresholds(StructuralType type, CodeEra era, int storeys) {
   const StructuralType t = resolvedStructuralType(type, storeys);
   if (t == StructuralType::Unknown || t >= StructuralType::Count) return {0, 0, 0, 0};

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "qv/core/SplitMix64.h"
+
 namespace qv::seismic::detail {
 
 inline constexpr double kLn2 = 0.6931471805599453094;
@@ -82,20 +84,12 @@ inline void deterministicSinCosTurns(double u, double& cosine, double& sine) {
   }
 }
 
-/// splitmix64 (Steele, Lea & Flood 2014): seeds the main generator from one 64-bit value.
-inline std::uint64_t splitmix64(std::uint64_t& state) {
-  std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
-
 /// xoshiro256** (Blackman & Vigna 2018).
 class Xoshiro256 {
  public:
   explicit Xoshiro256(std::uint64_t seed) {
-    std::uint64_t s = seed;
-    for (auto& word : state_) word = splitmix64(s);
+    SplitMix64 seeder{seed};  // seeds the state from one 64-bit value, as Blackman & Vigna advise
+    for (auto& word : state_) word = seeder.next();
   }
   std::uint64_t next() {
     const std::uint64_t result = rotl(state_[1] * 5, 7) * 9;

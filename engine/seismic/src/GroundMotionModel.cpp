@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <limits>
 #include <string>
+
+#include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
 namespace {
@@ -140,12 +141,6 @@ constexpr Bssa14Row kBssa14[] = {
 constexpr std::size_t kBssa14Rows = sizeof kBssa14 / sizeof kBssa14[0];
 constexpr double kMref = 4.5, kRref = 1.0, kVref = 760.0, kF1 = 0.0, kF3 = 0.1;
 
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
-
 double eventTerm(const Bssa14Row& c, FaultMechanism mechanism) {
   switch (mechanism) {
     case FaultMechanism::Unspecified:
@@ -242,9 +237,12 @@ Result<SiteShaking> shakingAtSite(const Scenario& s, double epicentralDistanceKm
   SiteShaking out;
   out.pgaG = s.siteFactor * bssa14MedianPgaG(s.magnitude, epicentralDistanceKm, s.vs30MetresPerSecond, s.mechanism);
   out.scale = out.pgaG / recordPeakG;
-  const double hypocentralKm = std::sqrt(epicentralDistanceKm * epicentralDistanceKm + s.depthKm * s.depthKm);
-  out.delaySeconds = hypocentralKm / s.shearWaveSpeedKmPerS;
+  out.delaySeconds = shearWaveDelayS(epicentralDistanceKm, s.depthKm, s.shearWaveSpeedKmPerS);
   return out;
+}
+
+double shearWaveDelayS(double epicentralDistanceKm, double depthKm, double shearWaveSpeedKmPerS) {
+  return std::hypot(epicentralDistanceKm, depthKm) / shearWaveSpeedKmPerS;
 }
 
 }  // namespace qv::seismic

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
 namespace {
@@ -22,12 +23,6 @@ struct Line {
   std::size_t number = 0;  // 1-based
   std::string_view text;
 };
-
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", v);
-  return buffer;
-}
 
 Error errorAt(std::string_view name, std::size_t line, const std::string& message) {
   // Appended piece by piece (GCC 12 at -O3 warns falsely about "literal" + std::string).
@@ -305,7 +300,7 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
                                        const GroundMotionReadOptions& options, GroundMotionSource* source) {
   if (options.timeStepS &&
       !(std::isfinite(*options.timeStepS) && *options.timeStepS > 0.0 && *options.timeStepS <= 10.0)) {
-    return errorAt(name, 0, "the time step given must be in (0, 10] s, not " + formatDouble(*options.timeStepS));
+    return errorAt(name, 0, "the time step given must be in (0, 10] s, not " + formatDouble(*options.timeStepS, 10));
   }
   if (const auto newlines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
       newlines >= kMaxLines) {
@@ -421,12 +416,13 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
     if (times.size() < 2) return errorAt(name, 0, "two-column records need at least two rows");
     timeStep = times[1] - times[0];
     if (!(timeStep > 0.0)) {
-      return errorAt(name, numbers[1],
-                     "time does not increase (" + formatDouble(times[0]) + " then " + formatDouble(times[1]) + ")");
+      return errorAt(
+          name, numbers[1],
+          "time does not increase (" + formatDouble(times[0], 10) + " then " + formatDouble(times[1], 10) + ")");
     }
     // The same bound as a header's DT (the difference of two finite times can even overflow).
     if (!(timeStep <= 10.0)) {
-      return errorAt(name, numbers[1], "the times give a step of " + formatDouble(timeStep) + " s (at most 10 s)");
+      return errorAt(name, numbers[1], "the times give a step of " + formatDouble(timeStep, 10) + " s (at most 10 s)");
     }
     // Times are printed with few digits: accept steps within 0.1 % of the first one.
     const double tolerance = 1e-3 * timeStep;
@@ -434,8 +430,9 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
       const double step = times[k] - times[k - 1];
       if (std::fabs(step - timeStep) > tolerance) {
         return errorAt(name, numbers[k],
-                       "non-uniform time step: " + formatDouble(step) + " s after t = " + formatDouble(times[k - 1]) +
-                           " s, the record started with " + formatDouble(timeStep) + " s");
+                       "non-uniform time step: " + formatDouble(step, 10) +
+                           " s after t = " + formatDouble(times[k - 1], 10) + " s, the record started with " +
+                           formatDouble(timeStep, 10) + " s");
       }
     }
     timeStepFromFile = true;
@@ -446,7 +443,7 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
     const double nearest = std::round(startSteps);
     if (std::fabs(startSteps - nearest) > 1e-3 || nearest < 0.0 || nearest > 1e6) {
       return errorAt(name, numbers[0],
-                     "the first time (" + formatDouble(times[0]) + " s) is not 0 or a multiple of the time step");
+                     "the first time (" + formatDouble(times[0], 10) + " s) is not 0 or a multiple of the time step");
     }
     if (nearest == 0.0) {
       if (motion.accelerationMps2.front() == 0.0) motion.accelerationMps2.erase(motion.accelerationMps2.begin());
@@ -455,8 +452,8 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
     }
     if (options.timeStepS && std::fabs(*options.timeStepS - timeStep) > 1e-6 * timeStep) {
       return errorAt(name, numbers[1],
-                     "the times give a step of " + formatDouble(timeStep) + " s but the step given is " +
-                         formatDouble(*options.timeStepS) + " s");
+                     "the times give a step of " + formatDouble(timeStep, 10) + " s but the step given is " +
+                         formatDouble(*options.timeStepS, 10) + " s");
     }
   } else {
     motion.accelerationMps2.reserve(valueCount);
@@ -467,23 +464,23 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
     if (header.points) {
       const double n = *header.points;
       if (!isWholeNumber(n)) {
-        return errorAt(name, header.pointsLine, "NPTS must be a positive whole number, not " + formatDouble(n));
+        return errorAt(name, header.pointsLine, "NPTS must be a positive whole number, not " + formatDouble(n, 10));
       }
       if (static_cast<double>(motion.size()) != n) {
         return errorAt(name, header.pointsLine,
-                       "NPTS = " + formatDouble(n) + " in the header but " + std::to_string(motion.size()) +
+                       "NPTS = " + formatDouble(n, 10) + " in the header but " + std::to_string(motion.size()) +
                            " values follow (the last on line " + std::to_string(lastValueLine) + ")");
       }
     }
     if (header.timeStepS) {
       const double dt = *header.timeStepS;
       if (!(dt > 0.0 && dt <= 10.0)) {
-        return errorAt(name, header.timeStepLine, "DT must be in (0, 10] s, not " + formatDouble(dt));
+        return errorAt(name, header.timeStepLine, "DT must be in (0, 10] s, not " + formatDouble(dt, 10));
       }
       if (options.timeStepS && std::fabs(*options.timeStepS - dt) > 1e-6 * dt) {
         return errorAt(name, header.timeStepLine,
-                       "the header gives DT = " + formatDouble(dt) + " s but the step given is " +
-                           formatDouble(*options.timeStepS) + " s");
+                       "the header gives DT = " + formatDouble(dt, 10) + " s but the step given is " +
+                           formatDouble(*options.timeStepS, 10) + " s");
       }
       timeStep = dt;
       timeStepFromFile = true;
@@ -519,7 +516,7 @@ Result<GroundMotion> parseGroundMotion(std::string_view text, std::string_view n
     // Values near the largest double overflow when converted; no record holds such a value.
     if (!std::isfinite(a)) {
       return errorAt(name, 0,
-                     "sample " + std::to_string(k + 1) + " (" + formatDouble(asWritten) + " " +
+                     "sample " + std::to_string(k + 1) + " (" + formatDouble(asWritten, 10) + " " +
                          std::string(accelerationUnitName(units)) + ") is too large to be an acceleration");
     }
   }

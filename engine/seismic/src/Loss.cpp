@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "qv/core/SplitMix64.h"
 #include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/Damage.h"
 #include "qv/seismic/HazusTables.h"
@@ -91,19 +92,6 @@ const hazus::StructuralRow& structuralRow(StructuralType type, int storeys) {
   if (t == StructuralType::Unknown || t >= StructuralType::Count) t = StructuralType::C1L;
   return hazus::kStructural[static_cast<std::size_t>(t) - 1];
 }
-
-// splitmix64 (Steele, Lea, Flood 2014): a small, fast, well-mixed generator; identical everywhere.
-struct SplitMix64 {
-  std::uint64_t state;
-  std::uint64_t next() {
-    std::uint64_t z = (state += 0x9E3779B97F4A7C15ull);
-    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-    return z ^ (z >> 31);
-  }
-  // Uniform in (0, 1].
-  double uniformOpenClosed() { return static_cast<double>((next() >> 11) + 1) * 0x1.0p-53; }
-};
 
 // P(DS >= k) for k = 1..4.
 std::array<double, 4> exceedances(const DamageProbabilities& p) {
@@ -364,7 +352,7 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
   enum Quantity : std::size_t { kState0 = 0, kCollapsed = 5, kInjury1 = 6, kCost = 10, kCount = 11 };
   constexpr std::size_t R = kLossRealisations;
   std::vector<double> sums(R * kCount, 0.0);
-  SplitMix64 rng{seed};
+  SplitMix64 rng{seed};  // splitmix64: fast, well mixed, the same draws on every target
   for (const BuildingLoss& b : buildings) {
     const std::array<double, 4> str = exceedances(b.structural);
     const std::array<double, 4> nsd = exceedances(b.nonStructuralDrift);

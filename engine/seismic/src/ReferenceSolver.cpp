@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 
 #include "BoucWenUpdate.h"
+#include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
 
@@ -28,12 +28,6 @@ enum class StepOutcome { Accepted, NotConverged, TooCoarse };
 
 // Accuracy splits go at most 2^6 = 64 times finer than the automatic sub-step.
 constexpr int kMaxAccuracySplits = 6;
-
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
 
 // One storey's law, precomputed.
 struct StoreyLaw {

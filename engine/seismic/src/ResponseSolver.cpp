@@ -4,18 +4,13 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <string>
 
+#include "qv/core/NumberFormat.h"
+
 namespace qv::seismic {
 namespace {
-
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
 
 // The relative-velocity response spectrum of a record at 5 % damping on a geometric grid of periods
 // (kSpectrumFirstPeriodS × kSpectrumRatio^j), by Newmark's average acceleration with steps of at most

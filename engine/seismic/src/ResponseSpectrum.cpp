@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
-#include <cstdio>
 #include <limits>
 #include <string>
+
+#include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
 namespace {
@@ -16,12 +17,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // states are between which the Hermite interpolant locates a peak (its error is about
 // (2π/20)⁴/384 ≈ 3e-5 of the amplitude at worst, and much less in practice).
 constexpr double kSubStepsPerPeriod = 20.0;
-
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
 
 bool finitePositive(double v) {
   return std::isfinite(v) && v > 0.0;

@@ -2,23 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <numeric>
 #include <string>
 
 #include "Tridiagonal.h"
+#include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
 namespace {
 
 constexpr double kTwoPi = 6.283185307179586477;
 constexpr std::size_t kMaxStoreys = 1000;
-
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
 
 }  // namespace
 

@@ -1,20 +1,14 @@
 #include "qv/seismic/SyntheticMotion.h"
 
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <vector>
 
 #include "DeterministicMath.h"
+#include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
 namespace {
-
-std::string formatDouble(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", v);
-  return buffer;
-}
 
 Status checkRange(const char* what, double value, double low, double high) {
   if (!(value >= low && value <= high)) {

@@ -14,6 +14,7 @@
 
 #include "Commands.h"
 #include "qv/core/JsonWriter.h"
+#include "qv/core/NumberFormat.h"
 #include "qv/prep/Cli.h"
 #include "qv/seismic/GroundMotionReader.h"
 #include "qv/seismic/ReferenceSolver.h"
@@ -76,12 +77,6 @@ bool parsePerStorey(const std::string& flag, const std::string& text, std::size_
   return true;
 }
 
-std::string formatG(double v, int digits = 6) {
-  char buffer[48];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-  return buffer;
-}
-
 }  // namespace
 
 int runMdof(const CommandArgs& args) {
@@ -124,8 +119,9 @@ int runMdof(const CommandArgs& args) {
     const auto law = seismic::BoucWenStorey::fromOpenSees((*p)[0], (*p)[1], (*p)[2], (*p)[3]);
     if (!law) return usageError("--bouc-wen: " + law.error());
     building.hysteresis.assign(n, *law);
-    lawText = "Bouc-Wen alpha " + formatG((*p)[0]) + ", n " + formatG((*p)[1]) + ", gamma " + formatG((*p)[2]) +
-              ", beta " + formatG((*p)[3]) + " (yield displacement " + formatG(law->yieldDisplacementM) + " m)";
+    lawText = "Bouc-Wen alpha " + formatDouble((*p)[0]) + ", n " + formatDouble((*p)[1]) + ", gamma " +
+              formatDouble((*p)[2]) + ", beta " + formatDouble((*p)[3]) + " (yield displacement " +
+              formatDouble(law->yieldDisplacementM) + " m)";
   }
 
   // Damping.
@@ -152,16 +148,16 @@ int runMdof(const CommandArgs& args) {
   if (!modes) return usageError(modes.error());
   std::string dampingText;
   if (a.has("rayleigh")) {
-    dampingText = "Rayleigh a0 " + formatG(building.damping.massCoefficient) + " 1/s, a1 " +
-                  formatG(building.damping.stiffnessCoefficient) + " s";
+    dampingText = "Rayleigh a0 " + formatDouble(building.damping.massCoefficient) + " 1/s, a1 " +
+                  formatDouble(building.damping.stiffnessCoefficient) + " s";
   } else if (a.has("modal-damping")) {
-    dampingText = "classical modal, " + formatG(100.0 * ratio) + " % in every mode";
+    dampingText = "classical modal, " + formatDouble(100.0 * ratio) + " % in every mode";
   } else {
     const double w2 = n > 1 ? modes->circularFrequencies[1] : 0.0;
     building.damping = seismic::Damping::rayleighFromModes(ratio, modes->circularFrequencies[0], w2);
-    dampingText = "Rayleigh, " + formatG(100.0 * ratio) + (n > 1 ? " % on modes 1 and 2" : " % on mode 1") + " (a0 " +
-                  formatG(building.damping.massCoefficient) + " 1/s, a1 " +
-                  formatG(building.damping.stiffnessCoefficient) + " s)";
+    dampingText = "Rayleigh, " + formatDouble(100.0 * ratio) + (n > 1 ? " % on modes 1 and 2" : " % on mode 1") +
+                  " (a0 " + formatDouble(building.damping.massCoefficient) + " 1/s, a1 " +
+                  formatDouble(building.damping.stiffnessCoefficient) + " s)";
   }
 
   // Motion and run options.
@@ -273,9 +269,9 @@ int runMdof(const CommandArgs& args) {
   std::printf("damping: %s\n", dampingText.c_str());
   std::printf("motion: %s (%s, %zu points at %s s, units %s%s), scale %s, peak %s g at %s s\n", motion->name.c_str(),
               std::string(seismic::groundMotionFormatName(source.format)).c_str(), motion->size(),
-              formatG(motion->timeStepS).c_str(), std::string(seismic::accelerationUnitName(source.units)).c_str(),
-              source.unitsFromFile ? " from the file" : "", formatG(options.scale).c_str(), formatG(peakG, 4).c_str(),
-              formatG(peakTime, 4).c_str());
+              formatDouble(motion->timeStepS).c_str(), std::string(seismic::accelerationUnitName(source.units)).c_str(),
+              source.unitsFromFile ? " from the file" : "", formatDouble(options.scale).c_str(),
+              formatDouble(peakG, 4).c_str(), formatDouble(peakTime, 4).c_str());
   std::printf("solver: Newmark average acceleration, %d sub-step(s) per record step, %zu steps, %zu Newton solves\n\n",
               r.stats.substeps, r.stats.steps, r.stats.newtonIterations);
   std::printf("mode  period (s)  frequency (Hz)\n");

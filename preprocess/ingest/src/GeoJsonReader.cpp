@@ -2,7 +2,6 @@
 // used with error codes only (never its exception API). On-Demand parses lazily and reports where
 // it stopped but not always why the text is broken, so on any error the text is run through a small
 // syntax checker that finds the first offending byte: messages say "file:line:column: what".
-#include <cstdio>
 #include <optional>
 #include <string_view>
 #include <utility>
@@ -10,6 +9,7 @@
 #include <simdjson.h>
 
 #include "RawCity.h"
+#include "qv/core/NumberFormat.h"
 #include "qv/prep/JsonSyntax.h"
 #include "qv/prep/Projection.h"
 
@@ -252,8 +252,7 @@ class GeoJsonReader {
         }
         if (n < 2) return errorAt(at, featureName(index) + ": a position needs longitude and latitude");
         if (!validLonLat(lonLat[0], lonLat[1])) {
-          char text[64];
-          std::snprintf(text, sizeof text, "[%.10g, %.10g]", lonLat[0], lonLat[1]);
+          const std::string text = "[" + formatDouble(lonLat[0], 10) + ", " + formatDouble(lonLat[1], 10) + "]";
           return errorAt(at, featureName(index) + ": position " + text +
                                  " is not WGS84 longitude/latitude in degrees (reproject the file to EPSG:4326)");
         }

@@ -3,7 +3,6 @@
 // the reader needs random access to the whole document (files of a few MB).
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
 #include <unordered_map>
 #include <utility>
@@ -12,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "qv/core/NumberFormat.h"
 #include "qv/prep/Attributes.h"
 #include "qv/prep/Cli.h"
 #include "qv/prep/Files.h"
@@ -271,9 +271,7 @@ class CityJsonReader {
     double number = 0.0;
     if (lod.get_double().get(number) == SUCCESS && std::isfinite(number)) {  // CityJSON 1.0: a number
       value = number;
-      char buffer[32];
-      std::snprintf(buffer, sizeof buffer, "%g", number);
-      return buffer;
+      return formatDouble(number);
     }
     return "";
   }

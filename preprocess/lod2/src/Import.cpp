@@ -10,6 +10,7 @@
 
 #include <glm/common.hpp>
 
+#include "qv/core/NumberFormat.h"
 #include "qv/prep/Lod2Attributes.h"
 #include "qv/prep/Lod2CityJson.h"
 #include "qv/prep/Lod2Geometry.h"
@@ -32,13 +33,6 @@ bool endsWith(const std::string& text, std::string_view suffix) {
 std::string number(double value, int decimals) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
-
-/// 6 significant digits: "8", "304.8", "1e+30".
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
   return text;
 }
 
@@ -181,9 +175,9 @@ Result<std::vector<Lod2Model>> georeferenceCityJson(const CityJsonFile& file, co
       const bool tall = !(top <= kMaxModelHeightM);
       ++out.skipped[tall ? "too-tall" : "too-large"];
       out.warnings.push_back(fileName + ": " + id + " skipped: " +
-                             (tall ? shortNumber(top) + " m tall (more than " + shortNumber(kMaxModelHeightM) + " m)"
-                                   : shortNumber(std::max(size.x, size.y)) + " m wide (more than " +
-                                         shortNumber(kMaxModelExtentM) + " m)") +
+                             (tall ? formatDouble(top) + " m tall (more than " + formatDouble(kMaxModelHeightM) + " m)"
+                                   : formatDouble(std::max(size.x, size.y)) + " m wide (more than " +
+                                         formatDouble(kMaxModelExtentM) + " m)") +
                              ": broken coordinates or a wrong unit?");
       continue;
     }

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <unordered_map>
 
@@ -12,6 +11,7 @@
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
+#include "qv/core/NumberFormat.h"
 #include "qv/prep/Files.h"
 #include "qv/prep/Lod2Attributes.h"
 #include "qv/prep/Lod2Geometry.h"
@@ -25,13 +25,6 @@ std::string lower(std::string_view text) {
   std::string out;
   for (char c : text) out.push_back(static_cast<char>(std::tolower(static_cast<unsigned char>(c))));
   return out;
-}
-
-/// 6 significant digits: "8", "304.8", "1e+30".
-std::string shortNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", value);
-  return text;
 }
 
 std::string trimmed(std::string text) {
@@ -166,9 +159,9 @@ Result<Lod2Model> readObjModel(const std::string& path, const ObjPlacement& plac
     return Error{path + ": the model is flat (no height after the up-axis conversion: is the up axis right?)"};
   const glm::dvec3 size = highest - lowest;
   if (!(size.z <= kMaxModelHeightM) || !(size.x <= kMaxModelExtentM) || !(size.y <= kMaxModelExtentM))
-    return Error{path + ": the model measures " + shortNumber(size.x) + " x " + shortNumber(size.y) + " x " +
-                 shortNumber(size.z) + " m (at most " + shortNumber(kMaxModelExtentM) + " m wide and " +
-                 shortNumber(kMaxModelHeightM) + " m tall): are the unit and scale right?"};
+    return Error{path + ": the model measures " + formatDouble(size.x) + " x " + formatDouble(size.y) + " x " +
+                 formatDouble(size.z) + " m (at most " + formatDouble(kMaxModelExtentM) + " m wide and " +
+                 formatDouble(kMaxModelHeightM) + " m tall): are the unit and scale right?"};
   const glm::dvec2 centre =
       placement.centreOnAnchor ? 0.5 * (glm::dvec2(lowest) + glm::dvec2(highest)) : glm::dvec2(0.0);
   const glm::dvec2 anchor = projection.forward(placement.lon, placement.lat);

@@ -8,6 +8,7 @@
 #include <map>
 #include <unordered_map>
 
+#include "qv/core/NumberFormat.h"
 #include "qv/format/CityTile.h"
 #include "qv/format/Tileset.h"
 #include "qv/prep/Cli.h"
@@ -24,16 +25,10 @@ constexpr double kTimeTolerance = 1e-6;
 /// Displacements beyond this (metres, after units) are not a building's: a wrong unit or garbage.
 constexpr double kMaxDisplacementM = 1000.0;
 
-std::string formatNumber(double v) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.9g", v);
-  return buffer;
-}
-
 // The import's single time step: set by the first building, checked for every other.
 Status checkTimeStep(ImportedResults& results, double dt, const std::string& place) {
   if (!(dt > 0.0) || !std::isfinite(dt) || dt > 10.0) {
-    return Error{place + ": time step " + formatNumber(dt) + " s is not a positive step of at most 10 s"};
+    return Error{place + ": time step " + formatDouble(dt, 9) + " s is not a positive step of at most 10 s"};
   }
   if (results.timeStepS == 0.0) {
     results.timeStepS = dt;
@@ -41,15 +36,16 @@ Status checkTimeStep(ImportedResults& results, double dt, const std::string& pla
     return {};
   }
   if (std::abs(dt - results.timeStepS) > kTimeTolerance * results.timeStepS) {
-    return Error{place + ": time step " + formatNumber(dt) + " s differs from " + formatNumber(results.timeStepS) +
-                 " s (" + results.timeStepPlace + "); all results of one import share one time base"};
+    return Error{place + ": time step " + formatDouble(dt, 9) + " s differs from " +
+                 formatDouble(results.timeStepS, 9) + " s (" + results.timeStepPlace +
+                 "); all results of one import share one time base"};
   }
   return {};
 }
 
 Status checkStart(double start, const std::string& place) {
   if (!std::isfinite(start) || start < 0.0 || start > 1.0e5) {
-    return Error{place + ": start time " + formatNumber(start) +
+    return Error{place + ": start time " + formatDouble(start, 9) +
                  " s is outside 0 .. 100000 s (the viewer's clock starts at 0)"};
   }
   return {};
@@ -114,7 +110,7 @@ Status readJsonDirection(dom::element value, const std::string& path, double sca
         return Error{floorPath + "[" + std::to_string(f) + "]: not a finite number"};
       }
       if (!(std::abs(d * scale) <= kMaxDisplacementM)) {
-        return Error{floorPath + "[" + std::to_string(f) + "]: " + formatNumber(d) +
+        return Error{floorPath + "[" + std::to_string(f) + "]: " + formatDouble(d, 9) +
                      " is not a building's displacement (more than 1 km; check the units)"};
       }
       out[f * b.floors + i] = static_cast<float>(d * scale);
@@ -186,8 +182,8 @@ Status readJson(const std::string& path, std::optional<DisplacementUnit> units, 
     for (std::size_t k = 1; k < t.size(); ++k) {
       const double step = t[k] - t[k - 1];
       if (!(std::abs(step - dt) <= 1e-3 * dt)) {
-        return Error{path + ": time_s[" + std::to_string(k) + "]: non-uniform time step (" + formatNumber(step) +
-                     " s here, " + formatNumber(dt) + " s on average); resample to a uniform step"};
+        return Error{path + ": time_s[" + std::to_string(k) + "]: non-uniform time step (" + formatDouble(step, 9) +
+                     " s here, " + formatDouble(dt, 9) + " s on average); resample to a uniform step"};
       }
     }
     if (Status s = checkTimeStep(results, dt, path + ": time_s"); !s.ok()) return s;
@@ -404,16 +400,16 @@ Status readCsv(const std::string& path, std::optional<DisplacementUnit> units, I
         const std::string where = path + ":" + std::to_string(row.line);
         if (row.floor != i + 1 || row.time != t) {
           return Error{where + ": building " + id + " has no value for floor " + std::to_string(i + 1) + " at t = " +
-                       formatNumber(t) + " s, or two for another (every floor needs one value at every time)"};
+                       formatDouble(t, 9) + " s, or two for another (every floor needs one value at every time)"};
         }
         if (!(std::abs(t - (b.startSeconds + static_cast<double>(f) * dt)) <= 1e-3 * dt)) {
-          return Error{where + ": non-uniform time step for building " + id + " at t = " + formatNumber(t) +
-                       " s (expected " + formatNumber(b.startSeconds + static_cast<double>(f) * dt) +
+          return Error{where + ": non-uniform time step for building " + id + " at t = " + formatDouble(t, 9) +
+                       " s (expected " + formatDouble(b.startSeconds + static_cast<double>(f) * dt, 9) +
                        " s); resample to a uniform step"};
         }
         for (const double v : {static_cast<double>(row.x), cY >= 0 ? static_cast<double>(row.y) : 0.0}) {
           if (!(std::abs(v * scale) <= kMaxDisplacementM)) {
-            return Error{where + ": " + formatNumber(v) +
+            return Error{where + ": " + formatDouble(v, 9) +
                          " is not a building's displacement (more than 1 km; check the units)"};
           }
         }
@@ -425,10 +421,6 @@ Status readCsv(const std::string& path, std::optional<DisplacementUnit> units, I
     results.buildings.push_back(std::move(b));
   }
   return {};
-}
-
-DamageState toFormat(seismic::DamageState d) {
-  return static_cast<DamageState>(static_cast<std::uint8_t>(d));
 }
 
 }  // namespace
@@ -510,7 +502,7 @@ DisplacementSummary summarizeDisplacements(const BuildingAttributes& a, std::spa
   r.summary.peakDriftRatio = peakDrift;
   r.summary.peakRoofDisplacementM = static_cast<float>(h.peakRoofM);
   r.summary.residualDriftRatio = residual;
-  r.summary.damage = toFormat(seismic::classifyDamage(peakDrift, thresholds));
+  r.summary.damage = seismic::classifyDamage(peakDrift, thresholds);
   return out;
 }
 

@@ -88,10 +88,6 @@ std::string describeRecord(const std::string& path) {
   return text;
 }
 
-DamageState toFormat(seismic::DamageState d) {
-  return static_cast<DamageState>(static_cast<std::uint8_t>(d));
-}
-
 // One record of the suite: one or two components, and their spectra when scaling by Sa.
 struct Record {
   std::string description;
@@ -227,13 +223,14 @@ class ShakingField {
     Site s;
     if (!present()) return std::optional<Site>(s);
     s.distanceKm = std::hypot(x - epicentre_.x, y - epicentre_.y) / 1000.0;
-    s.delayS = hasEpicentre_ ? std::hypot(s.distanceKm, depthKm_) / waveSpeed_ : 0.0;
     if (options_.scenario) {
       auto site = seismic::shakingAtSite(*options_.scenario, s.distanceKm, 1.0);
       if (!site.ok()) return Error{site.error()};
       s.pgaG = site->pgaG;
+      s.delayS = site->delaySeconds;
       return std::optional<Site>(s);
     }
+    s.delayS = hasEpicentre_ ? seismic::shearWaveDelayS(s.distanceKm, depthKm_, waveSpeed_) : 0.0;
     const auto lonLat = projection_.reverse({x, y});
     const auto sample = sampleShakeMap(*grid_, lonLat[0], lonLat[1]);
     if (!sample) return std::optional<Site>();
@@ -259,7 +256,7 @@ class ShakingField {
          {std::pair{tileset.bounds.minX, tileset.bounds.minY}, std::pair{tileset.bounds.maxX, tileset.bounds.minY},
           std::pair{tileset.bounds.minX, tileset.bounds.maxY}, std::pair{tileset.bounds.maxX, tileset.bounds.maxY}}) {
       const double km = std::hypot(cx - epicentre_.x, cy - epicentre_.y) / 1000.0;
-      maxDelay = std::max(maxDelay, std::hypot(km, depthKm_) / waveSpeed_);
+      maxDelay = std::max(maxDelay, seismic::shearWaveDelayS(km, depthKm_, waveSpeed_));
     }
     return maxDelay;
   }
@@ -558,13 +555,19 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
           shaking.delaySeconds = item.site.delayS;
           std::array<double, 2> recordSa{0.0, 0.0};
           if (field.spectral()) {
+            std::array<double, 2> scale{0.0, 0.0};
             for (int d = 0; d < (r.hasY ? 2 : 1); ++d) {
-              recordSa[static_cast<std::size_t>(d)] = (d == 0 ? r.spectrumX : r.spectrumY)->saG(item.periodS[d]);
-              if (!(recordSa[static_cast<std::size_t>(d)] > 0.0) || !(item.targetSaG[d] > 0.0)) scalable = false;
+              const auto axis = static_cast<std::size_t>(d);
+              recordSa[axis] = (d == 0 ? r.spectrumX : r.spectrumY)->saG(item.periodS[d]);
+              const auto scaling = seismic::spectralScaling(item.targetSaG[d], recordSa[axis]);
+              if (scaling.ok())
+                scale[axis] = scaling->scale;
+              else
+                scalable = false;
             }
             if (scalable) {
-              shaking.scale = item.targetSaG[0] / recordSa[0];
-              if (r.hasY) shaking.scaleY = item.targetSaG[1] / recordSa[1];
+              shaking.scale = scale[0];
+              if (r.hasY) shaking.scaleY = scale[1];
             }
           } else if (field.present()) {
             shaking.scale = item.site.pgaG / r.peakG;
@@ -666,7 +669,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
                   stats([](const Peaks& p) { return p.maxAcceleration; }, kAccelerationFloor);
               out.summary.source = ResponseSource::Model;
               out.summary.storeys = static_cast<std::uint16_t>(response.storeys);
-              out.summary.damage = toFormat(seismic::classifyDamage(medianDrift, item.x.damageDriftThresholds));
+              out.summary.damage = seismic::classifyDamage(medianDrift, item.x.damageDriftThresholds);
               out.summary.peakDriftRatio = static_cast<float>(medianDrift);
               out.summary.peakRoofDisplacementM = static_cast<float>(h.peakRoofM);
               out.summary.peakFloorAccelerationMs2 = static_cast<float>(medianAcceleration);

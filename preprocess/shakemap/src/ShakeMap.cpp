@@ -17,6 +17,7 @@
 #include <limits>
 #include <system_error>
 
+#include "qv/core/NumberFormat.h"
 #include "qv/prep/Files.h"
 
 namespace qv::prep {
@@ -124,12 +125,6 @@ std::string formatDegrees(double value) {
   if (!s.empty() && s.back() == '.') s.pop_back();
   if (s == "-0") s = "0";
   return s;
-}
-
-std::string formatNumber(double value) {
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.10g", value);
-  return buffer;
 }
 
 /// What the file's values are divided by to give the stored unit (100 for percent g), or nullopt
@@ -480,9 +475,9 @@ class GridParser {
     }
     // The nominal spacing must reach the declared maximum within half a cell after count - 1 steps.
     if (std::fabs(*nominal * static_cast<double>(count - 1) - (maximum - minimum)) > 0.5 * step) {
-      stop("<grid_specification> " + key + "=" + formatNumber(*nominal) + " does not fit " + std::to_string(count) +
-           " nodes from " + formatNumber(minimum) + " to " + formatNumber(maximum) + " (spacing " + formatNumber(step) +
-           ")");
+      stop("<grid_specification> " + key + "=" + formatDouble(*nominal, 10) + " does not fit " + std::to_string(count) +
+           " nodes from " + formatDouble(minimum, 10) + " to " + formatDouble(maximum, 10) + " (spacing " +
+           formatDouble(step, 10) + ")");
       return std::nullopt;
     }
     return step;
@@ -507,12 +502,12 @@ class GridParser {
     const auto nlat = requiredCount(a, "nlat");
     if (!nlat) return;
     if (!(*lonMin < *lonMax) || *lonMin < -360.0 || *lonMax > 360.0) {
-      stop("<grid_specification> lon_min " + formatNumber(*lonMin) + " .. lon_max " + formatNumber(*lonMax) +
+      stop("<grid_specification> lon_min " + formatDouble(*lonMin, 10) + " .. lon_max " + formatDouble(*lonMax, 10) +
            " is not an increasing longitude range");
       return;
     }
     if (!(*latMin < *latMax) || *latMin < -90.0 || *latMax > 90.0) {
-      stop("<grid_specification> lat_min " + formatNumber(*latMin) + " .. lat_max " + formatNumber(*latMax) +
+      stop("<grid_specification> lat_min " + formatDouble(*latMin, 10) + " .. lat_max " + formatDouble(*latMax, 10) +
            " is not an increasing latitude range within -90..90");
       return;
     }
@@ -713,12 +708,12 @@ class GridParser {
     for (std::size_t i = 0; i < row_.size(); ++i) {
       if (!columns_[i].field) continue;
       if (!std::isfinite(row_[i])) {
-        stopAt(lineNumber, columnName(i) + " value " + formatNumber(row_[i]) + " is not a finite number");
+        stopAt(lineNumber, columnName(i) + " value " + formatDouble(row_[i], 10) + " is not a finite number");
         return;
       }
       // Stored as float: a value beyond its range (1e300) would become infinite (found by fuzz_shakemap).
       if (std::fabs(row_[i] / columns_[i].divisor) > static_cast<double>(std::numeric_limits<float>::max())) {
-        stopAt(lineNumber, columnName(i) + " value " + formatNumber(row_[i]) + " is out of range");
+        stopAt(lineNumber, columnName(i) + " value " + formatDouble(row_[i], 10) + " is out of range");
         return;
       }
     }
@@ -730,7 +725,7 @@ class GridParser {
     const double expectedLon = grid_.lonMin + static_cast<double>(column) * grid_.lonSpacing;
     const double expectedLat = grid_.latMax - static_cast<double>(gridRow) * grid_.latSpacing;
     if (std::fabs(lon - expectedLon) > kLatticeToleranceDeg || std::fabs(lat - expectedLat) > kLatticeToleranceDeg) {
-      stopAt(lineNumber, "node (" + formatNumber(lon) + ", " + formatNumber(lat) + ") is off the grid: row " +
+      stopAt(lineNumber, "node (" + formatDouble(lon, 10) + ", " + formatDouble(lat, 10) + ") is off the grid: row " +
                              std::to_string(rows_ + 1) + " must be the node at lon " + formatDegrees(expectedLon) +
                              ", lat " + formatDegrees(expectedLat) + " (column " + std::to_string(column) + ", row " +
                              std::to_string(gridRow) +

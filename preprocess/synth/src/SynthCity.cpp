@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <string>
 
+#include "qv/core/SplitMix64.h"
 #include "qv/prep/Attributes.h"
 
 namespace qv::prep {
@@ -19,13 +20,6 @@ constexpr double kStreet = 18.0;
 constexpr double kAvenue = 30.0;
 constexpr double kPitchX = kBlockWidth + kAvenue;
 constexpr double kPitchY = kBlockDepth + kStreet;
-
-std::uint64_t splitmix(std::uint64_t& x) {
-  std::uint64_t z = (x += 0x9E3779B97F4A7C15ull);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
-  return z ^ (z >> 31);
-}
 
 std::uint64_t rotl(std::uint64_t x, int k) {
   return (x << k) | (x >> (64 - k));
@@ -152,8 +146,8 @@ void makeDetailedTowers(CityModel& model, std::uint64_t count) {
 }  // namespace
 
 SynthRandom::SynthRandom(std::uint64_t seed) {
-  std::uint64_t x = seed;
-  for (std::uint64_t& s : s_) s = splitmix(x);
+  SplitMix64 seeder{seed};
+  for (std::uint64_t& s : s_) s = seeder.next();
 }
 
 std::uint64_t SynthRandom::next() {

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "qv/core/Result.h"
+#include "qv/format/DamageState.h"
 
 namespace qv {
 
@@ -26,16 +27,6 @@ namespace qv {
 /// history (.qvh) is version 1.
 inline constexpr std::uint16_t kResponseSummaryVersion = 2;
 inline constexpr std::uint16_t kResponseHistoryVersion = 1;
-
-enum class DamageState : std::uint8_t {
-  None = 0,
-  Slight = 1,
-  Moderate = 2,
-  Extensive = 3,
-  Complete = 4,
-  NoResult = 255
-};
-std::string_view damageStateName(DamageState state);  ///< "none" … "complete", "no_result"
 
 enum class ResponseSource : std::uint8_t { None = 0, Model = 1, Imported = 2 };
 std::string_view responseSourceName(ResponseSource source);  ///< "none", "model", "imported"

@@ -90,8 +90,21 @@ struct TriangleMeshInput {
 /// no area are skipped. Returns the number of triangles appended.
 std::size_t appendTriangleMesh(MeshData& mesh, const TriangleMeshInput& input);
 
-/// The heights of the floor levels strictly between baseZ and topZ for a building whose storeys
-/// are `storeyHeight` metres tall starting at ground level (z = 0), appended to `out`.
+/// A building's floors: levels at groundZ + k·storeyHeightM for k = 1, 2, … below `storeys` (and
+/// below 1000, where a corrupt count or height stops).
+struct FloorGrid {
+  float groundZ = 0.0f;        ///< z of the building's lowest floor (metres)
+  float storeyHeightM = 0.0f;  ///< metres; no levels unless > 0.1
+  int storeys = 1000;          ///< levels k < storeys
+};
+
+/// The floor levels of `floors` strictly between baseZ and topZ, more than `marginM` from both, in
+/// ascending order, appended to `out`: the rings a part of a building gets inside it. The one
+/// place floor levels are computed (viewer, test scenes).
+void floorLevelsBetween(const FloorGrid& floors, float baseZ, float topZ, float marginM, std::vector<float>& out);
+
+/// floorLevelsBetween for a building standing at z = 0 with storeys `storeyHeight` metres tall and
+/// any count of them, 1 mm from baseZ and topZ.
 void floorLevelsBetween(float baseZ, float topZ, float storeyHeight, std::vector<float>& out);
 
 /// Fan triangulation of a convex ring (indices into that ring starting at `first`). For test

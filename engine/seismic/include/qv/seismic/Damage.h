@@ -10,17 +10,17 @@
 #pragma once
 
 #include <array>
-#include <cstdint>
-#include <string_view>
 
 #include "qv/format/BuildingAttributes.h"
+#include "qv/format/DamageState.h"
 
 namespace qv::seismic {
 
-enum class DamageState : std::uint8_t { None = 0, Slight = 1, Moderate = 2, Extensive = 3, Complete = 4 };
-
-/// "none", "slight", "moderate", "extensive", "complete".
-std::string_view damageStateName(DamageState state);
+/// The damage states are the response tiles' (qv/format/DamageState.h, one definition in the format
+/// library below this one): None … Complete from classifyDamage; NoResult only for a building
+/// without a result.
+using qv::DamageState;
+using qv::damageStateName;
 
 /// Drift ratios at the thresholds of slight, moderate, extensive and complete damage (ascending).
 /// Unknown types use C1 of the height class of `storeys` (<= 3 low, <= 7 mid, else high).

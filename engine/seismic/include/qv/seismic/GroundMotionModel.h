@@ -56,6 +56,10 @@ struct SiteShaking {
   double delaySeconds = 0.0;  ///< shift the input record by this (hypocentral distance / speed)
 };
 
+/// The S-wave travel time (s) to a site `epicentralDistanceKm` from the epicentre of a source
+/// `depthKm` deep: hypocentral distance / speed. Preconditions: distances >= 0, speed > 0.
+double shearWaveDelayS(double epicentralDistanceKm, double depthKm, double shearWaveSpeedKmPerS);
+
 /// Shaking of a site at `epicentralDistanceKm` from the epicentre for an input record whose peak is
 /// `recordPeakG` (g, > 0). Errors name the parameter that is out of range.
 Result<SiteShaking> shakingAtSite(const Scenario& scenario, double epicentralDistanceKm, double recordPeakG);

@@ -1,7 +1,7 @@
-// The city frame: GeographicLib's transverse Mercator on WGS84 with scale k0 = 1 and its central
-// meridian through the origin, so distances near the city are true metres (plain Web Mercator
-// would stretch them by 1/cos(latitude), 1.32 in New York). x points east, y north, in metres,
-// (0, 0) is the origin. Double precision throughout.
+// The city frame for quakeview-prep: the viewer's projection (qv::GeoFrame, engine/geometry:
+// transverse Mercator on WGS84, k0 = 1, central meridian through the origin; x east, y north, in
+// metres from the origin) with preprocess's contract: input validated by the caller, so no
+// optional results. Also a fast grid of it for the many points of one city.
 #pragma once
 
 #include <array>
@@ -11,6 +11,8 @@
 
 #include <glm/vec2.hpp>
 
+#include "qv/geometry/GeoFrame.h"
+
 namespace qv::prep {
 
 class CityProjection {
@@ -19,19 +21,17 @@ class CityProjection {
   /// callers validate user input first).
   CityProjection(double originLon, double originLat);
 
-  [[nodiscard]] double originLon() const { return originLon_; }
-  [[nodiscard]] double originLat() const { return originLat_; }
+  [[nodiscard]] double originLon() const { return frame_.originLon(); }
+  [[nodiscard]] double originLat() const { return frame_.originLat(); }
 
-  /// Degrees (WGS84) to metres east/north of the origin. Accurate to nanometres within a few
-  /// thousand kilometres of the central meridian (GeographicLib's Krüger series of order 6).
-  [[nodiscard]] glm::dvec2 forward(double lon, double lat) const;
-  /// Metres of the city frame to {lon, lat} in degrees.
+  /// Degrees (WGS84) to metres east/north of the origin (GeoFrame::forwardUnchecked). Accurate to
+  /// nanometres within a few thousand kilometres of the central meridian.
+  [[nodiscard]] glm::dvec2 forward(double lon, double lat) const { return frame_.forwardUnchecked({lon, lat}); }
+  /// Metres of the city frame to {lon, lat} in degrees (GeoFrame::reverseUnchecked).
   [[nodiscard]] std::array<double, 2> reverse(glm::dvec2 xy) const;
 
  private:
-  double originLon_;
-  double originLat_;
-  double northingOfOriginM_;  ///< the TM northing of the origin (y is measured from it)
+  GeoFrame frame_;
 };
 
 /// CityProjection::forward for the many points of one city, fast: the exact values at the nodes of
