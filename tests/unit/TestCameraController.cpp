@@ -69,7 +69,7 @@ TEST_CASE("Two-finger pinch zooms and one finger pans", "[scene][camera]") {
   CHECK(s.y > y);
 }
 
-TEST_CASE("One key press moves by a fixed step whatever the frame time; held keys then move steadily; R resets",
+TEST_CASE("One key press moves by a fixed step whatever the frame time, held keys then move steadily, R resets",
           "[scene][camera]") {
   CameraState s{0.0, 0.0, 1000.0, 0.0, 60.0, 45.0};
   CameraController c(s);
