@@ -8,6 +8,8 @@
 
 #include "HeadlessImGui.h"
 #include "qv/ui/ImGuiBrowserBackend.h"
+#include "qv/ui/TextMirror.h"
+#include "qv/ui/Widgets.h"
 
 using namespace qv;
 
@@ -144,4 +146,47 @@ TEST_CASE("Typing reaches a focused text field, and its keys are not the viewer'
     fixture.frame(draw);
     CHECK(std::string(buffer).empty());
   }
+}
+
+TEST_CASE("Pressing or dragging on a plot says where along it, to seek the time there", "[ui][backend]") {
+  BackendFixture fixture;
+  TextMirror mirror;
+  const float values[4] = {0.0f, 1.0f, -1.0f, 0.0f};
+  float seek = -1.0f;
+  ImVec2 min, max;
+  auto draw = [&] {
+    ui::Widgets w(mirror);
+    ImGui::Text("Above the plot");
+    seek = w.plot("##motion", values, 4, -1.0f, 1.0f, 40.0f, 0.5f, "Ground motion");
+    min = ImGui::GetItemRectMin();
+    max = ImGui::GetItemRectMax();
+  };
+  fixture.frame(draw);
+  CHECK(seek < 0.0f);
+  const float y = (min.y + max.y) / 2.0f;
+  const auto at = [&](float fraction) { return min.x + (max.x - min.x) * fraction; };
+  // Press at a quarter of the plot: the next frame says 0.25; drag to three quarters: 0.75.
+  ui::imguiBrowserPointerMove(at(0.25f), y);
+  ui::imguiBrowserPointerDown(0, at(0.25f), y);
+  fixture.frame(draw);
+  CHECK(seek == Approx(0.25f).margin(0.01f));
+  ui::imguiBrowserPointerMove(at(0.75f), y);
+  fixture.frame(draw);
+  CHECK(seek == Approx(0.75f).margin(0.01f));
+  // Dragged past the end: clamped.
+  ui::imguiBrowserPointerMove(max.x + 50.0f, y);
+  fixture.frame(draw);
+  CHECK(seek == Approx(1.0f));
+  ui::imguiBrowserPointerUp(0);
+  fixture.frame(draw);
+  CHECK(seek < 0.0f);
+  // A press that began above the plot and moves onto it does not seek.
+  ui::imguiBrowserPointerMove(at(0.5f), min.y - 20.0f);
+  ui::imguiBrowserPointerDown(0, at(0.5f), min.y - 20.0f);
+  fixture.frame(draw);
+  ui::imguiBrowserPointerMove(at(0.5f), y);
+  fixture.frame(draw);
+  CHECK(seek < 0.0f);
+  ui::imguiBrowserPointerUp(0);
+  fixture.frame(draw);
 }

@@ -392,9 +392,20 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       const double rate = tileset->response->motionPreviewRateHz;
       const double recordSeconds = static_cast<double>(g.size()) / rate;
       const float cursor = static_cast<float>(viewer.time() / std::max(recordSeconds, 1e-3));
-      w.plot("##motion", g.data(), static_cast<int>(g.size()), -peak, peak, 50.0f, cursor,
-             ui::format("Ground motion (input record, X): peak %.2f g at %.1f s; time cursor at %.1f s",
-                        static_cast<double>(peak), static_cast<double>(at) / rate, viewer.time()));
+      const float seek = w.plot(
+          "##motion", g.data(), static_cast<int>(g.size()), -peak, peak, 50.0f, cursor,
+          ui::format("Ground motion (input record, X): peak %.2f g at %.1f s; time cursor at %.1f s (click or drag "
+                     "the plot to move the time)",
+                     static_cast<double>(peak), static_cast<double>(at) / rate, viewer.time()));
+      if (seek >= 0.0f) viewer.setTime(static_cast<double>(seek) * recordSeconds);
+      // Why the slider runs past the record: the shaking reaches distant buildings later.
+      const double delays = viewer.duration() - recordSeconds;
+      if (delays > 0.05) {
+        w.textWrapped(
+            ui::format("Time runs to %.1f s: the record lasts %.1f s and reaches each building after its "
+                       "S-wave travel time from the hypocentre, up to %.1f s.",
+                       viewer.duration(), recordSeconds, delays));
+      }
     }
   }
 

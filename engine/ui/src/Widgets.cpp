@@ -191,8 +191,8 @@ bool Widgets::selectable(const char* label, bool selected) {
   return ImGui::Selectable(shown.str().c_str(), selected);
 }
 
-void Widgets::plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
-                   float cursorFraction, std::string_view summary) {
+float Widgets::plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
+                    float cursorFraction, std::string_view summary) {
   // The summary is the plot's caption on screen and its text for screen readers.
   ImGui::PushTextWrapPos(0.0f);
   ImGui::TextUnformatted(summary.data(), summary.data() + summary.size());
@@ -205,6 +205,14 @@ void Widgets::plot(const char* id, const float* values, int count, float minValu
     ImGui::GetWindowDrawList()->AddLine(ImVec2(x, a.y), ImVec2(x, b.y), IM_COL32(20, 90, 200, 255), 2.0f);
   }
   mirror_.line(summary);
+  // A press on the plot seeks, and so does dragging it on while the button stays down (even
+  // beyond the plot's ends, clamped); a press that began elsewhere does not.
+  ImGuiStorage* storage = ImGui::GetStateStorage();
+  const ImGuiID dragging = ImGui::GetID(id);
+  if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) storage->SetBool(dragging, true);
+  if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) storage->SetBool(dragging, false);
+  if (!storage->GetBool(dragging, false) || b.x <= a.x) return -1.0f;
+  return std::clamp((ImGui::GetIO().MousePos.x - a.x) / (b.x - a.x), 0.0f, 1.0f);
 }
 
 void Widgets::bars(const char* id, const float* values, int count, float maxValue, float height,

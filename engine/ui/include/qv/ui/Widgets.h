@@ -45,9 +45,11 @@ class Widgets {
   /// A clickable row; returns true when clicked. Mirrored as "> text".
   bool selectable(const char* label, bool selected = false);
   /// A line plot of `values` over [0, duration] with a vertical cursor at `cursorFraction` (0..1),
-  /// mirrored as `summary` (a plot is pixels: the text says what it shows).
-  void plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
-            float cursorFraction, std::string_view summary);
+  /// mirrored as `summary` (a plot is pixels: the text says what it shows). Returns where along
+  /// the plot (0..1) the left button is pressed or dragged, when the press began on the plot (to
+  /// seek there), else a negative value.
+  float plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,
+             float cursorFraction, std::string_view summary);
   /// A histogram (bars), mirrored as `summary`.
   void bars(const char* id, const float* values, int count, float maxValue, float height, std::string_view summary);
   /// A horizontal bar filled to `fraction` (0..1) in the given colour, with `label` before it and
