@@ -38,6 +38,27 @@ std::string drawPanel(Viewer& viewer, TextMirror& mirror) {
   return drawPanel(viewer, mirror, panel, host);
 }
 
+// The mini city opened in a viewer on a screen of the given height, settled, with a panel that
+// draws it (the set-up of the tests that select buildings).
+struct CityPanel {
+  explicit CityPanel(int height) {
+    ImGui::GetIO().DisplaySize = ImVec2(1280.0f, static_cast<float>(height));
+    city.serve(fetcher);
+    viewer.openCity("city/tileset.json", fetcher);
+    viewer.setViewport(1280, height, 1280.0, height);
+    viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+    for (int i = 0; i < 20; ++i) viewer.frame(1.0 / 60.0);
+  }
+  HeadlessImGui imgui;
+  test::MiniCity city;
+  test::FakeFetcher fetcher;
+  NullRenderDevice device;
+  Viewer viewer{device};
+  TextMirror mirror;
+  ControlPanel panel;
+  RecordingHost host;
+};
+
 }  // namespace
 
 TEST_CASE("The control panel's text mirror shows what the panel says", "[ui]") {
@@ -103,20 +124,12 @@ TEST_CASE("Names with control characters or bidirectional overrides cannot reord
 }
 
 TEST_CASE("Selecting a building shows its inspection window and exports list the filtered buildings", "[ui][city]") {
-  HeadlessImGui imgui;
-  test::MiniCity city;
-  test::FakeFetcher fetcher;
-  city.serve(fetcher);
-  NullRenderDevice device;
-  Viewer viewer(device);
-  viewer.openCity("city/tileset.json", fetcher);
-  viewer.setViewport(1280, 720, 1280.0, 720.0);
-  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
-  for (int i = 0; i < 20; ++i) viewer.frame(1.0 / 60.0);
+  CityPanel setup(720);
+  Viewer& viewer = setup.viewer;
+  TextMirror& mirror = setup.mirror;
+  ControlPanel& panel = setup.panel;
+  RecordingHost& host = setup.host;
   REQUIRE(viewer.settled());
-  TextMirror mirror;
-  ControlPanel panel;
-  RecordingHost host;
 
   CHECK_FALSE(viewer.select("no-such-building"));
   REQUIRE(viewer.select("s10"));
@@ -180,21 +193,12 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
 
 TEST_CASE("The inspection window fits a short screen, scrolls with the wheel and starts at the top for each building",
           "[ui][city][inspection]") {
-  HeadlessImGui imgui;
-  ImGui::GetIO().DisplaySize = ImVec2(1280.0f, 400.0f);
-  test::MiniCity city;
-  test::FakeFetcher fetcher;
-  city.serve(fetcher);
-  NullRenderDevice device;
-  Viewer viewer(device);
-  viewer.openCity("city/tileset.json", fetcher);
-  viewer.setViewport(1280, 400, 1280.0, 400.0);
-  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
-  for (int i = 0; i < 20; ++i) viewer.frame(1.0 / 60.0);
+  CityPanel setup(400);
+  Viewer& viewer = setup.viewer;
+  TextMirror& mirror = setup.mirror;
+  ControlPanel& panel = setup.panel;
+  RecordingHost& host = setup.host;
   REQUIRE(viewer.settled());
-  TextMirror mirror;
-  ControlPanel panel;
-  RecordingHost host;
   REQUIRE(viewer.select("s10"));
   for (int i = 0; i < 5; ++i) viewer.frame(1.0 / 60.0);
   for (int i = 0; i < 3; ++i) drawPanel(viewer, mirror, panel, host);
