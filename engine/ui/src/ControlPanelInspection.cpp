@@ -3,7 +3,6 @@
 // on a fixed scale with the building's HAZUS thresholds. Values and scales come from the pure
 // qv/scene/InspectionValues.h; this file only draws them (Dear ImGui) and mirrors them as text.
 #include <imgui.h>
-#include <imgui_internal.h>  // GImGui->WheelingWindow: whether ImGui handled the wheel itself
 
 #include <algorithm>
 #include <cmath>
@@ -201,15 +200,6 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
   if (w.begin(title.c_str(), &open, ImGuiWindowFlags_AlwaysAutoResize)) {
     // Each newly selected building starts at the top (its name), not where the last one was scrolled to.
     if (newBuilding) ImGui::SetScrollY(0.0f);
-    // The wheel scrolls the window. ImGui scrolls the hovered window in NewFrame, but the app feeds
-    // the frame's input after NewFrame (engine/app), so ImGui never sees a wheel there and clears it
-    // at the end of the frame: scroll here, unless ImGui did (it then holds its wheeling window).
-    const ImGuiIO& io = ImGui::GetIO();
-    if (io.MouseWheel != 0.0f && !io.KeyCtrl && GImGui->WheelingWindow == nullptr &&
-        ImGui::IsWindowHovered(ImGuiHoveredFlags_ChildWindows)) {
-      const float step = std::floor(std::min(5.0f * ImGui::GetFontSize(), ImGui::GetWindowHeight() * 0.67f));
-      ImGui::SetScrollY(std::clamp(ImGui::GetScrollY() - io.MouseWheel * step, 0.0f, ImGui::GetScrollMaxY()));
-    }
     const BuildingAttributes& a = info->attributes;
     w.text(a.name.empty() ? std::string("(no name)") : a.name);
     w.field("Use", a.use.empty() ? std::string("unknown") : a.use);
