@@ -25,6 +25,7 @@ class RecordingDevice final : public RenderDevice {
   std::map<std::uint32_t, std::map<std::uint32_t, std::array<int, 3>>> slotVertices;
   bool showModels = true;  // the last frame's FrameUniforms::showModels
   std::vector<DrawItem> lastItems;
+  std::map<std::uint32_t, std::vector<std::uint32_t>> triangleSlots;  // mesh -> slot of each triangle
   NullRenderDevice counter;
 
   MeshHandle createMesh(const MeshData& mesh) override {
@@ -44,11 +45,25 @@ class RecordingDevice final : public RenderDevice {
       a.second += 1;
     }
     for (const auto& [slot, a] : acc) slotCentres[h.id][slot] = a.first / static_cast<float>(a.second);
+    auto& slots = triangleSlots[h.id];
+    for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) slots.push_back(mesh.vertices[mesh.indices[i]].slot);
     return h;
   }
   void destroyMesh(MeshHandle m) override {
     counter.destroyMesh(m);
     slotCentres.erase(m.id);
+    triangleSlots.erase(m.id);
+  }
+  /// Whether the item draws any triangle of `slot` (its spans, or the whole mesh).
+  bool draws(const DrawItem& item, std::uint32_t slot) const {
+    if (item.spans.empty()) return true;
+    const auto& slots = triangleSlots.at(item.mesh.id);
+    for (const IndexSpan& span : item.spans) {
+      for (std::uint32_t t = span.firstIndex / 3; t < (span.firstIndex + span.indexCount) / 3; ++t) {
+        if (slots[t] == slot) return true;
+      }
+    }
+    return false;
   }
   std::size_t meshTriangles(MeshHandle m) const override { return counter.meshTriangles(m); }
   void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> r) override {
@@ -75,7 +90,7 @@ class RecordingDevice final : public RenderDevice {
       if (it == slotCentres.end()) continue;
       for (const auto& [slot, c] : it->second) {
         const glm::vec2 d = c + glm::vec2(item.origin.x, item.origin.y) - world;
-        if (d.x * d.x + d.y * d.y < 0.25f) {
+        if (d.x * d.x + d.y * d.y < 0.25f && draws(item, slot)) {
           const auto& counts = slotVertices.at(item.mesh.id).at(slot);
           return counts[0] + (showModels ? counts[1] : counts[2]);
         }
@@ -90,7 +105,9 @@ class RecordingDevice final : public RenderDevice {
     for (const DrawItem& item : lastItems) {
       const auto it = slotCentres.find(item.mesh.id);
       if (it == slotCentres.end()) continue;
-      for (const auto& [slot, c] : it->second) out[slot] = c + glm::vec2(item.origin.x, item.origin.y);
+      for (const auto& [slot, c] : it->second) {
+        if (draws(item, slot)) out[slot] = c + glm::vec2(item.origin.x, item.origin.y);
+      }
     }
     return out;
   }
@@ -173,6 +190,33 @@ TEST_CASE("A streamed city loads coarse tiles first and refines where the camera
   int withDamage = 0;
   for (const auto& [slot, row] : rig.device.buildings) withDamage += row.damageState >= 0.0f ? 1 : 0;
   CHECK(withDamage > 0);
+}
+
+TEST_CASE("Only the visible buildings' triangles are drawn: a narrow view draws a part of its tiles",
+          "[scene][city][spans]") {
+  SceneRig rig;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
+  // Close to the south-west corner, looking north-east over a few buildings with a narrow lens.
+  viewer.setCamera(CameraState{-140.0, -140.0, 60.0, 45.0, 20.0, 25.0});
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  const auto& latest = viewer.stats().latest;
+  const auto drawn = rig.device.drawnSlots();
+  std::uint64_t wholeTiles = 0;
+  for (const DrawItem& item : rig.device.lastItems) wholeTiles += rig.device.meshTriangles(item.mesh);
+  REQUIRE(latest.buildingsVisible > 0);
+  CHECK(latest.buildingsVisible < latest.buildingsLoaded);
+  // Every visible building is drawn; a few neighbours may come along in a merged run, not the tile.
+  CHECK(drawn.size() >= latest.buildingsVisible);
+  CHECK(drawn.size() < latest.buildingsLoaded);
+  CHECK(latest.triangles < wholeTiles);
+  CHECK(latest.triangles > 0);
+  // From far away the whole city is in view: whole tiles, every building.
+  viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 20);
+  CHECK(rig.device.drawnSlots().size() == viewer.stats().latest.buildingsVisible);
+  CHECK(viewer.stats().latest.buildingsVisible == 64);
 }
 
 TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {

@@ -1,7 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <map>
 #include <set>
+
+#include <glm/geometric.hpp>
 
 #include "MiniCity.h"
 #include "qv/scene/TileMeshBuilder.h"
@@ -93,26 +96,56 @@ TEST_CASE("A tile's mesh draws each building at its place, in its own row, with 
 
 TEST_CASE("A LOD2 model is meshed with its LOD1 fallback in the same row", "[scene][tilemesh][lod2]") {
   const MiniCity city(true, true);
-  for (std::uint32_t node : {0u, 1u}) {
-    CAPTURE(node);
-    const TileContent tile = tileOf(city, node);
-    const auto it = tile.idIndex.find(MiniCity::kLod2Id);
-    REQUIRE(it != tile.idIndex.end());
-    REQUIRE(tile.meshOf(it->second) != nullptr);
-    const MeshData mesh = buildTileMesh(tile, 0);
-    const auto slots = bySlot(mesh);
-    const SlotGeometry& g = slots.at(tile.positionOf[it->second]);
-    CHECK(g.model > 0);
-    CHECK(g.fallback > 0);
-    CHECK(g.plain == 0);
-    CHECK(g.topZ == Approx(MiniCity::kSpireTopM).margin(0.01));
-    CHECK(mesh.modelTriangles > 0);
-    CHECK(mesh.fallbackTriangles > 0);
-    // Every other building is plain.
-    for (const auto& [slot, other] : slots) {
-      if (slot != tile.positionOf[it->second]) CHECK(other.model + other.fallback == 0);
-    }
+  const TileContent tile = tileOf(city, 1);
+  const auto it = tile.idIndex.find(MiniCity::kLod2Id);
+  REQUIRE(it != tile.idIndex.end());
+  REQUIRE(tile.meshOf(it->second) != nullptr);
+  const MeshData mesh = buildTileMesh(tile, 0);
+  const auto slots = bySlot(mesh);
+  const SlotGeometry& g = slots.at(tile.positionOf[it->second]);
+  CHECK(g.model > 0);
+  CHECK(g.fallback > 0);
+  CHECK(g.plain == 0);
+  CHECK(g.topZ == Approx(MiniCity::kSpireTopM).margin(0.01));
+  CHECK(mesh.modelTriangles > 0);
+  CHECK(mesh.fallbackTriangles > 0);
+  // Every other building is plain.
+  for (const auto& [slot, other] : slots) {
+    if (slot != tile.positionOf[it->second]) CHECK(other.model + other.fallback == 0);
   }
+}
+
+TEST_CASE("Far away (coarse tiles) a LOD2 model is its extruded parts: vertical walls and flat roofs only",
+          "[scene][tilemesh][lod2]") {
+  const MiniCity city(true, true);
+  const TileContent tile = tileOf(city, 0);
+  REQUIRE(tile.data.coarse);
+  const auto it = tile.idIndex.find(MiniCity::kLod2Id);
+  REQUIRE(it != tile.idIndex.end());
+  REQUIRE(tile.meshOf(it->second) != nullptr);
+  CHECK(tile.drawnModelOf(it->second) == nullptr);
+  const MeshData mesh = buildTileMesh(tile, 0);
+  const std::uint32_t slot = tile.positionOf[it->second];
+  const auto slots = bySlot(mesh);
+  const SlotGeometry& g = slots.at(slot);
+  CHECK(g.model + g.fallback == 0);
+  CHECK(g.plain > 0);
+  CHECK(mesh.modelTriangles == 0);
+  // Every triangle of it is a wall (its normal horizontal) or a roof or floor (its corners level).
+  int triangles = 0;
+  for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    const BuildingVertex& a = mesh.vertices[mesh.indices[i]];
+    const BuildingVertex& b = mesh.vertices[mesh.indices[i + 1]];
+    const BuildingVertex& c = mesh.vertices[mesh.indices[i + 2]];
+    if (a.slot != slot) continue;
+    ++triangles;
+    const glm::vec3 n =
+        glm::cross(glm::vec3(b.x - a.x, b.y - a.y, b.z - a.z), glm::vec3(c.x - a.x, c.y - a.y, c.z - a.z));
+    const bool level = a.z == b.z && b.z == c.z;
+    const bool vertical = std::abs(n.z) <= 1e-4f * glm::length(n);
+    CHECK((level || vertical));
+  }
+  CHECK(triangles > 0);
 }
 
 TEST_CASE("A tile's first rows carry its storeys and say whether results are on their way", "[scene][tilemesh]") {
@@ -129,4 +162,58 @@ TEST_CASE("A tile's first rows carry its storeys and say whether results are on 
       CHECK(row.flags == 0.0f);
     }
   }
+}
+
+TEST_CASE("A tile's index runs find each building's triangles and draw visible ranges in few runs",
+          "[scene][tilemesh][spans]") {
+  const MiniCity city;
+  const TileContent leaf = tileOf(city, 1);
+  TileIndexRuns runs;
+  const MeshData mesh = buildTileMesh(leaf, 0, &runs);
+  const std::uint32_t n = leaf.buildingCount();
+  REQUIRE(runs.firstIndex.size() == n + 1);
+  CHECK(runs.firstIndex.back() == mesh.indices.size());
+  // Every triangle between position p's first index and the next belongs to p's row.
+  for (std::uint32_t p = 0; p < n; ++p) {
+    REQUIRE(runs.firstIndex[p] < runs.firstIndex[p + 1]);
+    for (std::uint32_t i = runs.firstIndex[p]; i < runs.firstIndex[p + 1]; ++i) {
+      REQUIRE(mesh.vertices[mesh.indices[i]].slot == p);
+    }
+  }
+  const std::uint32_t perBuilding = runs.firstIndex[1] - runs.firstIndex[0];
+  std::vector<IndexSpan> spans;
+
+  // Two ranges far apart stay two runs; their triangles are exactly those of their buildings.
+  const std::vector<IndexRange> two{{0, 2, false}, {n - 2, n, false}};
+  visibleIndexSpans(runs, two, 0, 16, spans);
+  REQUIRE(spans.size() == 2);
+  CHECK(spans[0].firstIndex == runs.firstIndex[0]);
+  CHECK(spans[0].indexCount == runs.firstIndex[2] - runs.firstIndex[0]);
+  CHECK(spans[1].firstIndex == runs.firstIndex[n - 2]);
+  CHECK(spans[1].firstIndex + spans[1].indexCount == mesh.indices.size());
+
+  // A gap of one building is bridged when the allowed gap covers it, not otherwise.
+  const std::vector<IndexRange> gapOfOne{{0, 1, false}, {2, 3, false}};
+  visibleIndexSpans(runs, gapOfOne, perBuilding, 16, spans);
+  CHECK(spans.size() == 1);
+  visibleIndexSpans(runs, gapOfOne, perBuilding - 1, 16, spans);
+  CHECK(spans.size() == 2);
+
+  // Every other building visible: at most the cap of runs, covering every visible building.
+  std::vector<IndexRange> alternate;
+  for (std::uint32_t p = 0; p < n; p += 2) alternate.push_back({p, p + 1, false});
+  REQUIRE(alternate.size() > 4);
+  visibleIndexSpans(runs, alternate, 0, 4, spans);
+  CHECK(spans.size() == 4);
+  for (const IndexRange& r : alternate) {
+    bool covered = false;
+    for (const IndexSpan& s : spans) {
+      covered = covered ||
+                (s.firstIndex <= runs.firstIndex[r.begin] && runs.firstIndex[r.end] <= s.firstIndex + s.indexCount);
+    }
+    CHECK(covered);
+  }
+  // Nothing visible: no run.
+  visibleIndexSpans(runs, std::vector<IndexRange>{}, 0, 4, spans);
+  CHECK(spans.empty());
 }

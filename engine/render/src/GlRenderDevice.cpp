@@ -3,6 +3,7 @@
 #include <GLES3/gl3.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -310,10 +311,23 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
       if (it == meshes_.end()) continue;
       glUniform3f(u_.origin, item.origin.x, item.origin.y, item.origin.z);
       glBindVertexArray(it->second.vao);
-      glDrawElements(GL_TRIANGLES, it->second.indexCount, GL_UNSIGNED_INT, nullptr);
-      stats.drawCalls += 1;
-      stats.triangles += static_cast<std::uint64_t>(it->second.indexCount / 3) -
-                         (f.showModels ? it->second.fallbackTriangles : it->second.modelTriangles);
+      if (item.spans.empty()) {
+        glDrawElements(GL_TRIANGLES, it->second.indexCount, GL_UNSIGNED_INT, nullptr);
+        stats.drawCalls += 1;
+        stats.triangles += static_cast<std::uint64_t>(it->second.indexCount / 3) -
+                           (f.showModels ? it->second.fallbackTriangles : it->second.modelTriangles);
+        continue;
+      }
+      for (const IndexSpan& span : item.spans) {
+        if (span.indexCount == 0 ||
+            std::uint64_t{span.firstIndex} + span.indexCount > static_cast<std::uint64_t>(it->second.indexCount))
+          continue;
+        glDrawElements(
+            GL_TRIANGLES, static_cast<GLsizei>(span.indexCount), GL_UNSIGNED_INT,
+            reinterpret_cast<const void*>(static_cast<std::uintptr_t>(span.firstIndex) * sizeof(std::uint32_t)));
+        stats.drawCalls += 1;
+        stats.triangles += span.indexCount / 3 - (f.showModels ? span.fallbackTriangles : span.modelTriangles);
+      }
     }
     glActiveTexture(GL_TEXTURE0);
   }

@@ -196,10 +196,10 @@ void CityScene::finishTile(std::uint32_t node) {
   }
   tile->slotBase = *slotBase;
   initialBuildingRows(*tile, tileset_->nodes[node].response.has_value(), table_.edit(tile->slotBase, count));
-  const MeshData mesh = buildTileMesh(*tile, tile->slotBase);
+  const MeshData mesh = buildTileMesh(*tile, tile->slotBase, &tile->runs);
   tile->mesh = device_.createMesh(mesh);
   tile->gpuBytes = meshGpuBytes(mesh);
-  tile->cpuBytes = tileCpuBytes(*tile);
+  tile->cpuBytes = tileCpuBytes(*tile) + tile->runs.firstIndex.size() * 3 * sizeof(std::uint32_t);
   {
     const int kind = tileset_->nodes[node].children.empty() ? 0 : 1;
     residentOfFile_[kind] += tile->cpuBytes + tile->gpuBytes;
@@ -397,6 +397,10 @@ void CityScene::selectAndRequest(const CameraView& view) {
 }
 
 std::uint32_t CityScene::cull(const Frustum& frustum, std::vector<DrawItem>& items) {
+  // A tile's visible runs closer than this many indices (about 170 triangles) are drawn as one,
+  // and a tile is drawn in at most this many runs.
+  constexpr std::uint32_t kMergeGapIndices = 512;
+  constexpr std::uint32_t kMaxSpansPerTile = 16;
   // Tile boxes first, then the buildings of partly visible tiles.
   std::uint32_t visibleBuildings = 0;
   for (std::uint32_t i : selection_.draw) {
@@ -411,7 +415,16 @@ std::uint32_t CityScene::cull(const Frustum& frustum, std::vector<DrawItem>& ite
     else
       t.loaded->tree.query(frustum, t.visible);
     for (const IndexRange& r : t.visible) visibleBuildings += r.end - r.begin;
-    items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin});
+    // Only the visible buildings' triangles are drawn (in few runs): the triangles a frame draws
+    // follow the view, not the tile. A tile in view as a whole is one run.
+    if (c == Containment::Inside) {
+      t.spans.clear();
+      items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin, {}});
+      continue;
+    }
+    visibleIndexSpans(t.loaded->runs, t.visible, kMergeGapIndices, kMaxSpansPerTile, t.spans);
+    if (t.spans.empty()) continue;
+    items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin, t.spans});
   }
   return visibleBuildings;
 }

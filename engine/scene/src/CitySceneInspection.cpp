@@ -76,7 +76,7 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
   info.tile = tileset_->nodes[ref.node].key();
   if (const TileMesh* m = t.loaded->meshOf(ref.index)) {
     info.modelSource = meshSourceName(m->source);
-    info.modelTriangles = static_cast<std::uint32_t>((d.coarse ? m->farTriangles.size() : m->triangles.size()) / 3);
+    info.modelTriangles = static_cast<std::uint32_t>(m->triangles.size() / 3);
   }
   // Its results: from this tile's summary, or, while that is on its way (a leaf just loaded for
   // the selection), from another loaded copy's (the coarse tiles above carry the same results).
@@ -206,12 +206,11 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
       const std::uint32_t b = tile.tree.order()[position];
       const TileBuilding& tb = tile.data.buildings[b];
       if (hiddenByLod(tb.attributes.lod)) continue;  // hidden: not pickable
-      if (const TileMesh* m = showLod2_ ? tile.meshOf(b) : nullptr) {
-        // A LOD2 model is picked on its own triangles (the far mesh in coarse tiles).
+      if (const TileMesh* m = showLod2_ ? tile.drawnModelOf(b) : nullptr) {
+        // A LOD2 model is picked on its own triangles (in coarse tiles it is drawn, and picked, as
+        // its extrusion).
         const glm::vec3 offset(tile.origin.x, tile.origin.y, tb.attributes.minHeightM);
-        const auto tHit = tile.data.coarse
-                              ? rayTriangles<std::uint16_t>(o, dir, m->farPositions, m->farTriangles, offset)
-                              : rayTriangles<std::uint32_t>(o, dir, m->positions, m->triangles, offset);
+        const auto tHit = rayTriangles<std::uint32_t>(o, dir, m->positions, m->triangles, offset);
         if (tHit && *tHit < best) {
           best = *tHit;
           hit = BuildingRef{node, b};

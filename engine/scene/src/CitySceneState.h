@@ -16,6 +16,7 @@ inline constexpr std::uint32_t kNotAnimated = UINT32_MAX;
 struct CityScene::LoadedTile : TileContent {
   explicit LoadedTile(TileContent content) : TileContent(std::move(content)) {}
   MeshHandle mesh;
+  TileIndexRuns runs;  // where each position's triangles are in the mesh
   std::uint32_t slotBase = 0;
   std::uint64_t cpuBytes = 0;
   std::uint64_t gpuBytes = 0;
@@ -28,6 +29,7 @@ struct CityScene::TileRuntime {
   std::uint64_t lastUsed = 0;
   bool bytesMeasured = false;       // nodeBytes_ holds what it measured when it last loaded
   std::vector<IndexRange> visible;  // this frame's culling result (positions)
+  std::vector<IndexSpan> spans;     // ... as the index runs drawn (DrawItem::spans points here)
 
   FileLoad summaryLoad;
   std::unique_ptr<ResponseSummaryTile> summary;

@@ -43,9 +43,17 @@ void NullRenderDevice::render(const FrameUniforms& uniforms, std::span<const Dra
   for (const DrawItem& item : items) {
     const auto it = meshes_.find(item.mesh.id);
     if (it == meshes_.end()) continue;
-    stats.drawCalls += 1;
-    stats.triangles +=
-        it->second.triangles - (uniforms.showModels ? it->second.fallbackTriangles : it->second.modelTriangles);
+    if (item.spans.empty()) {
+      stats.drawCalls += 1;
+      stats.triangles +=
+          it->second.triangles - (uniforms.showModels ? it->second.fallbackTriangles : it->second.modelTriangles);
+      continue;
+    }
+    for (const IndexSpan& span : item.spans) {
+      if (span.indexCount == 0 || std::size_t{span.firstIndex} + span.indexCount > it->second.triangles * 3) continue;
+      stats.drawCalls += 1;
+      stats.triangles += span.indexCount / 3 - (uniforms.showModels ? span.fallbackTriangles : span.modelTriangles);
+    }
   }
   last_ = stats;
 }

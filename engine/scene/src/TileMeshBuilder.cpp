@@ -8,25 +8,18 @@ namespace {
 // The LOD2 model of one building (the far mesh in coarse tiles), marked kKindModel. Its vertices
 // lie on the floor planes it was re-meshed at: the vertex shader blends the displacements of the
 // floors below and above each vertex by height (qv/anim/FloorBlend.h), so tiles store no skin.
-void appendModel(MeshData& mesh, const TileMesh& model, bool coarse, float groundZ, std::uint32_t slot) {
+void appendModel(MeshData& mesh, const TileMesh& model, float groundZ, std::uint32_t slot) {
   const std::size_t first = mesh.vertices.size();
   const std::size_t firstTriangle = mesh.triangleCount();
   TriangleMeshInput in;
   in.offset = glm::vec3(0.0f, 0.0f, groundZ);
   in.slot = slot;
-  std::vector<std::uint32_t> farIndices;
   std::vector<std::uint8_t> kinds;
-  if (coarse) {
-    farIndices.assign(model.farTriangles.begin(), model.farTriangles.end());
-    in.positions = model.farPositions;
-    in.triangles = farIndices;
-  } else {
-    constexpr std::uint8_t kKinds[kMeshSurfaceKinds] = {kWall, kRoof, kGround, kKindFromNormal};
-    for (std::size_t k = 0; k < kMeshSurfaceKinds; ++k) kinds.insert(kinds.end(), model.trianglesPerKind[k], kKinds[k]);
-    in.positions = model.positions;
-    in.triangles = model.triangles;
-    in.kinds = kinds;
-  }
+  constexpr std::uint8_t kKinds[kMeshSurfaceKinds] = {kWall, kRoof, kGround, kKindFromNormal};
+  for (std::size_t k = 0; k < kMeshSurfaceKinds; ++k) kinds.insert(kinds.end(), model.trianglesPerKind[k], kKinds[k]);
+  in.positions = model.positions;
+  in.triangles = model.triangles;
+  in.kinds = kinds;
   appendTriangleMesh(mesh, in);
   for (std::size_t v = first; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindModel;
   mesh.modelTriangles += mesh.triangleCount() - firstTriangle;
@@ -76,10 +69,9 @@ Box buildingBox(const TileContent& tile, std::uint32_t b) {
       box.expand(d.vertices[v].x + tile.origin.x, d.vertices[v].y + tile.origin.y, part.heightM);
     }
   }
-  if (const TileMesh* m = tile.meshOf(b)) {
+  if (const TileMesh* m = tile.drawnModelOf(b)) {
     const float ground = tb.attributes.minHeightM;
-    for (const glm::vec3& q : d.coarse ? m->farPositions : m->positions)
-      box.expand(q.x + tile.origin.x, q.y + tile.origin.y, q.z + ground);
+    for (const glm::vec3& q : m->positions) box.expand(q.x + tile.origin.x, q.y + tile.origin.y, q.z + ground);
   }
   return box;
 }
@@ -107,14 +99,24 @@ TileContent indexTile(CityTile data) {
   return tile;
 }
 
-MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase) {
+MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs) {
   MeshData mesh;
   const CityTile& d = tile.data;
   const auto& order = tile.tree.order();
+  if (runs != nullptr) {
+    runs->firstIndex.assign(order.size() + 1, 0);
+    runs->modelTriangles.assign(order.size() + 1, 0);
+    runs->fallbackTriangles.assign(order.size() + 1, 0);
+  }
   for (std::uint32_t p = 0; p < order.size(); ++p) {
+    if (runs != nullptr) {
+      runs->firstIndex[p] = static_cast<std::uint32_t>(mesh.indices.size());
+      runs->modelTriangles[p] = static_cast<std::uint32_t>(mesh.modelTriangles);
+      runs->fallbackTriangles[p] = static_cast<std::uint32_t>(mesh.fallbackTriangles);
+    }
     const TileBuilding& tb = d.buildings[order[p]];
-    const TileMesh* model = tile.meshOf(order[p]);
-    if (model != nullptr) appendModel(mesh, *model, d.coarse, tb.attributes.minHeightM, slotBase + p);
+    const TileMesh* model = tile.drawnModelOf(order[p]);
+    if (model != nullptr) appendModel(mesh, *model, tb.attributes.minHeightM, slotBase + p);
     // The LOD1 extrusion; after a model, marked as the fallback the shader draws instead when LOD2
     // is switched off.
     const std::size_t firstExtruded = mesh.vertices.size();
@@ -125,7 +127,69 @@ MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase) {
       mesh.fallbackTriangles += mesh.triangleCount() - firstExtrudedTriangle;
     }
   }
+  if (runs != nullptr) {
+    runs->firstIndex[order.size()] = static_cast<std::uint32_t>(mesh.indices.size());
+    runs->modelTriangles[order.size()] = static_cast<std::uint32_t>(mesh.modelTriangles);
+    runs->fallbackTriangles[order.size()] = static_cast<std::uint32_t>(mesh.fallbackTriangles);
+  }
   return mesh;
+}
+
+void visibleIndexSpans(const TileIndexRuns& runs, std::span<const IndexRange> visible, std::uint32_t mergeGapIndices,
+                       std::uint32_t maxSpans, std::vector<IndexSpan>& out) {
+  out.clear();
+  const std::size_t positions = runs.firstIndex.empty() ? 0 : runs.firstIndex.size() - 1;
+  // Spans as [begin, end) of positions first; indices and counts once merged.
+  struct Run {
+    std::uint32_t begin, end;
+  };
+  std::vector<Run> spans;
+  for (const IndexRange& r : visible) {
+    const std::uint32_t begin = std::min<std::uint32_t>(r.begin, static_cast<std::uint32_t>(positions));
+    const std::uint32_t end = std::min<std::uint32_t>(r.end, static_cast<std::uint32_t>(positions));
+    if (end <= begin || runs.firstIndex[end] == runs.firstIndex[begin]) continue;
+    if (!spans.empty() && runs.firstIndex[begin] - runs.firstIndex[spans.back().end] <= mergeGapIndices) {
+      spans.back().end = end;
+    } else {
+      spans.push_back({begin, end});
+    }
+  }
+  maxSpans = std::max<std::uint32_t>(maxSpans, 1);
+  if (spans.size() > maxSpans) {
+    // Keep the maxSpans - 1 largest gaps; merge across the rest.
+    std::vector<std::uint32_t> gaps(spans.size() - 1);
+    for (std::size_t k = 0; k + 1 < spans.size(); ++k) {
+      gaps[k] = runs.firstIndex[spans[k + 1].begin] - runs.firstIndex[spans[k].end];
+    }
+    std::vector<std::uint32_t> sorted = gaps;
+    const std::size_t keep = maxSpans - 1;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() - keep - 1),
+                     sorted.end());
+    const std::uint32_t cut = sorted[sorted.size() - keep - 1];
+    // Gaps above the cut stay; of the gaps equal to it, as many as the cap leaves room for.
+    std::size_t ties = keep - static_cast<std::size_t>(
+                                  std::count_if(gaps.begin(), gaps.end(), [cut](std::uint32_t g) { return g > cut; }));
+    std::vector<Run> merged{spans[0]};
+    for (std::size_t k = 0; k + 1 < spans.size(); ++k) {
+      bool split = gaps[k] > cut;
+      if (!split && gaps[k] == cut && ties > 0) {
+        split = true;
+        --ties;
+      }
+      if (split) {
+        merged.push_back(spans[k + 1]);
+      } else {
+        merged.back().end = spans[k + 1].end;
+      }
+    }
+    spans.swap(merged);
+  }
+  out.reserve(spans.size());
+  for (const Run& s : spans) {
+    out.push_back(IndexSpan{runs.firstIndex[s.begin], runs.firstIndex[s.end] - runs.firstIndex[s.begin],
+                            runs.modelTriangles[s.end] - runs.modelTriangles[s.begin],
+                            runs.fallbackTriangles[s.end] - runs.fallbackTriangles[s.begin]});
+  }
 }
 
 void initialBuildingRows(const TileContent& tile, bool resultsPending, std::span<BuildingGpuRecord> rows) {

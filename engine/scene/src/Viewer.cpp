@@ -182,7 +182,7 @@ void Viewer::frameTestScene(const CameraView& view, FrameTimesMs& times, FrameCo
   device_.writeFloors(0, test_->floors);
   times.upload = msSince(t0);
   uniforms.ground = Rect{-400.0f, -400.0f, 400.0f, 400.0f};
-  for (std::size_t i : visible) items.push_back(DrawItem{test_->meshes[i], glm::vec3(0.0f)});
+  for (std::size_t i : visible) items.push_back(DrawItem{test_->meshes[i], glm::vec3(0.0f), {}});
 }
 
 void Viewer::frame(double dtSeconds) {

@@ -237,8 +237,9 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
                                       : info->modelSource == "osm-parts" ? "OpenStreetMap building parts"
                                       : info->modelSource == "synthetic" ? "the synthetic city's tower generator"
                                                                          : "other source";
-      w.field("Model", ui::format("LOD2 detailed model from %s, %u triangles%s", std::string(source).c_str(),
-                                  info->modelTriangles, info->detailed ? "" : " (simplified at this distance)"));
+      w.field("Model",
+              ui::format("LOD2 detailed model from %s, %u triangles%s", std::string(source).c_str(),
+                         info->modelTriangles, info->detailed ? "" : "; drawn as its extruded parts at this distance"));
     } else {
       w.field("Model", a.lod == 2 ? "LOD2 detailed model" : "LOD1 extruded footprint");
     }

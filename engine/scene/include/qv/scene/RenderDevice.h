@@ -109,14 +109,27 @@ struct FrameUniforms {
   bool showModels = true;  ///< LOD2 models drawn (kKindModel vertices), else their LOD1 extrusions (kKindFallback)
 };
 
+/// A run of a mesh's indices, [firstIndex, firstIndex + indexCount), with how many of its
+/// triangles are LOD2 models (kKindModel) and how many their LOD1 fallbacks (kKindFallback), so
+/// that the device counts only the triangles it shows.
+struct IndexSpan {
+  std::uint32_t firstIndex = 0;
+  std::uint32_t indexCount = 0;
+  std::uint32_t modelTriangles = 0;
+  std::uint32_t fallbackTriangles = 0;
+};
+
 struct DrawItem {
   MeshHandle mesh;
   glm::vec3 origin{0.0f};  ///< added to the mesh's positions (tile origin in the city frame)
+  /// The parts of the mesh to draw (the culling's visible buildings, merged into few runs); empty:
+  /// the whole mesh. Points into storage the scene keeps until its next update.
+  std::span<const IndexSpan> spans;
 };
 
 struct DeviceFrameStats {
   std::uint32_t drawCalls = 0;
-  std::uint64_t triangles = 0;
+  std::uint64_t triangles = 0;    ///< drawn and shown (the hidden LOD's triangles are not counted)
   std::uint64_t uploadBytes = 0;  ///< bytes sent to the GPU since the previous frame
 };
 

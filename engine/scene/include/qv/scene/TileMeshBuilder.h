@@ -37,22 +37,45 @@ struct TileContent {
                ? &data.meshes[static_cast<std::size_t>(meshIndex[building])]
                : nullptr;
   }
+  /// The LOD2 model the tile draws for the building: in leaves its model, in coarse tiles none.
+  /// Far away a building is its LOD1 extrusion, the prisms of its parts: vertical walls and flat
+  /// roofs at their heights, never a simplified mesh's slanted facets across storeys.
+  [[nodiscard]] const TileMesh* drawnModelOf(std::uint32_t building) const {
+    return data.coarse ? nullptr : meshOf(building);
+  }
   [[nodiscard]] std::uint32_t buildingCount() const { return static_cast<std::uint32_t>(data.buildings.size()); }
 };
 
-/// Takes `tile` and builds its lookups. A building's box holds its prisms and, in the form the
-/// tile draws it (the far mesh in coarse tiles), its LOD2 model.
+/// Takes `tile` and builds its lookups. A building's box holds its prisms and the LOD2 model the
+/// tile draws (drawnModelOf).
 TileContent indexTile(CityTile tile);
 
-/// The building's box in the city frame: its prisms and the LOD2 model the tile draws (the far
-/// mesh in coarse tiles). `building` indexes tile.data.buildings and must be in range.
+/// The building's box in the city frame: its prisms and the LOD2 model the tile draws
+/// (drawnModelOf). `building` indexes tile.data.buildings and must be in range.
 Box buildingBox(const TileContent& tile, std::uint32_t building);
 
-/// The merged mesh of every building in position order: a LOD2 model (kKindModel) followed by its
-/// LOD1 extrusion (kKindFallback), or the extrusion alone. Leaves get a vertex ring at every floor
+/// Where each position's triangles lie in a tile mesh's index buffer (buildTileMesh), so that the
+/// scene draws only the visible ranges of positions. Every array has positions + 1 entries: entry p
+/// is the count before position p (prefix sums), the last one the mesh's total.
+struct TileIndexRuns {
+  std::vector<std::uint32_t> firstIndex;
+  std::vector<std::uint32_t> modelTriangles;     ///< LOD2 model triangles (kKindModel) before p
+  std::vector<std::uint32_t> fallbackTriangles;  ///< their LOD1 fallbacks' (kKindFallback) before p
+};
+
+/// The merged mesh of every building in position order: a LOD2 model in leaves (kKindModel)
+/// followed by its LOD1 extrusion (kKindFallback), or the extrusion alone. Leaves get a vertex ring at every floor
 /// level inside each part (the floors bend with their displacements); coarse tiles plain prisms.
-/// Vertex slots are slotBase + position.
-MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase);
+/// Vertex slots are slotBase + position. `runs`, when given, receives where each position's
+/// triangles are.
+MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs = nullptr);
+
+/// The index spans that draw the visible ranges of positions `visible` (sorted, disjoint, as
+/// BoxTree::query gives them): one span per range, neighbours merged when the indices between
+/// them number at most `mergeGapIndices` (drawing a few hidden triangles costs less than a draw
+/// call), then the smallest gaps merged until at most `maxSpans` remain (>= 1). Replaces `out`.
+void visibleIndexSpans(const TileIndexRuns& runs, std::span<const IndexRange> visible, std::uint32_t mergeGapIndices,
+                       std::uint32_t maxSpans, std::vector<IndexSpan>& out);
 
 /// The building table rows of the tile in position order (`rows.size()` == buildingCount()):
 /// storey height (at least 0.5 m), storeys and base height; damage kDamagePending when the tile
