@@ -1,5 +1,7 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 #include <set>
 
@@ -60,6 +62,47 @@ TEST_CASE("BoxTree visible ranges equal a brute-force frustum test on random cam
     if (!expected.empty() && expected.size() < boxes.size()) ++nonTrivial;
   }
   CHECK(nonTrivial > 50);  // the cameras really exercised partial views
+}
+
+TEST_CASE("BoxTree leaves out exactly the boxes smaller on screen than the size cut", "[spatial]") {
+  // Boxes from 0.2 m to 60 m wide over 6 km, far cameras: many are under a few pixels.
+  std::vector<Box> boxes = randomCity(5000, 9);
+  std::mt19937 rng(13);
+  std::uniform_real_distribution<float> tiny(0.2f, 3.0f);
+  for (std::size_t i = 0; i < boxes.size(); i += 3) {
+    boxes[i].maxX = boxes[i].minX + tiny(rng);
+    boxes[i].maxY = boxes[i].minY + tiny(rng);
+    boxes[i].maxZ = tiny(rng);
+  }
+  BoxTree tree;
+  tree.build(boxes);
+  std::vector<IndexRange> ranges;
+  int dropped = 0;
+  for (int trial = 0; trial < 100; ++trial) {
+    const CameraView view(randomCamera(rng), 1280, 720);
+    const SizeCull size{view.eye(), 2.0f / view.pixelsPerMeterAt(1.0f)};  // two pixels
+    std::set<std::uint32_t> expected;
+    std::uint32_t inFrustum = 0;
+    for (std::uint32_t i = 0; i < boxes.size(); ++i) {
+      if (!view.frustum().intersects(boxes[i])) continue;
+      ++inFrustum;
+      const Box& b = boxes[i];
+      const float d = std::hypot(std::max({b.minX - view.eye().x, 0.0f, view.eye().x - b.maxX}),
+                                 std::max({b.minY - view.eye().y, 0.0f, view.eye().y - b.maxY}),
+                                 std::max({b.minZ - view.eye().z, 0.0f, view.eye().z - b.maxZ}));
+      const float diagonal = std::hypot(b.maxX - b.minX, b.maxY - b.minY, b.maxZ - b.minZ);
+      if (diagonal >= size.minAngle * d) expected.insert(i);  // brute force: every box on its own
+    }
+    ranges.clear();
+    tree.query(view.frustum(), ranges, size);
+    std::set<std::uint32_t> got;
+    for (const IndexRange& r : ranges) {
+      for (std::uint32_t p = r.begin; p < r.end; ++p) got.insert(tree.order()[p]);
+    }
+    REQUIRE(got == expected);
+    dropped += static_cast<int>(inFrustum - expected.size());
+  }
+  CHECK(dropped > 1000);  // the far cameras really left small boxes out
 }
 
 TEST_CASE("BoxTree ray hits are the boxes the ray enters, nearest first", "[spatial]") {

@@ -308,7 +308,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   times.lod += msSince(clock_, t0);
 
   t0 = clock_.nowSeconds();
-  counts.buildingsVisible += cull(view.frustum(), items);
+  counts.buildingsVisible += cull(view, items);
   countDamageInView();
   times.cull += msSince(clock_, t0);
 
@@ -396,29 +396,28 @@ void CityScene::selectAndRequest(const CameraView& view) {
   }
 }
 
-std::uint32_t CityScene::cull(const Frustum& frustum, std::vector<DrawItem>& items) {
+std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& items) {
   // A tile's visible runs closer than this many indices (about 170 triangles) are drawn as one,
   // and a tile is drawn in at most this many runs.
   constexpr std::uint32_t kMergeGapIndices = 512;
   constexpr std::uint32_t kMaxSpansPerTile = 16;
+  // Buildings smaller on screen than about a pixel are not drawn (nor counted as visible).
+  const SizeCull size{view.eye(), options_.minBuildingPixels / std::max(view.pixelsPerMeterAt(1.0f), 1e-6f)};
+  const Frustum& frustum = view.frustum();
   // Tile boxes first, then the buildings of partly visible tiles.
   std::uint32_t visibleBuildings = 0;
   for (std::uint32_t i : selection_.draw) {
     TileRuntime& t = *tiles_[i];
     t.visible.clear();
+    t.spans.clear();
     if (!t.loaded) continue;
     const auto n = static_cast<std::uint32_t>(t.loaded->positionOf.size());
-    const Containment c = frustum.classify(nodeBox(tileset_->nodes[i]));
-    if (c == Containment::Outside) continue;
-    if (c == Containment::Inside)
-      t.visible.push_back(IndexRange{0, n, true});
-    else
-      t.loaded->tree.query(frustum, t.visible);
+    if (frustum.classify(nodeBox(tileset_->nodes[i])) == Containment::Outside) continue;
+    t.loaded->tree.query(frustum, t.visible, size);
     for (const IndexRange& r : t.visible) visibleBuildings += r.end - r.begin;
     // Only the visible buildings' triangles are drawn (in few runs): the triangles a frame draws
-    // follow the view, not the tile. A tile in view as a whole is one run.
-    if (c == Containment::Inside) {
-      t.spans.clear();
+    // follow the view, not the tile. A tile seen whole is drawn whole.
+    if (t.visible.size() == 1 && t.visible[0].begin == 0 && t.visible[0].end == n) {
       items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin, {}});
       continue;
     }

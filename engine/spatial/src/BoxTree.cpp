@@ -20,6 +20,20 @@ std::uint32_t morton(std::uint32_t x, std::uint32_t y) {
   return spread(x) | (spread(y) << 1);
 }
 
+float diagonal(const Box& b) {
+  return std::hypot(b.maxX - b.minX, b.maxY - b.minY, b.maxZ - b.minZ);
+}
+
+// Distances from `p` to the nearest point of `b` (0 inside) and to its farthest corner.
+float nearestDistance(const glm::vec3& p, const Box& b) {
+  return std::hypot(std::max({b.minX - p.x, 0.0f, p.x - b.maxX}), std::max({b.minY - p.y, 0.0f, p.y - b.maxY}),
+                    std::max({b.minZ - p.z, 0.0f, p.z - b.maxZ}));
+}
+float farthestDistance(const glm::vec3& p, const Box& b) {
+  return std::hypot(std::max(p.x - b.minX, b.maxX - p.x), std::max(p.y - b.minY, b.maxY - p.y),
+                    std::max(p.z - b.minZ, b.maxZ - p.z));
+}
+
 }  // namespace
 
 std::optional<float> rayBoxEntry(const glm::vec3& o, const glm::vec3& inv, const Box& b, float maxT) {
@@ -76,8 +90,15 @@ std::uint32_t BoxTree::buildNode(std::uint32_t begin, std::uint32_t end, std::ui
   nodes_.push_back(Node{Box{}, begin, end, 0, 0});
   if (end - begin <= leafSize) {
     Box box;
-    for (std::uint32_t p = begin; p < end; ++p) box.expand(sorted_[p]);
+    float minDiagonal = std::numeric_limits<float>::max(), maxDiagonal = 0.0f;
+    for (std::uint32_t p = begin; p < end; ++p) {
+      box.expand(sorted_[p]);
+      minDiagonal = std::min(minDiagonal, diagonal(sorted_[p]));
+      maxDiagonal = std::max(maxDiagonal, diagonal(sorted_[p]));
+    }
     nodes_[index].box = box;
+    nodes_[index].minDiagonal = minDiagonal;
+    nodes_[index].maxDiagonal = maxDiagonal;
     return index;
   }
   // Split the Morton range in the middle: children are adjacent ranges, so nodes stay contiguous.
@@ -89,6 +110,8 @@ std::uint32_t BoxTree::buildNode(std::uint32_t begin, std::uint32_t end, std::ui
   nodes_[index].box = box;
   nodes_[index].left = left;
   nodes_[index].right = right;
+  nodes_[index].minDiagonal = std::min(nodes_[left].minDiagonal, nodes_[right].minDiagonal);
+  nodes_[index].maxDiagonal = std::max(nodes_[left].maxDiagonal, nodes_[right].maxDiagonal);
   return index;
 }
 
@@ -100,34 +123,48 @@ void BoxTree::emit(std::vector<IndexRange>& out, std::uint32_t begin, std::uint3
   }
 }
 
-void BoxTree::query(const Frustum& frustum, std::vector<IndexRange>& out) const {
+void BoxTree::query(const Frustum& frustum, std::vector<IndexRange>& out, const SizeCull& size) const {
   if (nodes_.empty()) return;
-  // Each entry carries the planes its box still straddles: a plane a node lies wholly inside is
-  // not tested again below it.
-  std::pair<std::uint32_t, unsigned> stack[64];
+  // Each entry carries the planes its box still straddles (a plane a node lies wholly inside is
+  // not tested again below it) and whether some of its boxes may be too small on screen.
+  struct Entry {
+    std::uint32_t node;
+    unsigned mask;
+    bool sizes;
+  };
+  Entry stack[64];
   int top = 0;
-  stack[top++] = {0, 0x3fu};
+  stack[top++] = {0, 0x3fu, size.minAngle > 0.0f};
+  const auto bigEnough = [&size](const Box& b) { return diagonal(b) >= size.minAngle * nearestDistance(size.eye, b); };
   while (top > 0) {
-    const auto [index, parentMask] = stack[--top];
+    const auto [index, parentMask, parentSizes] = stack[--top];
     const Node& node = nodes_[index];
     unsigned mask = parentMask;
-    const Containment c = frustum.classify(node.box, mask);
+    const Containment c = mask == 0 ? Containment::Inside : frustum.classify(node.box, mask);
     if (c == Containment::Outside) continue;
-    if (c == Containment::Inside) {
+    bool sizes = parentSizes;
+    if (sizes) {
+      // Every box here is at least as far as the node's box and no larger than its largest.
+      if (node.maxDiagonal < size.minAngle * nearestDistance(size.eye, node.box)) continue;
+      sizes = node.minDiagonal < size.minAngle * farthestDistance(size.eye, node.box);
+    }
+    if (c == Containment::Inside && !sizes) {
       emit(out, node.begin, node.end, true);
       continue;
     }
+    if (c == Containment::Inside) mask = 0;
     if (node.left == 0) {
       for (std::uint32_t p = node.begin; p < node.end; ++p) {
         unsigned m = mask;
-        const Containment pc = frustum.classify(sorted_[p], m);
-        if (pc != Containment::Outside) emit(out, p, p + 1, pc == Containment::Inside);
+        const Containment pc = m == 0 ? Containment::Inside : frustum.classify(sorted_[p], m);
+        if (pc == Containment::Outside || (sizes && !bigEnough(sorted_[p]))) continue;
+        emit(out, p, p + 1, pc == Containment::Inside);
       }
       continue;
     }
     // Right first so the left (lower positions) pops first and ranges come out in order.
-    stack[top++] = {node.right, mask};
-    stack[top++] = {node.left, mask};
+    stack[top++] = {node.right, mask, sizes};
+    stack[top++] = {node.left, mask, sizes};
   }
 }
 

@@ -39,6 +39,8 @@ namespace qv {
 struct CitySceneOptions {
   float maxScreenSpaceError = 12.0f;  ///< device pixels before a coarse tile is refined
   std::uint32_t maxDrawTiles = 240;   ///< draw-call budget for city tiles
+  /// Buildings whose box diagonal spans fewer device pixels than this are not drawn (0: all are).
+  float minBuildingPixels = 1.0f;
   /// Tile, summary and history requests issued and not yet answered (the browser queues them
   /// over its own connections; more than its six lets a tile arrive while others are queued).
   std::uint32_t maxRequestsInFlight = 16;
@@ -195,7 +197,7 @@ class CityScene {
   // The steps of a frame (update), in order.
   void decodeArrived(double frameStart);                                     // decode and mesh within the work budget
   void selectAndRequest(const CameraView& view);                             // choose tiles; request, retry
-  std::uint32_t cull(const Frustum& frustum, std::vector<DrawItem>& items);  // visible buildings
+  std::uint32_t cull(const CameraView& view, std::vector<DrawItem>& items);  // visible buildings
   void countDamageInView();                                                  // when the visible sets changed
   [[nodiscard]] std::uint64_t loadedBuildings() const;
   [[nodiscard]] bool responsesReady() const;  // no summary of a drawn tile, no history on its way

@@ -26,6 +26,14 @@ struct IndexRange {
   bool inside = false;
 };
 
+/// Screen-size culling for BoxTree::query: a box whose diagonal, seen from `eye`, spans less than
+/// `minAngle` radians (about a pixel: the vertical field of view over the viewport height) is
+/// left out. minAngle 0: none is.
+struct SizeCull {
+  glm::vec3 eye{0.0f};
+  float minAngle = 0.0f;
+};
+
 class BoxTree {
  public:
   /// Builds the tree over `boxes` (any count, including 0). Leaves hold up to `leafSize` boxes.
@@ -36,8 +44,9 @@ class BoxTree {
   [[nodiscard]] const Box& bounds() const { return nodes_.empty() ? empty_ : nodes_[0].box; }
   [[nodiscard]] std::size_t size() const { return order_.size(); }
 
-  /// Appends the visible ranges (merged when adjacent), in order. Boxes touching the frustum count.
-  void query(const Frustum& frustum, std::vector<IndexRange>& out) const;
+  /// Appends the visible ranges (merged when adjacent), in order. Boxes touching the frustum count;
+  /// boxes smaller on screen than `size` allows do not.
+  void query(const Frustum& frustum, std::vector<IndexRange>& out, const SizeCull& size = {}) const;
   /// Number of boxes the frustum sees (the sum of query()'s ranges).
   [[nodiscard]] std::uint32_t countVisible(const Frustum& frustum) const;
 
@@ -49,8 +58,9 @@ class BoxTree {
  private:
   struct Node {
     Box box;
-    std::uint32_t begin = 0, end = 0;   // positions
-    std::uint32_t left = 0, right = 0;  // child node indices; 0 for a leaf (the root is never a child)
+    std::uint32_t begin = 0, end = 0;              // positions
+    std::uint32_t left = 0, right = 0;             // child node indices; 0 for a leaf (the root is never a child)
+    float minDiagonal = 0.0f, maxDiagonal = 0.0f;  // of the boxes in [begin, end)
   };
   std::uint32_t buildNode(std::uint32_t begin, std::uint32_t end, std::uint32_t leafSize);
   void emit(std::vector<IndexRange>& out, std::uint32_t begin, std::uint32_t end, bool inside) const;
