@@ -408,13 +408,19 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
   std::uint32_t visibleBuildings = 0;
   for (std::uint32_t i : selection_.draw) {
     TileRuntime& t = *tiles_[i];
+    t.inView.clear();
     t.visible.clear();
     t.spans.clear();
     if (!t.loaded) continue;
     const auto n = static_cast<std::uint32_t>(t.loaded->positionOf.size());
     if (frustum.classify(nodeBox(tileset_->nodes[i])) == Containment::Outside) continue;
-    t.loaded->tree.query(frustum, t.visible, size);
-    for (const IndexRange& r : t.visible) visibleBuildings += r.end - r.begin;
+    // What is in view is counted (the panel's totals in view), what shows on screen is drawn.
+    t.loaded->tree.query(frustum, t.inView);
+    for (const IndexRange& r : t.inView) visibleBuildings += r.end - r.begin;
+    if (size.minAngle > 0.0f)
+      t.loaded->tree.query(frustum, t.visible, size);
+    else
+      t.visible = t.inView;
     // Only the visible buildings' triangles are drawn (in few runs): the triangles a frame draws
     // follow the view, not the tile. A tile seen whole is drawn whole.
     if (t.visible.size() == 1 && t.visible[0].begin == 0 && t.visible[0].end == n) {
@@ -441,8 +447,8 @@ void CityScene::countDamageInView() {
     if (!t.loaded) continue;
     mix(i);
     mix(reinterpret_cast<std::uintptr_t>(t.summary.get()));
-    mix(t.visible.size());
-    for (const IndexRange& r : t.visible) mix((static_cast<std::uint64_t>(r.begin) << 32) | r.end);
+    mix(t.inView.size());
+    for (const IndexRange& r : t.inView) mix((static_cast<std::uint64_t>(r.begin) << 32) | r.end);
   }
   mix(residencyGeneration_);
   const bool viewChanged = viewSignature != viewSignature_;
@@ -453,7 +459,7 @@ void CityScene::countDamageInView() {
     for (std::uint32_t i : selection_.draw) {
       const TileRuntime& t = *tiles_[i];
       if (!t.loaded) continue;
-      for (const IndexRange& r : t.visible) {
+      for (const IndexRange& r : t.inView) {
         for (std::uint32_t p = r.begin; p < r.end; ++p) {
           const std::uint32_t b = t.loaded->tree.order()[p];
           const DamageState d =

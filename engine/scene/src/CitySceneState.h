@@ -28,7 +28,8 @@ struct CityScene::TileRuntime {
   std::unique_ptr<LoadedTile> loaded;
   std::uint64_t lastUsed = 0;
   bool bytesMeasured = false;       // nodeBytes_ holds what it measured when it last loaded
-  std::vector<IndexRange> visible;  // this frame's culling result (positions)
+  std::vector<IndexRange> inView;   // this frame's culling result (positions in the frustum)
+  std::vector<IndexRange> visible;  // ... less those under a pixel on screen: the drawn ones
   std::vector<IndexSpan> spans;     // ... as the index runs drawn (DrawItem::spans points here)
 
   FileLoad summaryLoad;
