@@ -18,9 +18,9 @@
 //
 // Keyboard: the app routes each key press with routeKeyDown (the UI's keyboard state decides) and
 // hands the UI's keys here. Tab and Shift+Tab move the keyboard focus through every control the
-// panels registered this frame (imguiBrowserTabStop, called by ui::Widgets), in the order they were
-// drawn, across windows, with ImGui's navigation highlight; Space (and Enter) then press it,
-// arrows move between neighbours, Escape leaves the UI to the 3D view.
+// panels registered in the last frame (imguiBrowserTabStop, called by ui::Widgets), in the order
+// they were drawn, across windows, with ImGui's navigation highlight; Space (and Enter) then press
+// it, arrows move between neighbours, Escape leaves the UI to the 3D view.
 #pragma once
 
 #include <cstdint>
@@ -62,7 +62,8 @@ bool imguiBrowserWheel(double x, double y, double wheelY);
 
 /// A key by KeyboardEvent.code with the modifier state of that event. Keys ImGui does not use
 /// only update the modifiers. A Tab press moves the keyboard focus to the next stop (Shift: the
-/// previous one, wrapping around); Escape closes an open pop-up, or else releases the keyboard.
+/// previous one, wrapping around; from the 3D view, with no focus shown, the first or the last);
+/// Escape closes an open pop-up, or else releases the keyboard.
 void imguiBrowserKey(std::string_view code, bool down, bool shift, bool ctrl, bool alt);
 /// Typed text (UTF-8); ignored unless ImGui wants the keyboard (a text field or window has focus).
 void imguiBrowserText(std::string_view utf8);
