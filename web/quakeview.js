@@ -10,6 +10,9 @@
 //              heapReservedBytes, uploadBytes, timeSeconds} — medians over recent frames.
 //   errors()   the message strings the UI shows.
 //   uiText()   the text of the panels and windows currently shown.
+//   uiOutline()  extension: the same as headings, {revision, sections: [{heading, lines}]}, the
+//              source of the page's accessible copy (#qv-panel); revision grows when it changes.
+//   uiFocus()  extension: the control showing the keyboard focus ("Export CSV, button"), or null.
 //   getCamera() {x, y, distance, headingDeg, pitchDeg, fovDeg} (metres east/north of the origin).
 //   worldToScreen(x, y, z) [px, py] CSS pixels of a city-frame point, or null.
 //   setCamera(c)  any subset of getCamera()'s fields; false when a value was invalid.
@@ -31,6 +34,9 @@
   const loadingFill = loading.querySelector('.loading-fill');
   const loadingLabel = loading.querySelector('.loading-label');
   const errorBox = document.getElementById('error');
+  const outlineBox = document.getElementById('qv-outline');
+  const statusBox = document.getElementById('qv-status');
+  const focusBox = document.getElementById('qv-focus');
   const params = new URLSearchParams(window.location.search);
 
   let resolveReady;
@@ -76,6 +82,13 @@
     },
     uiText() {
       return callString('qv_ui_text') || '';
+    },
+    uiOutline() {
+      const text = callString('qv_ui_outline_json');
+      return text ? JSON.parse(text) : null;
+    },
+    uiFocus() {
+      return callString('qv_ui_focus') || null;
     },
     // Extension: where a city-frame point [x, y, z] (metres from the tileset origin) appears on
     // the canvas, in CSS pixels from its top-left corner; null when behind the camera.
@@ -199,6 +212,86 @@
   let resolveBench;
   // Extension: resolves with benchResult when a ?bench=SECONDS flight ends.
   api.benchDone = new Promise((resolve) => { resolveBench = resolve; });
+
+  // The accessible copy of the panels beside the canvas (#qv-panel, visually hidden): the engine's
+  // outline as headings and lists, rewritten only when its revision changes and then only the
+  // elements whose text changed, so a screen reader's reading position survives. Two polite live
+  // regions announce selection changes and errors (#qv-status) and the control that takes the
+  // keyboard focus (#qv-focus).
+  const DAMAGE_WORDS = { none: 'no damage', slight: 'slight damage', moderate: 'moderate damage',
+    extensive: 'extensive damage', complete: 'complete damage' };
+  const access = { revision: -1, selection: null, pending: null, tries: 0, errors: 0, focus: null };
+
+  function setText(element, text) {
+    if (element.textContent !== text) element.textContent = text;
+  }
+
+  function renderOutline(outline) {
+    const sections = outline.sections || [];
+    while (outlineBox.children.length > sections.length) outlineBox.lastElementChild.remove();
+    sections.forEach((section, i) => {
+      let block = outlineBox.children[i];
+      if (!block) {
+        block = document.createElement('div');
+        block.appendChild(document.createElement('h2'));
+        block.appendChild(document.createElement('ul'));
+        outlineBox.appendChild(block);
+      }
+      setText(block.firstElementChild, section.heading);
+      const list = block.lastElementChild;
+      const lines = section.lines || [];
+      while (list.children.length > lines.length) list.lastElementChild.remove();
+      lines.forEach((line, j) => {
+        let item = list.children[j];
+        if (!item) {
+          item = document.createElement('li');
+          list.appendChild(item);
+        }
+        setText(item, line);
+      });
+    });
+  }
+
+  function announceSelection(id) {
+    // A building selected from the search may have no loaded tile yet: the search index names it.
+    const b = api.building(id) || api.search(id, 5).find((entry) => entry.id === id);
+    if (!b && ++access.tries < 40) return false;  // not known yet: ask again
+    const name = b ? (b.name || b.address || b.id) : id;
+    const damage = b ? (DAMAGE_WORDS[b.damageState] || 'no earthquake result') : 'details loading';
+    setText(statusBox, 'Selected: ' + name + ', ' + damage);
+    return true;
+  }
+
+  function updateAccessibility() {
+    if (!engine) return;
+    const revision = engine._qv_ui_outline_revision();
+    if (revision !== access.revision) {
+      const outline = api.uiOutline();
+      if (outline) {
+        access.revision = revision;
+        renderOutline(outline);
+      }
+    }
+    const selection = api.selection();
+    if (selection !== access.selection) {
+      access.selection = selection;
+      access.pending = selection;
+      access.tries = 0;
+      if (selection === null) setText(statusBox, 'Selection cleared');
+    }
+    if (access.pending !== null && announceSelection(access.pending)) access.pending = null;
+    const errors = api.errors();
+    if (errors.length < access.errors) access.errors = 0;
+    if (errors.length > access.errors) {
+      setText(statusBox, 'Error: ' + errors[errors.length - 1]);
+      access.errors = errors.length;
+    }
+    const focus = api.uiFocus();
+    if (focus !== access.focus) {
+      access.focus = focus;
+      if (focus) setText(focusBox, focus);
+    }
+  }
 
   // WebGL2 first: without it the engine cannot draw, and the user should read why at once.
   const probe = document.createElement('canvas');
@@ -388,6 +481,7 @@
       onAbort(what) { fatal('The QuakeView engine stopped unexpectedly: ' + what); },
     };
     engine = await window.createQuakeViewEngine(module);
+    setInterval(updateAccessibility, 250);
   }
 
   start().catch((e) => fatal('QuakeView could not load: ' + e.message));

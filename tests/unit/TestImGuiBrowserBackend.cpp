@@ -190,3 +190,108 @@ TEST_CASE("Pressing or dragging on a plot says where along it, to seek the time 
   ui::imguiBrowserPointerUp(0);
   fixture.frame(draw);
 }
+
+TEST_CASE("Keys go to the UI or to the viewer's shortcuts by what holds the keyboard", "[ui][backend][keys]") {
+  using ui::UiKeyboard;
+  struct Row {
+    const char* code;
+    UiKeyboard state;
+    bool ui;
+    bool app;
+  };
+  // Tab always moves the focus; a text field swallows everything (typing "e" must not turn the
+  // camera, Space must not play); a focused control takes the keys that move and press it.
+  const Row rows[] = {
+      {"Tab", UiKeyboard::None, true, false},          {"Tab", UiKeyboard::Typing, true, false},
+      {"KeyE", UiKeyboard::None, false, true},         {"KeyE", UiKeyboard::Typing, true, false},
+      {"KeyE", UiKeyboard::Navigating, false, true},   {"Space", UiKeyboard::None, false, true},
+      {"Space", UiKeyboard::Typing, true, false},      {"Space", UiKeyboard::Navigating, true, false},
+      {"ArrowUp", UiKeyboard::None, false, true},      {"ArrowUp", UiKeyboard::Navigating, true, false},
+      {"Enter", UiKeyboard::Navigating, true, false},  {"Escape", UiKeyboard::None, false, true},
+      {"Escape", UiKeyboard::Navigating, true, false}, {"Escape", UiKeyboard::Typing, true, false},
+      {"Slash", UiKeyboard::None, false, true},        {"Slash", UiKeyboard::Navigating, false, true},
+      {"Slash", UiKeyboard::Typing, true, false},      {"PageDown", UiKeyboard::Navigating, true, false},
+  };
+  for (const Row& row : rows) {
+    INFO(row.code << " in state " << static_cast<int>(row.state));
+    const ui::KeyRoute route = ui::routeKeyDown(row.code, row.state);
+    CHECK(route.ui == row.ui);
+    CHECK(route.app == row.app);
+  }
+}
+
+TEST_CASE("Tab reaches every control in drawing order, with Space and Enter pressing it and Escape leaving",
+          "[ui][backend][keys]") {
+  BackendFixture fixture;
+  ImGui::GetIO().ConfigFlags |=
+      ImGuiConfigFlags_NavEnableKeyboard | ImGuiConfigFlags_NavNoCaptureKeyboard;  // as the app
+  TextMirror mirror;
+  bool critical = false;
+  int exports = 0;
+  std::string search;
+  auto draw = [&] {
+    ui::Widgets w(mirror);
+    w.collapsingHeader("Find and filter");
+    w.checkbox("Critical facilities only", &critical);
+    if (w.button("Export CSV")) ++exports;
+    w.inputText("Search (/)", search);
+  };
+  // One key press and its release, in two frames as the app delivers them.
+  auto press = [&](const char* code, bool shift = false) {
+    fixture.begin();
+    ui::imguiBrowserKey(code, true, shift, false, false);
+    fixture.end(draw);
+    fixture.begin();
+    ui::imguiBrowserKey(code, false, shift, false, false);
+    fixture.end(draw);
+  };
+  fixture.frame(draw);
+  fixture.frame(draw);
+  CHECK(ui::imguiBrowserKeyboard() == ui::UiKeyboard::None);
+  CHECK(ui::imguiBrowserFocusedControl().empty());
+
+  press("Tab");
+  CHECK(ui::imguiBrowserFocusedControl() == "Find and filter, section, expanded");
+  CHECK(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Navigating);
+  press("Tab");
+  CHECK(ui::imguiBrowserFocusedControl() == "Critical facilities only, checkbox, not checked");
+  press("Space");
+  CHECK(critical);
+  CHECK(ui::imguiBrowserFocusedControl() == "Critical facilities only, checkbox, checked");
+  press("Tab");
+  CHECK(ui::imguiBrowserFocusedControl() == "Export CSV, button");
+  press("Enter");
+  CHECK(exports == 1);
+  press("Space");
+  CHECK(exports == 2);
+
+  // A text field reached by Tab is being edited: typing goes in, the keys are not shortcuts.
+  press("Tab");
+  CHECK(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
+  fixture.begin();
+  ui::imguiBrowserText("esb");
+  fixture.end(draw);
+  CHECK(search == "esb");
+
+  // Past the last control Tab wraps to the first, ending the edit; Shift+Tab goes back.
+  press("Tab");
+  CHECK(ui::imguiBrowserFocusedControl() == "Find and filter, section, expanded");
+  CHECK(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Navigating);
+  press("Tab", true);
+  CHECK(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
+  press("Tab", true);
+  CHECK(ui::imguiBrowserFocusedControl() == "Export CSV, button");
+
+  // Space on a header folds it.
+  press("Tab");
+  press("Tab");
+  CHECK(ui::imguiBrowserFocusedControl() == "Find and filter, section, expanded");
+  press("Space");
+  CHECK(ui::imguiBrowserFocusedControl() == "Find and filter, section, collapsed");
+
+  // Escape hands the keyboard back to the 3D view.
+  press("Escape");
+  CHECK(ui::imguiBrowserKeyboard() == ui::UiKeyboard::None);
+  CHECK(ui::imguiBrowserFocusedControl().empty());
+  CHECK(exports == 2);
+}

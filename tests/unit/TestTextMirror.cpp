@@ -3,10 +3,13 @@
 #include <imgui.h>
 #include <imgui_internal.h>  // ImGuiWindow: the inspection window's size and scroll
 
+#include <cmath>
+
 #include "HeadlessImGui.h"
 #include "MiniCity.h"
 #include "qv/scene/NullRenderDevice.h"
 #include "qv/ui/ControlPanel.h"
+#include "qv/ui/ImGuiBrowserBackend.h"
 #include "qv/ui/TextMirror.h"
 
 using namespace qv;
@@ -224,4 +227,114 @@ TEST_CASE("The inspection window fits a short screen, scrolls with the wheel and
   for (int i = 0; i < 3; ++i) drawPanel(viewer, mirror, panel, host);
   CHECK(window->Scroll.y == 0.0f);
   CHECK(mirror.text().find("== Building s11 ==") != std::string::npos);
+}
+
+namespace {
+
+// One frame of a panel, an inspection window and the map overlay, as the widgets write them.
+void mirrorFrame(TextMirror& mirror, const std::string& fps, const std::string& damage, bool performanceOpen) {
+  mirror.beginFrame();
+  mirror.beginWindow("QuakeView");
+  mirror.line(fps);
+  mirror.line("Shaking: SCENARIO M6.8 (not a recorded event)");
+  mirror.heading("v Consequences", "Consequences", true);
+  mirror.line("Buildings (with a result) | 64 | 20");
+  mirror.heading("v Damage and colours", "Damage and colours", true);
+  mirror.line("Damage state: none, slight, moderate, extensive, complete");
+  mirror.heading("> Find and filter", "Find and filter", false);
+  mirror.heading(performanceOpen ? "v Performance" : "> Performance", "Performance", performanceOpen);
+  if (performanceOpen) mirror.line("cull 0.20  lod 0.10  animate 0.30 ms");
+  mirror.endWindow();
+  mirror.beginWindow("Building s10");
+  mirror.line("(no name)");
+  mirror.line("Damage state: " + damage);
+  mirror.endWindow();
+  mirror.beginWindow("Map");
+  mirror.line("Cursor: 40.74840° N, 73.98570° W");
+  mirror.endWindow();
+  mirror.endFrame();
+}
+
+}  // namespace
+
+TEST_CASE("The accessible outline gives the panels as headings, without what changes every frame", "[ui][outline]") {
+  TextMirror mirror;
+  mirrorFrame(mirror, "FPS: 60.0", "moderate", false);
+  // The plain text is unchanged: headers are lines there.
+  CHECK(mirror.text().find("== QuakeView ==\nFPS: 60.0\nShaking: SCENARIO") == 0);
+  CHECK(mirror.text().find("v Consequences\nBuildings (with a result) | 64 | 20\n") != std::string::npos);
+  CHECK(mirror.text().find("> Find and filter\n") != std::string::npos);
+
+  const std::vector<TextMirror::Section> outline = accessibleOutline(mirror.windows());
+  REQUIRE(outline.size() == 6);
+  CHECK(outline[0].heading == "Earthquake and data");
+  CHECK(outline[0].lines == std::vector<std::string>{"Shaking: SCENARIO M6.8 (not a recorded event)"});
+  CHECK(outline[1].heading == "Consequences");
+  CHECK(outline[1].lines == std::vector<std::string>{"Buildings (with a result) | 64 | 20"});
+  CHECK(outline[2].heading == "Damage and colours");
+  CHECK(outline[3].heading == "Find and filter (collapsed in the panel)");
+  CHECK(outline[3].lines.empty());
+  CHECK(outline[4].heading == "Performance (collapsed in the panel)");
+  CHECK(outline[5].heading == "Selected building: s10");  // no name: the id
+  CHECK(outline[5].lines[1] == "Damage state: moderate");
+  const std::string json = mirror.outlineJson();
+  CHECK(json.find("\"heading\":\"Selected building: s10\"") != std::string::npos);
+  CHECK(json.find("Cursor") == std::string::npos);  // the map overlay is left out
+  CHECK(json.find("FPS") == std::string::npos);
+
+  // The revision moves only when the outline does: not with the frame rate, but with the damage
+  // shown, or a section opened (whose live measurements are not repeated).
+  const std::uint64_t first = mirror.outlineRevision();
+  CHECK(json.find("\"revision\":" + std::to_string(first)) != std::string::npos);
+  mirrorFrame(mirror, "FPS: 58.3", "moderate", false);
+  CHECK(mirror.outlineRevision() == first);
+  mirrorFrame(mirror, "FPS: 58.3", "extensive", false);
+  CHECK(mirror.outlineRevision() == first + 1);
+  CHECK(mirror.outlineJson().find("Damage state: extensive") != std::string::npos);
+  mirrorFrame(mirror, "FPS: 58.3", "extensive", true);
+  CHECK(mirror.outlineRevision() == first + 2);
+  CHECK(mirror.outlineJson().find("cull") == std::string::npos);
+  CHECK(mirror.outlineJson().find("\"heading\":\"Performance\"") != std::string::npos);
+}
+
+TEST_CASE("Slash opens and focuses the search even in a collapsed panel, and Enter takes the first result",
+          "[ui][city][keys]") {
+  CityPanel setup(720);
+  struct Backend {  // the browser backend on the fixture's context, for its keys
+    Backend() : installed(ui::imguiBrowserInit()) {}
+    ~Backend() { ui::imguiBrowserShutdown(); }
+    Backend(const Backend&) = delete;
+    Backend& operator=(const Backend&) = delete;
+    bool installed;
+  } backend;
+  REQUIRE(backend.installed);
+  Viewer& viewer = setup.viewer;
+  REQUIRE(viewer.settled());
+  for (int i = 0; i < 40 && !viewer.city()->searchIndexLoaded(); ++i) viewer.frame(1.0 / 60.0);
+  REQUIRE(viewer.city()->searchIndexLoaded());
+  auto frame = [&] { return drawPanel(viewer, setup.mirror, setup.panel, setup.host); };
+  frame();
+  ImGui::SetWindowCollapsed("QuakeView", true);
+  std::string text = frame();
+  CHECK(text.find("Find and filter") == std::string::npos);  // the whole panel is folded
+
+  setup.panel.focusSearch();
+  for (int i = 0; i < 3; ++i) text = frame();
+  CHECK(text.find("v Find and filter\nSearch (/): []") != std::string::npos);
+  REQUIRE(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
+
+  ImGui::GetIO().AddInputCharactersUTF8("Building 2-3");
+  text = frame();
+  CHECK(text.find("Search (/): [Building 2-3]") != std::string::npos);
+  CHECK(viewer.selection().empty());
+  const CameraState before = viewer.camera();
+  ui::imguiBrowserKey("Enter", true, false, false, false);
+  frame();
+  ui::imguiBrowserKey("Enter", false, false, false, false);
+  frame();
+  CHECK(viewer.selection() == test::MiniCity::idOf(2, 3));
+  for (int i = 0; i < 120; ++i) viewer.frame(1.0 / 60.0);  // the flight
+  const CameraState after = viewer.camera();
+  CHECK(std::hypot(after.x - before.x, after.y - before.y) > 1.0);
+  CHECK(ui::imguiBrowserKeyboard() != ui::UiKeyboard::Typing);  // Enter ended the edit
 }

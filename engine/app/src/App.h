@@ -3,6 +3,7 @@
 // functions (see web/quakeview.js for the JavaScript side).
 #pragma once
 
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
@@ -36,6 +37,11 @@ class App {
 
   [[nodiscard]] Viewer& viewer() { return *viewer_; }
   [[nodiscard]] const std::string& uiText() const { return mirror_.text(); }
+  /// The panels' accessible outline as JSON, and its revision (TextMirror::outlineJson).
+  [[nodiscard]] const std::string& uiOutlineJson() const { return mirror_.outlineJson(); }
+  [[nodiscard]] std::uint64_t uiOutlineRevision() const { return mirror_.outlineRevision(); }
+  /// What control shows the keyboard focus ("Export CSV, button"), or "".
+  [[nodiscard]] const std::string& focusedControl() const { return focusedControl_; }
   [[nodiscard]] ControlPanel& panel() { return panel_; }
   [[nodiscard]] UiHost& host() { return host_; }
 
@@ -58,6 +64,11 @@ class App {
   double lastFrameSeconds_ = 0.0;
   bool readySent_ = false;
   bool cameraOwnsPointer_ = false;
+  // Frames the keys after '/' still wait for the search field (dispatchInput).
+  static constexpr int kSearchPendingFrames = 30;
+  int searchPendingFrames_ = 0;
+  bool swallowSlashText_ = false;
+  std::string focusedControl_;
 };
 
 }  // namespace qv

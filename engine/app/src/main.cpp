@@ -43,6 +43,23 @@ EMSCRIPTEN_KEEPALIVE const char* qv_ui_text() {
   return hand(gApp->uiText());
 }
 
+/// The panels' accessible outline, {"revision": n, "sections": [{heading, lines}]} (TextMirror.h).
+EMSCRIPTEN_KEEPALIVE const char* qv_ui_outline_json() {
+  if (gApp == nullptr) return hand("null");
+  return hand(gApp->uiOutlineJson().empty() ? std::string("null") : gApp->uiOutlineJson());
+}
+
+/// The outline's revision: grows when its content changes (cheap to poll).
+EMSCRIPTEN_KEEPALIVE double qv_ui_outline_revision() {
+  return gApp == nullptr ? 0.0 : static_cast<double>(gApp->uiOutlineRevision());
+}
+
+/// The control showing the keyboard focus ("Export CSV, button"), or "".
+EMSCRIPTEN_KEEPALIVE const char* qv_ui_focus() {
+  if (gApp == nullptr) return hand("");
+  return hand(gApp->focusedControl());
+}
+
 /// [x, y] in CSS pixels of a city-frame point, or null when it is behind the eye.
 EMSCRIPTEN_KEEPALIVE const char* qv_world_to_screen(double x, double y, double z) {
   if (gApp == nullptr) return hand("null");

@@ -88,6 +88,12 @@ EM_BOOL onKey(int type, const EmscriptenKeyboardEvent* e, void* user) {
   }
   ev.type = type == EMSCRIPTEN_EVENT_KEYDOWN ? InputEvent::Type::KeyDown : InputEvent::Type::KeyUp;
   ev.code = e->code;
+  // Tab moves the focus through the panels (ImGuiBrowserBackend), never out of the canvas: the
+  // browser's own Tab would leave it (in a text field too).
+  if (ev.code == "Tab") {
+    input->push(std::move(ev));
+    return EM_TRUE;
+  }
   const bool isText = std::strlen(e->key) == 1 && !ev.ctrl;
   input->push(std::move(ev));
   // Let printable keys through on keydown so the browser produces keypress (text input); block

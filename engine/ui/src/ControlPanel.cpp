@@ -332,6 +332,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSizeConstraints(ImVec2(260.0f, 0.0f), ImVec2(520.0f, std::max(200.0f, display.y - 20.0f)));
   ImGui::SetNextWindowBgAlpha(0.90f);
+  if (focusSearch_) ImGui::SetNextWindowCollapsed(false);  // '/' opens the panel, whatever its state
   if (!w.begin("QuakeView", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
     w.end();
     return;
@@ -466,12 +467,21 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
                    percent(thresholds[3]).c_str()));
   }
 
+  // '/' opens this section (however it was left) and puts the keyboard in the search; Enter there
+  // takes the first result, as a click on it does.
+  if (focusSearch_) ImGui::SetNextItemOpen(true);
   if (city != nullptr && w.collapsingHeader("Find and filter", false)) {
     const bool focus = focusSearch_;
     focusSearch_ = false;
-    w.inputText("Search (/)", search_, focus);
+    bool entered = false;
+    w.inputText("Search (/)", search_, focus, &entered);
     if (!search_.empty()) {
       const auto hits = city->search(search_, 8);
+      if (entered && !hits.empty()) {
+        const BuildingListEntry& first = hits.front();
+        if (!viewer.select(first.id) || !viewer.flyToSelection())
+          viewer.flyTo(first.x, first.y, std::max(200.0, static_cast<double>(first.heightM) * 3.0));
+      }
       if (!city->searchIndexLoaded())
         w.text(city->searchIndexSettled() ? "The search index could not be loaded." : "Loading the search index...");
       else if (hits.empty())
@@ -519,6 +529,8 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     w.sameLine();
     if (w.button("Export GeoJSON")) exportList(viewer, "geojson", host);
   }
+
+  focusSearch_ = false;  // also without a city (nothing to search)
 
   if (w.collapsingHeader("General", false)) {
     if (city != nullptr) {
@@ -575,7 +587,8 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     w.textWrapped("Map data © OpenStreetMap contributors (ODbL) where the city comes from OpenStreetMap.");
     w.textWrapped(
         "Keys: Space play/pause, , and . step time, arrows/WASD pan, Q/E turn, PageUp/PageDown tilt, +/- zoom, "
-        "R reset, F fly to the selection, Esc clear it, / search, Tab moves through the panel.");
+        "R reset, F fly to the selection, Esc clear it, / search (Enter takes the first result); Tab and "
+        "Shift+Tab move through every control, Space or Enter presses it, Esc returns to the view.");
   }
   w.end();
 }

@@ -1,7 +1,7 @@
 #include "qv/ui/ImGuiBrowserBackend.h"
 
 #include <imgui.h>
-#include <imgui_internal.h>  // ImGuiContext::Windows, for imguiBrowserCovers
+#include <imgui_internal.h>  // ImGuiContext::Windows (imguiBrowserCovers); navigation state (Tab order)
 
 #include <algorithm>
 #include <array>
@@ -44,6 +44,16 @@ constexpr std::array<ImGuiKeyCode, 22> kImGuiKeys = {{
     {"KeyZ", ImGuiKey_Z},
 }};
 
+// A control of the Tab order: where it was drawn in the last frame.
+struct TabStop {
+  ImGuiID id = 0;
+  ImGuiID window = 0;
+  ImGuiID focusScope = 0;
+  ImRect rect;  // absolute, as last drawn (to scroll it into view)
+  std::string description;
+  TabStopKind kind = TabStopKind::Press;
+};
+
 // What was pressed since the last imguiBrowserNewFrame (io.BackendPlatformUserData).
 struct BackendData {
   std::array<bool, 5> buttonsPressed{};
@@ -52,6 +62,12 @@ struct BackendData {
   // NewFrame and clears it at the end of the frame, and the app feeds input after NewFrame: held
   // here and handed over at the next frame's start, so that ImGui scrolls the window under it.
   float pendingWheel = 0.0f;
+  // The Tab order: the stops of the last complete frame, and those the current frame registers.
+  std::vector<TabStop> stops;
+  std::vector<TabStop> stopsBuilding;
+  // Modifier keys as of the last event, handed to ImGui at the next frame's start with the keys
+  // (ImGui asserts that they do not change within a frame).
+  bool shift = false, ctrl = false, alt = false;
 };
 
 BackendData* backendData() {
@@ -72,6 +88,56 @@ int keysDownIndex(std::string_view code) {
 
 ImVec2 point(double x, double y) {
   return ImVec2(static_cast<float>(x), static_cast<float>(y));
+}
+
+// An open pop-up (a drop-down's list) holds the keyboard until it closes.
+bool anyPopupOpen() {
+  const ImGuiContext* g = ImGui::GetCurrentContext();
+  return g != nullptr && g->OpenPopupStack.Size > 0;
+}
+
+// Shows the keyboard focus on `stop` (ImGui's navigation highlight), bringing its window to the
+// front and scrolling it into view; a text field starts being edited, as when it is clicked.
+void focusStop(const TabStop& stop) {
+  ImGuiContext& g = *ImGui::GetCurrentContext();
+  ImGuiWindow* window = ImGui::FindWindowByID(stop.window);
+  if (window == nullptr) return;
+  if (g.ActiveId != 0 && g.ActiveId != stop.id) ImGui::ClearActiveID();
+  ImGui::FocusWindow(window);  // also closes pop-ups (an open drop-down) above other windows
+  ImGui::SetNavID(stop.id, ImGuiNavLayer_Main, stop.focusScope, ImGui::WindowRectAbsToRel(window, stop.rect));
+  g.NavInputSource = ImGuiInputSource_Keyboard;
+  g.NavDisableHighlight = false;
+  g.NavDisableMouseHover = true;
+  if (stop.rect.GetWidth() > 0.0f)
+    ImGui::ScrollToRectEx(window, stop.rect, ImGuiScrollFlags_KeepVisibleEdgeX | ImGuiScrollFlags_KeepVisibleEdgeY);
+  if (stop.kind == TabStopKind::Text) {
+    g.NavNextActivateId = stop.id;
+    g.NavNextActivateFlags = ImGuiActivateFlags_PreferInput;
+  }
+}
+
+// Tab (+1) or Shift+Tab (-1): the stop after (before) the one showing the focus, wrapping around;
+// from the 3D view (no focus shown: ImGui keeps a navigation id it does not show, e.g. a window's
+// first item when it appears) the first (last) stop.
+void moveFocus(BackendData& data, int direction) {
+  const std::vector<TabStop>& stops = data.stops;
+  if (stops.empty()) return;
+  const ImGuiContext& g = *ImGui::GetCurrentContext();
+  const ImGuiID current = g.NavDisableHighlight ? 0 : g.NavId;
+  const auto n = static_cast<std::ptrdiff_t>(stops.size());
+  std::ptrdiff_t at = -1;
+  for (std::ptrdiff_t i = 0; i < n && current != 0; ++i) {
+    if (stops[static_cast<std::size_t>(i)].id == current) at = i;
+  }
+  const std::ptrdiff_t next = at < 0 ? (direction > 0 ? 0 : n - 1) : ((at + direction) % n + n) % n;
+  focusStop(stops[static_cast<std::size_t>(next)]);
+}
+
+bool isNavigationKey(std::string_view code) {
+  constexpr std::array<std::string_view, 12> kNavigation = {"ArrowLeft", "ArrowRight", "ArrowUp",     "ArrowDown",
+                                                            "Space",     "Enter",      "NumpadEnter", "Escape",
+                                                            "PageUp",    "PageDown",   "Home",        "End"};
+  return std::find(kNavigation.begin(), kNavigation.end(), code) != kNavigation.end();
 }
 
 }  // namespace
@@ -106,6 +172,20 @@ void imguiBrowserNewFrame(double cssWidth, double cssHeight, double devicePixelR
     data->keysPressed.clear();
     io.MouseWheel += data->pendingWheel;
     data->pendingWheel = 0.0f;
+    data->stops.swap(data->stopsBuilding);
+    data->stopsBuilding.clear();
+    io.KeyShift = data->shift;
+    io.KeyCtrl = data->ctrl;
+    io.KeyAlt = data->alt;
+    // ImGui 1.86 presses the focused control with Space only (Enter types into sliders and text
+    // fields); Enter presses buttons, checkboxes, headers and rows too, as on a web page.
+    const ImGuiContext& g = *ImGui::GetCurrentContext();
+    const bool enter = io.KeysDown[keysDownIndex("Enter")] || io.KeysDown[keysDownIndex("NumpadEnter")];
+    if (enter && g.ActiveId == 0 && g.NavId != 0 && !g.NavDisableHighlight) {
+      for (const TabStop& stop : data->stops) {
+        if (stop.id == g.NavId && stop.kind == TabStopKind::Press) io.NavInputs[ImGuiNavInput_Activate] = 1.0f;
+      }
+    }
   }
 }
 
@@ -158,11 +238,33 @@ bool imguiBrowserWheel(double x, double y, double wheelY) {
   return true;
 }
 
-void imguiBrowserKey(std::string_view code, bool down, bool shift, bool ctrl, bool alt) {
+void imguiBrowserModifiers(bool shift, bool ctrl, bool alt) {
+  if (BackendData* data = backendData()) {
+    data->shift = shift;
+    data->ctrl = ctrl;
+    data->alt = alt;
+    return;
+  }
   ImGuiIO& io = ImGui::GetIO();
   io.KeyShift = shift;
   io.KeyCtrl = ctrl;
   io.KeyAlt = alt;
+}
+
+void imguiBrowserKey(std::string_view code, bool down, bool shift, bool ctrl, bool alt) {
+  ImGuiIO& io = ImGui::GetIO();
+  imguiBrowserModifiers(shift, ctrl, alt);
+  BackendData* backend = backendData();
+  // Tab is ours: ImGui 1.86 tabs only through text fields and sliders (and turns a slider into a
+  // text field); our order reaches every control. ImGui never sees the Tab key.
+  if (code == "Tab" && !ctrl && !alt) {
+    if (down && backend != nullptr) moveFocus(*backend, shift ? -1 : +1);
+    return;
+  }
+  if (code == "Escape" && down && !anyPopupOpen()) {
+    imguiBrowserReleaseKeyboard();
+    return;
+  }
   const int index = keysDownIndex(code);
   if (index >= 0) io.KeysDown[index] = down;
   if (BackendData* data = backendData(); data != nullptr && down) data->keysPressed.emplace_back(code);
@@ -177,6 +279,59 @@ void imguiBrowserText(std::string_view utf8) {
 
 bool imguiBrowserWantsTextInput() {
   return ImGui::GetIO().WantTextInput;
+}
+
+KeyRoute routeKeyDown(std::string_view code, UiKeyboard state) {
+  if (code == "Tab" || state == UiKeyboard::Typing) return KeyRoute{true, false};
+  if (state == UiKeyboard::Navigating && isNavigationKey(code)) return KeyRoute{true, false};
+  return KeyRoute{false, true};
+}
+
+UiKeyboard imguiBrowserKeyboard() {
+  const ImGuiContext* g = ImGui::GetCurrentContext();
+  if (g == nullptr) return UiKeyboard::None;
+  // A text field is being edited now (io.WantTextInput follows one frame late).
+  if (g->ActiveId != 0 && g->InputTextState.ID == g->ActiveId) return UiKeyboard::Typing;
+  if ((g->NavWindow != nullptr && g->NavId != 0 && !g->NavDisableHighlight) || anyPopupOpen())
+    return UiKeyboard::Navigating;
+  return UiKeyboard::None;
+}
+
+void imguiBrowserTabStop(unsigned id, std::string_view description, TabStopKind kind) {
+  BackendData* data = backendData();
+  const ImGuiContext* g = ImGui::GetCurrentContext();
+  if (data == nullptr || id == 0 || g->CurrentWindow == nullptr || g->CurrentWindow->SkipItems) return;
+  ImGuiWindow* window = g->CurrentWindow;
+  if ((window->Flags & ImGuiWindowFlags_NoNavInputs) != 0) return;
+  TabStop stop;
+  stop.id = id;
+  stop.window = window->ID;
+  stop.focusScope = window->DC.NavFocusScopeIdCurrent;
+  if (g->LastItemData.ID == id) stop.rect = g->LastItemData.NavRect;
+  stop.description = std::string(description);
+  stop.kind = kind;
+  data->stopsBuilding.push_back(std::move(stop));
+}
+
+std::string imguiBrowserFocusedControl() {
+  const BackendData* data = backendData();
+  const ImGuiContext* g = ImGui::GetCurrentContext();
+  if (data == nullptr || g->NavId == 0 || g->NavDisableHighlight) return {};
+  // This frame's description when the control was drawn already (its state may have changed).
+  for (const std::vector<TabStop>* stops : {&data->stopsBuilding, &data->stops}) {
+    for (const TabStop& stop : *stops) {
+      if (stop.id == g->NavId) return stop.description;
+    }
+  }
+  return {};
+}
+
+void imguiBrowserReleaseKeyboard() {
+  ImGuiContext* g = ImGui::GetCurrentContext();
+  if (g == nullptr) return;
+  if (g->ActiveId != 0) ImGui::ClearActiveID();
+  g->NavDisableHighlight = true;
+  ImGui::FocusWindow(nullptr);  // closes pop-ups; ImGui's NavActive turns off
 }
 
 }  // namespace qv::ui

@@ -9,6 +9,7 @@
 #include <imgui.h>
 
 #include "qv/core/Text.h"
+#include "qv/ui/ImGuiBrowserBackend.h"
 
 namespace qv::ui {
 namespace {
@@ -37,6 +38,20 @@ class Shown {
   std::string owned_;
   std::string_view view_;
 };
+
+// Registers the control just drawn (label `label`, in the current ID scope) in the keyboard's Tab
+// order, described for screen readers as "visible label, role[, state]".
+void tabStop(const char* label, std::string_view role, TabStopKind kind, std::string_view state = {}) {
+  const std::string_view v = visibleLabel(label);
+  std::string description(v);
+  description += ", ";
+  description += role;
+  if (!state.empty()) {
+    description += ", ";
+    description += state;
+  }
+  imguiBrowserTabStop(ImGui::GetID(label), description, kind);
+}
 
 }  // namespace
 
@@ -104,11 +119,14 @@ void Widgets::sameLine() {
 
 bool Widgets::button(const char* label) {
   mirror_.line(format("[%.*s]", static_cast<int>(visibleLabel(label).size()), visibleLabel(label).data()));
-  return ImGui::Button(label);
+  const bool pressed = ImGui::Button(label);
+  tabStop(label, "button", TabStopKind::Press);
+  return pressed;
 }
 
 bool Widgets::checkbox(const char* label, bool* value) {
   const bool changed = ImGui::Checkbox(label, value);
+  tabStop(label, "checkbox", TabStopKind::Press, *value ? "checked" : "not checked");
   const auto v = visibleLabel(label);
   mirror_.line(format("[%c] %.*s", *value ? 'x' : ' ', static_cast<int>(v.size()), v.data()));
   return changed;
@@ -116,6 +134,7 @@ bool Widgets::checkbox(const char* label, bool* value) {
 
 bool Widgets::radio(const char* label, bool active) {
   const bool clicked = ImGui::RadioButton(label, active);
+  tabStop(label, "radio button", TabStopKind::Press, active ? "selected" : "not selected");
   const auto v = visibleLabel(label);
   mirror_.line(format("(%c) %.*s", active ? '*' : ' ', static_cast<int>(v.size()), v.data()));
   return clicked;
@@ -125,6 +144,7 @@ bool Widgets::sliderFloat(const char* label, float* value, float min, float max,
   const bool changed = ImGui::SliderFloat(label, value, min, max, fmt, logarithmic ? ImGuiSliderFlags_Logarithmic : 0);
   char shown[64];
   std::snprintf(shown, sizeof shown, fmt, static_cast<double>(*value));
+  tabStop(label, "slider", TabStopKind::Value, shown);
   const auto v = visibleLabel(label);
   mirror_.line(format("%.*s: %s", static_cast<int>(v.size()), v.data(), shown));
   return changed;
@@ -134,6 +154,7 @@ bool Widgets::sliderDouble(const char* label, double* value, double min, double 
   const bool changed = ImGui::SliderScalar(label, ImGuiDataType_Double, value, &min, &max, fmt);
   char shown[64];
   std::snprintf(shown, sizeof shown, fmt, *value);
+  tabStop(label, "slider", TabStopKind::Value, shown);
   const auto v = visibleLabel(label);
   mirror_.line(format("%.*s: %s", static_cast<int>(v.size()), v.data(), shown));
   return changed;
@@ -141,6 +162,7 @@ bool Widgets::sliderDouble(const char* label, double* value, double min, double 
 
 bool Widgets::sliderInt(const char* label, int* value, int min, int max) {
   const bool changed = ImGui::SliderInt(label, value, min, max);
+  tabStop(label, "slider", TabStopKind::Value, std::to_string(*value));
   const auto v = visibleLabel(label);
   mirror_.line(format("%.*s: %d", static_cast<int>(v.size()), v.data(), *value));
   return changed;
@@ -150,14 +172,16 @@ bool Widgets::combo(const char* label, int* current, const char* const items[], 
   const bool changed = ImGui::Combo(label, current, items, count);
   const auto v = visibleLabel(label);
   const char* shown = (*current >= 0 && *current < count) ? items[*current] : "";
+  tabStop(label, "drop-down", TabStopKind::Press, shown);
   mirror_.line(format("%.*s: %s", static_cast<int>(v.size()), v.data(), shown));
   return changed;
 }
 
 bool Widgets::collapsingHeader(const char* label, bool defaultOpen) {
   const bool open = ImGui::CollapsingHeader(label, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+  tabStop(label, "section", TabStopKind::Press, open ? "expanded" : "collapsed");
   const auto v = visibleLabel(label);
-  mirror_.line(format("%s %.*s", open ? "v" : ">", static_cast<int>(v.size()), v.data()));
+  mirror_.heading(format("%s %.*s", open ? "v" : ">", static_cast<int>(v.size()), v.data()), v, open);
   return open;
 }
 
@@ -171,7 +195,7 @@ void Widgets::field(std::string_view label, std::string_view value) {
   mirror_.line(line);
 }
 
-bool Widgets::inputText(const char* label, std::string& buffer, bool focus) {
+bool Widgets::inputText(const char* label, std::string& buffer, bool focus, bool* entered) {
   char text[256];
   const std::size_t n = std::min(buffer.size(), sizeof text - 1);
   std::memcpy(text, buffer.data(), n);
@@ -179,6 +203,12 @@ bool Widgets::inputText(const char* label, std::string& buffer, bool focus) {
   if (focus) ImGui::SetKeyboardFocusHere();
   const bool changed = ImGui::InputText(label, text, sizeof text);
   if (changed) buffer = text;
+  tabStop(label, "text field", TabStopKind::Text, buffer);
+  // Enter ends the edit (ImGui deactivates the field on it): the caller's "take the first result".
+  if (entered != nullptr) {
+    *entered = ImGui::IsItemDeactivated() && (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Enter), false) ||
+                                              ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_KeyPadEnter), false));
+  }
   const auto v = visibleLabel(label);
   mirror_.line(format("%.*s: [%s]", static_cast<int>(v.size()), v.data(), buffer.c_str()));
   return changed;
@@ -188,7 +218,10 @@ bool Widgets::selectable(const char* label, bool selected) {
   const Shown shown(label);
   const auto v = visibleLabel(shown.view());
   mirror_.line(format("> %.*s", static_cast<int>(v.size()), v.data()));
-  return ImGui::Selectable(shown.str().c_str(), selected);
+  const std::string text = shown.str();
+  const bool clicked = ImGui::Selectable(text.c_str(), selected);
+  tabStop(text.c_str(), "list item", TabStopKind::Press, selected ? "selected" : "");
+  return clicked;
 }
 
 float Widgets::plot(const char* id, const float* values, int count, float minValue, float maxValue, float height,

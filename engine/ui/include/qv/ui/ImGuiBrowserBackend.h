@@ -15,8 +15,16 @@
 // between two NewFrames would cancel out and the click be lost. The app asks
 // imguiBrowserMustDeferButtonUp / imguiBrowserMustDeferKeyUp and holds such a release (and the
 // events after it, to keep their order) until the next frame.
+//
+// Keyboard: the app routes each key press with routeKeyDown (the UI's keyboard state decides) and
+// hands the UI's keys here. Tab and Shift+Tab move the keyboard focus through every control the
+// panels registered in the last frame (imguiBrowserTabStop, called by ui::Widgets), in the order
+// they were drawn, across windows, with ImGui's navigation highlight; Space (and Enter) then press
+// it, arrows move between neighbours, Escape leaves the UI to the 3D view.
 #pragma once
 
+#include <cstdint>
+#include <string>
 #include <string_view>
 
 namespace qv::ui {
@@ -53,12 +61,63 @@ void imguiBrowserPointerMove(double x, double y);
 bool imguiBrowserWheel(double x, double y, double wheelY);
 
 /// A key by KeyboardEvent.code with the modifier state of that event. Keys ImGui does not use
-/// only update the modifiers.
+/// only update the modifiers. A Tab press moves the keyboard focus to the next stop (Shift: the
+/// previous one, wrapping around; from the 3D view, with no focus shown, the first or the last);
+/// Escape closes an open pop-up, or else releases the keyboard.
 void imguiBrowserKey(std::string_view code, bool down, bool shift, bool ctrl, bool alt);
 /// Typed text (UTF-8); ignored unless ImGui wants the keyboard (a text field or window has focus).
 void imguiBrowserText(std::string_view utf8);
 
 /// True while a text field is being edited: keys are for it, not for the app's shortcuts.
 bool imguiBrowserWantsTextInput();
+
+/// The keyboard as the UI holds it.
+enum class UiKeyboard : std::uint8_t {
+  None,        ///< nothing in the UI has the keyboard: keys are the viewer's shortcuts
+  Navigating,  ///< a control shows the keyboard focus (after Tab): navigation keys are the UI's
+  Typing,      ///< a text field is being edited: every key is the UI's
+};
+
+/// Where a key press goes: to the UI (imguiBrowserKey), to the app's shortcuts, or both.
+struct KeyRoute {
+  bool ui = false;
+  bool app = false;
+};
+
+/// Decides where a key press (KeyboardEvent.code) goes, from the UI's keyboard state. Pure.
+/// Tab is always the UI's (it moves the focus into and through the panels); while typing every
+/// key is the UI's (a text field swallows the shortcuts); while navigating the navigation keys
+/// (arrows, Space, Enter, Escape, PageUp/PageDown, Home/End) are the UI's and the rest are
+/// shortcuts; otherwise every key but Tab is a shortcut. Releases always go to both.
+KeyRoute routeKeyDown(std::string_view code, UiKeyboard state);
+
+/// The UI's keyboard state now: live, so a Tab or Escape handled earlier among this frame's events
+/// counts for the next one.
+UiKeyboard imguiBrowserKeyboard();
+
+/// Updates only the modifier keys (a key press the UI does not get). Modifiers reach ImGui at the
+/// next imguiBrowserNewFrame, with the keys (ImGui 1.86 asserts they do not change within a frame).
+void imguiBrowserModifiers(bool shift, bool ctrl, bool alt);
+
+/// What a stop of the Tab order is, for the keys that act on it.
+enum class TabStopKind : std::uint8_t {
+  Press,  ///< button, checkbox, header, drop-down, list row: Space or Enter presses it
+  Value,  ///< slider: Space then arrows change it, Enter types a value (ImGui's own keys)
+  Text,   ///< text field: reaching it by Tab starts editing it
+};
+
+/// Registers the control with ImGui ID `id` (the item just submitted, in the current window) as
+/// the next stop of the Tab order. `description` is what the control is, for screen readers
+/// ("Export CSV, button"). Stops registered in one frame are the order of the next; no-op without
+/// the backend or in a collapsed window.
+void imguiBrowserTabStop(unsigned id, std::string_view description, TabStopKind kind);
+
+/// The description of the control showing the keyboard focus, or "" when none does (as drawn
+/// this frame when called after the panels, else as in the last frame).
+std::string imguiBrowserFocusedControl();
+
+/// Hands the keyboard back to the 3D view: ends any text edit, hides the focus highlight, closes
+/// open pop-ups and unfocuses the windows.
+void imguiBrowserReleaseKeyboard();
 
 }  // namespace qv::ui

@@ -1,4 +1,5 @@
-// Thin wrappers over Dear ImGui widgets that also write their visible text to a TextMirror.
+// Thin wrappers over Dear ImGui widgets that also write their visible text to a TextMirror and
+// register every control in the keyboard's Tab order (ImGuiBrowserBackend), in drawing order.
 // Keep ImGui's dialect inside the UI layer: panels call these, not ImGui directly, for anything a
 // person reads. Labels follow ImGui's "visible##id" convention; only the visible part is mirrored.
 #pragma once
@@ -40,8 +41,10 @@ class Widgets {
   bool collapsingHeader(const char* label, bool defaultOpen = true);
   /// A labelled value row: "label: value".
   void field(std::string_view label, std::string_view value);
-  /// A single-line text input; `buffer` holds the text. Mirrored as "label: [text]".
-  bool inputText(const char* label, std::string& buffer, bool focus = false);
+  /// A single-line text input; `buffer` holds the text. Mirrored as "label: [text]". `focus` puts
+  /// the keyboard in it (editing starts next frame); `entered`, when given, is set to whether the
+  /// edit ended with Enter in this frame.
+  bool inputText(const char* label, std::string& buffer, bool focus = false, bool* entered = nullptr);
   /// A clickable row; returns true when clicked. Mirrored as "> text".
   bool selectable(const char* label, bool selected = false);
   /// A line plot of `values` over [0, duration] with a vertical cursor at `cursorFraction` (0..1),
