@@ -68,6 +68,9 @@ bool Widgets::begin(const char* title, bool* open, int flags) {
 }
 
 void Widgets::end() {
+  const ImVec2 pos = ImGui::GetWindowPos();
+  const ImVec2 size = ImGui::GetWindowSize();
+  mirror_.windowRect(MirrorRect{pos.x, pos.y, size.x, size.y}, ImGui::IsWindowCollapsed());
   ImGui::End();
   mirror_.endWindow();
 }
@@ -104,11 +107,20 @@ void Widgets::sameLine() {
 
 bool Widgets::button(const char* label) {
   mirror_.line(format("[%.*s]", static_cast<int>(visibleLabel(label).size()), visibleLabel(label).data()));
-  return ImGui::Button(label);
+  const bool pressed = ImGui::Button(label);
+  recordItem(label);
+  return pressed;
+}
+
+void Widgets::recordItem(const char* label) {
+  const ImVec2 min = ImGui::GetItemRectMin();
+  const ImVec2 max = ImGui::GetItemRectMax();
+  mirror_.item(visibleLabel(label), MirrorRect{min.x, min.y, max.x - min.x, max.y - min.y});
 }
 
 bool Widgets::checkbox(const char* label, bool* value) {
   const bool changed = ImGui::Checkbox(label, value);
+  recordItem(label);
   const auto v = visibleLabel(label);
   mirror_.line(format("[%c] %.*s", *value ? 'x' : ' ', static_cast<int>(v.size()), v.data()));
   return changed;
@@ -156,6 +168,7 @@ bool Widgets::combo(const char* label, int* current, const char* const items[], 
 
 bool Widgets::collapsingHeader(const char* label, bool defaultOpen) {
   const bool open = ImGui::CollapsingHeader(label, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+  recordItem(label);
   const auto v = visibleLabel(label);
   mirror_.line(format("%s %.*s", open ? "v" : ">", static_cast<int>(v.size()), v.data()));
   return open;
