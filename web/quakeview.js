@@ -7,12 +7,16 @@
 //              unavailable or the engine cannot start.
 //   stats()    {fps, frameMs: {cull, lod, animate, upload, render, total}, drawCalls, triangles,
 //              buildings: {loaded, visible, animated}, tiles: {loaded, pending, failed}, heapBytes,
-//              heapReservedBytes, uploadBytes, timeSeconds} — medians over recent frames.
+//              heapReservedBytes, uploadBytes, timeSeconds} — medians over recent frames; extension:
+//              canvas: {width, height (drawing buffer, device px), cssWidth, cssHeight, pixelRatio
+//              (buffer px per CSS px: the device's, at most 2, 1.5 on screens under 600 CSS px wide,
+//              lower while frames are slow), devicePixelRatio (the device's own)}.
 //   errors()   the message strings the UI shows.
 //   uiText()   the text of the panels and windows currently shown.
 //   uiOutline()  extension: the same as headings, {revision, sections: [{heading, lines}]}, the
 //              source of the page's accessible copy (#qv-panel); revision grows when it changes.
 //   uiFocus()  extension: the control showing the keyboard focus ("Export CSV, button"), or null.
+//   uiLayout() extension: where the windows and their controls are (see below).
 //   getCamera() {x, y, distance, headingDeg, pitchDeg, fovDeg} (metres east/north of the origin).
 //   worldToScreen(x, y, z) [px, py] CSS pixels of a city-frame point, or null.
 //   setCamera(c)  any subset of getCamera()'s fields; false when a value was invalid.
@@ -74,7 +78,19 @@
     ready,
     stats() {
       const text = callString('qv_stats_json');
-      return text ? JSON.parse(text) : null;
+      if (!text) return null;
+      const stats = JSON.parse(text);
+      // Extension: the canvas's drawing buffer (device pixels, as the engine capped the ratio) and
+      // its size on the page (CSS pixels).
+      stats.canvas = {
+        width: canvas.width,
+        height: canvas.height,
+        cssWidth: canvas.clientWidth,
+        cssHeight: canvas.clientHeight,
+        pixelRatio: canvas.clientWidth > 0 ? canvas.width / canvas.clientWidth : 1,
+        devicePixelRatio: window.devicePixelRatio || 1,
+      };
+      return stats;
     },
     errors() {
       const text = callString('qv_errors_json');
@@ -89,6 +105,14 @@
     },
     uiFocus() {
       return callString('qv_ui_focus') || null;
+    },
+    // Extension: where the panels are, for pointing at a control (a tap on a touch screen):
+    // {windows: [{title, x, y, width, height, collapsed}], items: [{window, label, x, y, width,
+    // height}]} in CSS pixels from the canvas's top-left corner, as drawn in the last frame; items
+    // are the buttons, section headers and checkboxes, by their visible labels.
+    uiLayout() {
+      const text = callString('qv_ui_layout');
+      return text ? JSON.parse(text) : null;
     },
     // Extension: where a city-frame point [x, y, z] (metres from the tileset origin) appears on
     // the canvas, in CSS pixels from its top-left corner; null when behind the camera.

@@ -295,3 +295,75 @@ TEST_CASE("Tab reaches every control in drawing order, with Space and Enter pres
   CHECK(ui::imguiBrowserFocusedControl().empty());
   CHECK(exports == 2);
 }
+
+TEST_CASE("A tap on a window's title bar folds and unfolds it, except on its close button", "[ui][backend][touch]") {
+  BackendFixture fixture;
+  bool collapsed = false;
+  const auto draw = [&] { collapsed = ImGui::IsWindowCollapsed(); };
+  fixture.frame(draw);
+  fixture.frame(draw);
+  REQUIRE_FALSE(collapsed);
+  fixture.begin();
+  CHECK_FALSE(ui::imguiBrowserTapTitleBar(150.0, 200.0));  // the window's body: a click, not a fold
+  CHECK_FALSE(ui::imguiBrowserTapTitleBar(50.0, 105.0));   // beside the window
+  CHECK(ui::imguiBrowserTapTitleBar(150.0, 105.0));
+  fixture.end(draw);
+  fixture.frame(draw);
+  CHECK(collapsed);
+  fixture.begin();
+  CHECK(ui::imguiBrowserTapTitleBar(150.0, 105.0));
+  fixture.end(draw);
+  fixture.frame(draw);
+  CHECK_FALSE(collapsed);
+
+  // A window with a close button: its right end stays the button's.
+  bool open = true;
+  const auto closable = [&] {
+    ImGui::SetNextWindowPos(ImVec2(500.0f, 100.0f));
+    ImGui::SetNextWindowSize(ImVec2(200.0f, 150.0f));
+    ImGui::Begin("Closable", &open);
+    ImGui::End();
+  };
+  fixture.frame([&] { closable(); });
+  fixture.frame([&] { closable(); });
+  fixture.begin();
+  CHECK_FALSE(ui::imguiBrowserTapTitleBar(695.0, 105.0));
+  CHECK(ui::imguiBrowserTapTitleBar(600.0, 105.0));
+  fixture.end([&] { closable(); });
+}
+
+TEST_CASE("A finger dragged over a window scrolls it with the finger; elsewhere nothing scrolls",
+          "[ui][backend][touch]") {
+  BackendFixture fixture;
+  float scrollY = 0.0f, scrollMaxY = 0.0f;
+  const auto draw = [&] {
+    for (int i = 0; i < 40; ++i) ImGui::Text("line %d", i);
+    scrollY = ImGui::GetScrollY();
+    scrollMaxY = ImGui::GetScrollMaxY();
+  };
+  fixture.frame(draw);
+  fixture.frame(draw);
+  REQUIRE(scrollMaxY > 100.0f);
+  fixture.begin();
+  // Two moves in one frame add up: the finger went up 30 px then 20 px more.
+  CHECK(ui::imguiBrowserTouchScroll(150.0, 200.0, -30.0));
+  CHECK(ui::imguiBrowserTouchScroll(150.0, 170.0, -20.0));
+  CHECK_FALSE(ui::imguiBrowserTouchScroll(50.0, 50.0, -20.0));  // no window there
+  fixture.end(draw);
+  fixture.frame(draw);
+  CHECK(scrollY == Approx(50.0f));
+  // Down again, beyond the top: it stops at the top.
+  fixture.begin();
+  CHECK(ui::imguiBrowserTouchScroll(150.0, 150.0, 500.0));
+  fixture.end(draw);
+  fixture.frame(draw);
+  CHECK(scrollY == 0.0f);
+
+  // A window whose content fits does not take the drag.
+  const auto oneLine = [] { ImGui::Text("one line"); };
+  fixture.frame(oneLine);
+  fixture.frame(oneLine);
+  fixture.begin();
+  CHECK_FALSE(ui::imguiBrowserTouchScroll(150.0, 200.0, -30.0));
+  fixture.end(oneLine);
+}

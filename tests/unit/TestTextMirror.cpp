@@ -44,11 +44,11 @@ std::string drawPanel(Viewer& viewer, TextMirror& mirror) {
 // The mini city opened in a viewer on a screen of the given height, settled, with a panel that
 // draws it (the set-up of the tests that select buildings).
 struct CityPanel {
-  explicit CityPanel(int height) {
-    ImGui::GetIO().DisplaySize = ImVec2(1280.0f, static_cast<float>(height));
+  explicit CityPanel(int height, int width = 1280) {
+    ImGui::GetIO().DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
     city.serve(fetcher);
     viewer.openCity("city/tileset.json", fetcher);
-    viewer.setViewport(1280, height, 1280.0, height);
+    viewer.setViewport(width, height, width, height);
     viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
     for (int i = 0; i < 20; ++i) viewer.frame(1.0 / 60.0);
   }
@@ -337,4 +337,63 @@ TEST_CASE("Slash opens and focuses the search even in a collapsed panel, and Ent
   const CameraState after = viewer.camera();
   CHECK(std::hypot(after.x - before.x, after.y - before.y) > 1.0);
   CHECK(ui::imguiBrowserKeyboard() != ui::UiKeyboard::Typing);  // Enter ended the edit
+}
+
+TEST_CASE(
+    "On a phone-wide screen the panel starts folded and fits the width, and the inspection window is a bottom sheet",
+    "[ui][city][narrow]") {
+  {
+    CityPanel setup(844, 390);
+    Viewer& viewer = setup.viewer;
+    TextMirror& mirror = setup.mirror;
+    ControlPanel& panel = setup.panel;
+    RecordingHost& host = setup.host;
+    REQUIRE(viewer.settled());
+    REQUIRE(viewer.select("s10"));
+    for (int i = 0; i < 5; ++i) viewer.frame(1.0 / 60.0);
+    for (int i = 0; i < 3; ++i) drawPanel(viewer, mirror, panel, host);
+
+    // The panel: only its title bar, on the screen.
+    ImGuiWindow* main = ImGui::FindWindowByName("QuakeView");
+    REQUIRE(main != nullptr);
+    CHECK(main->Collapsed);
+    CHECK(mirror.text().find("== QuakeView ==") != std::string::npos);
+    CHECK(mirror.text().find("[Pause (Space)]") == std::string::npos);
+    const std::string folded = mirror.layoutJson();
+    const std::size_t entry = folded.find("{\"title\":\"QuakeView\",");
+    REQUIRE(entry != std::string::npos);
+    CHECK(folded.substr(entry, folded.find('}', entry) - entry).find("\"collapsed\":true") != std::string::npos);
+
+    // The inspection window: across the bottom, at most 40 % of the height.
+    ImGuiWindow* sheet = ImGui::FindWindowByName("###inspection");
+    REQUIRE(sheet != nullptr);
+    CHECK(sheet->Pos.x == 0.0f);
+    CHECK(sheet->Size.x == 390.0f);
+    CHECK(sheet->Pos.y + sheet->Size.y == Approx(844.0f));
+    CHECK(sheet->Size.y <= 844.0f * 0.4f + 0.5f);
+    CHECK(sheet->Size.y > 100.0f);
+    CHECK(mirror.text().find("== Building s10 ==") != std::string::npos);
+
+    // A tap on the panel's title bar opens it: its controls show, within the screen's width.
+    CHECK(ui::imguiBrowserTapTitleBar(main->Pos.x + 80.0f, main->Pos.y + 6.0f));
+    for (int i = 0; i < 3; ++i) drawPanel(viewer, mirror, panel, host);
+    CHECK_FALSE(main->Collapsed);
+    CHECK(mirror.text().find("[Pause (Space)]") != std::string::npos);
+    CHECK(main->Pos.x >= 0.0f);
+    CHECK(main->Pos.x + main->Size.x <= 390.0f);
+    CHECK(main->Pos.y + main->Size.y <= 844.0f);
+    // The layout says where the button is: inside the panel.
+    const std::string layout = mirror.layoutJson();
+    const std::size_t pause = layout.find("{\"window\":\"QuakeView\",\"label\":\"Pause (Space)\",\"x\":");
+    CHECK(pause != std::string::npos);
+  }
+
+  // On a wide screen the same panel starts open, and the inspection window stays at the right.
+  CityPanel wide(720);
+  REQUIRE(wide.viewer.select("s10"));
+  for (int i = 0; i < 5; ++i) wide.viewer.frame(1.0 / 60.0);
+  for (int i = 0; i < 3; ++i) drawPanel(wide.viewer, wide.mirror, wide.panel, wide.host);
+  CHECK_FALSE(ImGui::FindWindowByName("QuakeView")->Collapsed);
+  CHECK(wide.mirror.text().find("[Pause (Space)]") != std::string::npos);
+  CHECK(ImGui::FindWindowByName("###inspection")->Pos.x > 600.0f);
 }

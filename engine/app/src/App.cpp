@@ -56,6 +56,9 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   pendingSelect_ = options.select;
   if (options.filters && viewer_->city() != nullptr) viewer_->city()->setFilters(*options.filters);
   input_ = std::make_unique<BrowserInput>(kCanvas);
+  PixelRatioRules pixelRules;
+  pixelRules.narrowWidthCss = static_cast<double>(ControlPanel::kNarrowWidthCss);
+  pixelRatio_ = PixelRatioGovernor(pixelRules);
   lastFrameSeconds_ = browser::nowSeconds();
   return true;
 }
@@ -73,7 +76,7 @@ void App::dispatchInput() {
   if (searchPendingFrames_ > 0) --searchPendingFrames_;
   if (ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing) searchPendingFrames_ = 0;
   std::size_t i = 0;
-  for (; i < events.size(); ++i) {
+  for (bool stop = false; i < events.size() && !stop; i += stop ? 0 : 1) {
     InputEvent& e = events[i];
     if (searchPendingFrames_ > 0) break;
     if (e.type == InputEvent::Type::PointerUp && ui::imguiBrowserMustDeferButtonUp(e.button)) break;
@@ -97,22 +100,14 @@ void App::dispatchInput() {
           const bool click = viewer_->controller().isClick() && e.button == 0;
           viewer_->controller().pointerUp(e.button);
           if (!viewer_->controller().dragging()) cameraOwnsPointer_ = false;
-          // A click (no drag) selects the building under the pointer, or clears the selection.
-          if (click) {
-            const auto hit = viewer_->pick(e.x, e.y);
-            viewer_->select(hit ? hit->attributes.id : std::string());
-          }
+          if (click) selectAt(e.x, e.y);
         }
         break;
       case InputEvent::Type::Wheel:
         if (!ui::imguiBrowserWheel(e.x, e.y, e.wheelY)) viewer_->controller().wheel(e.x, e.y, e.wheelY);
         break;
       case InputEvent::Type::Touch:
-        if (e.touches.size() == 1) ui::imguiBrowserPointerMove(e.touches[0].x, e.touches[0].y);
-        if (viewer_->controller().dragging() || e.touches.empty() ||
-            !ui::imguiBrowserCovers(e.touches[0].x, e.touches[0].y)) {
-          viewer_->controller().touches(e.touches);
-        }
+        if (dispatchTouch(events, i)) stop = true;
         break;
       case InputEvent::Type::KeyDown:
       case InputEvent::Type::KeyUp:
@@ -127,6 +122,84 @@ void App::dispatchInput() {
   }
   deferred_.assign(std::make_move_iterator(events.begin() + static_cast<std::ptrdiff_t>(i)),
                    std::make_move_iterator(events.end()));
+}
+
+bool App::dispatchTouch(std::vector<InputEvent>& events, std::size_t at) {
+  const std::vector<TouchPoint> touches = events[at].touches;
+  const bool starting = touchGesture_.kind() == TouchGestureKind::None && !touches.empty();
+  const TouchGestureState g = touchGesture_.update(touches, browser::nowSeconds());
+  if (starting) {
+    // A new gesture: the UI's if it begins on a window. ImGui's pointer goes there at once, so
+    // that a tap's press, a frame later, lands on the item ImGui already sees under it.
+    touchOnUi_ = ui::imguiBrowserCovers(g.startX, g.startY);
+    touchLastY_ = g.startY;
+    ui::imguiBrowserPointerMove(g.startX, g.startY);
+  }
+  CameraController& camera = viewer_->controller();
+  switch (g.kind) {
+    case TouchGestureKind::Pending:
+      break;  // nothing yet: a tap must neither press the UI early nor nudge the camera
+    case TouchGestureKind::Drag:
+      if (touchOnUi_) {
+        // A finger dragged over the panel scrolls it (content follows the finger).
+        ui::imguiBrowserTouchScroll(touches[0].x, touches[0].y, touches[0].y - touchLastY_);
+        touchLastY_ = touches[0].y;
+      } else {
+        // The pan starts where the finger went down, so the motion within the slop is not lost.
+        if (g.changed) {
+          const TouchPoint start[] = {{touches[0].id, g.startX, g.startY}};
+          camera.touches(start);
+        }
+        camera.touches(touches);
+      }
+      break;
+    case TouchGestureKind::Pinch:
+      if (!touchOnUi_) camera.touches(touches);
+      break;
+    case TouchGestureKind::Tap:
+      if (!touchOnUi_) {
+        selectAt(g.startX, g.startY);
+      } else if (!ui::imguiBrowserTapTitleBar(g.startX, g.startY)) {
+        // A click at the tap's point: ImGui samples input once a frame and needs the pointer, the
+        // press and the release on separate frames. The press waits for the next frame (the
+        // pointer is set now); the release then waits one more (imguiBrowserMustDeferButtonUp).
+        InputEvent down;
+        down.type = InputEvent::Type::PointerDown;
+        down.x = g.startX;
+        down.y = g.startY;
+        InputEvent up = down;
+        up.type = InputEvent::Type::PointerUp;
+        ui::imguiBrowserPointerMove(g.startX, g.startY);
+        events[at] = down;
+        events.insert(events.begin() + static_cast<std::ptrdiff_t>(at) + 1, up);
+        return true;
+      }
+      break;
+    case TouchGestureKind::None:
+      if (!touchOnUi_) camera.touches(touches);  // a drag or pinch ended
+      break;
+  }
+  return false;
+}
+
+void App::selectAt(double x, double y) {
+  const auto hit = viewer_->pick(x, y);
+  viewer_->select(hit ? hit->attributes.id : std::string());
+}
+
+void App::keepSelectionAboveSheet(double cssWidth, double cssHeight) {
+  const std::string& id = viewer_->selection();
+  if (id == revealedSelection_) return;
+  revealedSelection_ = id;
+  if (id.empty() || !ControlPanel::narrowLayout(cssWidth)) return;
+  const auto info = viewer_->building(id);
+  if (!info) return;
+  const BuildingAttributes& a = info->attributes;
+  const auto at = viewer_->worldToScreen(a.centroidX, a.centroidY, 0.5 * static_cast<double>(a.heightM));
+  const double sheetTop = cssHeight * (1.0 - static_cast<double>(ControlPanel::kBottomSheetFraction));
+  const bool visible = at && at->x > 0.0 && at->x < cssWidth && at->y > 0.0 && at->y < sheetTop - 20.0;
+  // The camera looks at the building: its middle is then at the centre of the view, above the sheet.
+  if (!visible) viewer_->flyTo(a.centroidX, a.centroidY, viewer_->camera().distance);
 }
 
 void App::dispatchKey(const InputEvent& e) {
@@ -166,7 +239,7 @@ void App::frame() {
   const double dt = std::clamp(now - lastFrameSeconds_, 0.0, 0.25);
   lastFrameSeconds_ = now;
 
-  const browser::CanvasSize canvas = browser::syncCanvasSize(kCanvas);
+  const browser::CanvasSize canvas = browser::syncCanvasSize(kCanvas, pixelRatio_, dt);
   viewer_->setViewport(canvas.pixelWidth, canvas.pixelHeight, canvas.cssWidth, canvas.cssHeight);
   ui::imguiBrowserNewFrame(canvas.cssWidth, canvas.cssHeight, canvas.devicePixelRatio, dt);
   ImGui_ImplOpenGL3_NewFrame();
@@ -197,6 +270,8 @@ void App::frame() {
       }
     }
   }
+
+  keepSelectionAboveSheet(canvas.cssWidth, canvas.cssHeight);
 
   const MemoryInfo memory = browser::memoryInfo();
   mirror_.beginFrame();

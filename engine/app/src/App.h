@@ -14,6 +14,8 @@
 #include "qv/platform/BrowserFetcher.h"
 #include "qv/platform/BrowserInput.h"
 #include "qv/render/GlRenderDevice.h"
+#include "qv/scene/PixelRatio.h"
+#include "qv/scene/TouchGesture.h"
 #include "qv/scene/Viewer.h"
 #include "qv/ui/ControlPanel.h"
 #include "qv/ui/TextMirror.h"
@@ -42,12 +44,21 @@ class App {
   [[nodiscard]] std::uint64_t uiOutlineRevision() const { return mirror_.outlineRevision(); }
   /// What control shows the keyboard focus ("Export CSV, button"), or "".
   [[nodiscard]] const std::string& focusedControl() const { return focusedControl_; }
+  [[nodiscard]] std::string uiLayoutJson() const { return mirror_.layoutJson(); }
   [[nodiscard]] ControlPanel& panel() { return panel_; }
   [[nodiscard]] UiHost& host() { return host_; }
 
  private:
   void dispatchInput();
   void dispatchKey(const InputEvent& e);
+  /// One touch event, decided by touchGesture_. Returns true when the events after it must wait
+  /// for the next frame: a tap on the UI became a click there, fed over the next frames.
+  bool dispatchTouch(std::vector<InputEvent>& events, std::size_t at);
+  /// A click or tap on the canvas (not on the UI): selects the building under it, or clears.
+  void selectAt(double x, double y);
+  /// On a narrow screen, a newly selected building hidden by the bottom sheet (or off screen) is
+  /// brought into the part of the view above it.
+  void keepSelectionAboveSheet(double cssWidth, double cssHeight);
 
   std::unique_ptr<GlRenderDevice> device_;
   BrowserFetcher fetcher_;
@@ -69,6 +80,11 @@ class App {
   int searchPendingFrames_ = 0;
   bool swallowSlashText_ = false;
   std::string focusedControl_;
+  TouchGestureClassifier touchGesture_;
+  bool touchOnUi_ = false;   ///< the current touch gesture began on a window of the UI
+  double touchLastY_ = 0.0;  ///< the dragging finger's last height (CSS px), to scroll the UI
+  PixelRatioGovernor pixelRatio_;
+  std::string revealedSelection_;  ///< the selection keepSelectionAboveSheet last looked at
 };
 
 }  // namespace qv

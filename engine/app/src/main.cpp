@@ -60,6 +60,12 @@ EMSCRIPTEN_KEEPALIVE const char* qv_ui_focus() {
   return hand(gApp->focusedControl());
 }
 
+/// Where the windows and their buttons, headers and checkboxes are (TextMirror::layoutJson).
+EMSCRIPTEN_KEEPALIVE const char* qv_ui_layout() {
+  if (gApp == nullptr) return hand("null");
+  return hand(gApp->uiLayoutJson());
+}
+
 /// [x, y] in CSS pixels of a city-frame point, or null when it is behind the eye.
 EMSCRIPTEN_KEEPALIVE const char* qv_world_to_screen(double x, double y, double z) {
   if (gApp == nullptr) return hand("null");

@@ -82,11 +82,10 @@ bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& opt
   return true;
 }
 
-CanvasSize syncCanvasSize(const char* canvasSelector) {
+CanvasSize syncCanvasSize(const char* canvasSelector, PixelRatioGovernor& governor, double frameSeconds) {
   CanvasSize size;
   emscripten_get_element_css_size(canvasSelector, &size.cssWidth, &size.cssHeight);
-  size.devicePixelRatio = emscripten_get_device_pixel_ratio();
-  if (!(size.devicePixelRatio > 0.0)) size.devicePixelRatio = 1.0;
+  size.devicePixelRatio = governor.update(emscripten_get_device_pixel_ratio(), size.cssWidth, frameSeconds);
   size.pixelWidth = std::max(1, static_cast<int>(std::lround(size.cssWidth * size.devicePixelRatio)));
   size.pixelHeight = std::max(1, static_cast<int>(std::lround(size.cssHeight * size.devicePixelRatio)));
   int currentWidth = 0, currentHeight = 0;

@@ -15,6 +15,8 @@ namespace {
 
 constexpr double kFeetPerMetre = 3.280839895;
 constexpr float kPanelWidth = 350.0f;
+// The map overlay's height in the bottom corner (north arrow, scale bar), with its margin.
+constexpr float kOverlayRoomPx = 80.0f;
 
 // The record as the panel shows it: file names only. Responses written before the files stored
 // only the name carried the path of the machine that ran `response`; its directories are dropped
@@ -146,8 +148,13 @@ void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory
 
   if (!viewer.errors().empty()) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
-    ImGui::SetNextWindowPos(ImVec2(kPanelWidth + 20.0f, display.y - 10.0f), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
-    const float maxWidth = std::max(200.0f, display.x - kPanelWidth - 40.0f);
+    // Beside the panel; on a phone across the screen, above the bottom sheet when it is there.
+    const bool narrow = narrowLayout(display.x);
+    const float left = narrow ? 10.0f : kPanelWidth + 20.0f;
+    const float bottom =
+        narrow && !viewer.selection().empty() ? display.y * (1.0f - kBottomSheetFraction) - 10.0f : display.y - 10.0f;
+    ImGui::SetNextWindowPos(ImVec2(left, bottom), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
+    const float maxWidth = narrow ? display.x - 20.0f : std::max(200.0f, display.x - kPanelWidth - 40.0f);
     ImGui::SetNextWindowSizeConstraints(ImVec2(200.0f, 0.0f), ImVec2(maxWidth, display.y * 0.3f));
     ImGui::SetNextWindowBgAlpha(0.92f);
     if (w.begin("Errors", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -330,7 +337,14 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_FirstUseEver);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(260.0f, 0.0f), ImVec2(520.0f, std::max(200.0f, display.y - 20.0f)));
+  // A phone starts with the panel folded to its title bar (tap it to open), the city in view; the
+  // panel never grows wider than the screen and scrolls when taller.
+  // Its bottom stays clear of the map overlay in the corner, which a phone's panel would reach.
+  const bool narrow = narrowLayout(display.x);
+  if (narrow) ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
+  const float maxWidth = std::max(200.0f, std::min(520.0f, display.x - 20.0f));
+  const float maxHeight = std::max(200.0f, display.y - 20.0f - (narrow ? kOverlayRoomPx : 0.0f));
+  ImGui::SetNextWindowSizeConstraints(ImVec2(std::min(260.0f, maxWidth), 0.0f), ImVec2(maxWidth, maxHeight));
   ImGui::SetNextWindowBgAlpha(0.90f);
   if (focusSearch_) ImGui::SetNextWindowCollapsed(false);  // '/' opens the panel, whatever its state
   if (!w.begin("QuakeView", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
@@ -613,7 +627,11 @@ void ControlPanel::drawFilterChips(Viewer& viewer, ui::Widgets& w) {
 
 void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
   const ImVec2 display = ImGui::GetIO().DisplaySize;
-  ImGui::SetNextWindowPos(ImVec2(display.x - 10.0f, display.y - 10.0f), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
+  // In the bottom-right corner; on a phone with a building selected, just above the bottom sheet.
+  const float bottom = narrowLayout(display.x) && !viewer.selection().empty()
+                           ? display.y * (1.0f - kBottomSheetFraction) - 10.0f
+                           : display.y - 10.0f;
+  ImGui::SetNextWindowPos(ImVec2(display.x - 10.0f, bottom), ImGuiCond_Always, ImVec2(1.0f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.75f);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;

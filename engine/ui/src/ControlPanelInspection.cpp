@@ -189,9 +189,16 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
   const ImVec2 display = ImGui::GetIO().DisplaySize;
   // The window fits the screen: as tall as its content up to the viewport less the margins and
   // the map overlay's room; beyond that it scrolls (wheel, scrollbar, keyboard).
-  const float maxHeight = std::max(160.0f, display.y - 2.0f * kMarginPx - kOverlayRoomPx);
-  ImGui::SetNextWindowPos(ImVec2(display.x - kInspectionWidth - kMarginPx, kMarginPx), ImGuiCond_Always);
-  ImGui::SetNextWindowSizeConstraints(ImVec2(kInspectionWidth, 0.0f), ImVec2(kInspectionWidth, maxHeight));
+  if (narrowLayout(display.x)) {
+    // A phone: a bottom sheet across the screen, at most its lower part, so that the building
+    // stays in view above it (the app brings it there).
+    ImGui::SetNextWindowPos(ImVec2(0.0f, display.y), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(display.x, 0.0f), ImVec2(display.x, display.y * kBottomSheetFraction));
+  } else {
+    const float maxHeight = std::max(160.0f, display.y - 2.0f * kMarginPx - kOverlayRoomPx);
+    ImGui::SetNextWindowPos(ImVec2(display.x - kInspectionWidth - kMarginPx, kMarginPx), ImGuiCond_Always);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(kInspectionWidth, 0.0f), ImVec2(kInspectionWidth, maxHeight));
+  }
   ImGui::SetNextWindowBgAlpha(0.92f);
   bool open = true;
   const std::string title = "Building " + id + "###inspection";

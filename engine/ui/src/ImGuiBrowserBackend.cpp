@@ -1,10 +1,11 @@
 #include "qv/ui/ImGuiBrowserBackend.h"
 
 #include <imgui.h>
-#include <imgui_internal.h>  // ImGuiContext::Windows (imguiBrowserCovers); navigation state (Tab order)
+#include <imgui_internal.h>  // ImGuiContext::Windows (imguiBrowserCovers, touch helpers); navigation state (Tab order)
 
 #include <algorithm>
 #include <array>
+#include <cfloat>
 #include <string>
 #include <vector>
 
@@ -140,6 +141,19 @@ bool isNavigationKey(std::string_view code) {
   return std::find(kNavigation.begin(), kNavigation.end(), code) != kNavigation.end();
 }
 
+// The front-most window ImGui drew last frame that contains the point (child windows included),
+// or null. ImGuiContext::Windows is in display order, back to front.
+ImGuiWindow* windowAt(double x, double y) {
+  ImGuiContext* context = ImGui::GetCurrentContext();
+  if (context == nullptr) return nullptr;
+  const ImVec2 p = point(x, y);
+  for (int i = context->Windows.Size - 1; i >= 0; --i) {
+    ImGuiWindow* window = context->Windows[i];
+    if (window->WasActive && !window->Hidden && window->Rect().Contains(p)) return window;
+  }
+  return nullptr;
+}
+
 }  // namespace
 
 bool imguiBrowserInit() {
@@ -236,6 +250,31 @@ bool imguiBrowserWheel(double x, double y, double wheelY) {
     io.MouseWheel += steps;
   }
   return true;
+}
+
+bool imguiBrowserTapTitleBar(double x, double y) {
+  ImGuiWindow* window = windowAt(x, y);
+  if (window == nullptr || (window->Flags & (ImGuiWindowFlags_NoTitleBar | ImGuiWindowFlags_NoCollapse)) != 0) {
+    return false;
+  }
+  const ImRect bar = window->TitleBarRect();
+  if (!bar.Contains(point(x, y))) return false;
+  // The close button is a square as tall as the bar at its right end: a tap there is a click.
+  if (window->HasCloseButton && x >= static_cast<double>(bar.Max.x - window->TitleBarHeight())) return false;
+  ImGui::SetWindowCollapsed(window, !window->Collapsed);
+  return true;
+}
+
+bool imguiBrowserTouchScroll(double x, double y, double dyCss) {
+  for (ImGuiWindow* window = windowAt(x, y); window != nullptr; window = window->ParentWindow) {
+    if (window->ScrollMax.y > 0.0f) {
+      // Several moves in one frame add up: each starts from the target the last one set.
+      const float from = window->ScrollTarget.y < FLT_MAX ? window->ScrollTarget.y : window->Scroll.y;
+      ImGui::SetScrollY(window, from - static_cast<float>(dyCss));
+      return true;
+    }
+  }
+  return false;
 }
 
 void imguiBrowserModifiers(bool shift, bool ctrl, bool alt) {

@@ -17,6 +17,8 @@ bool startsWith(std::string_view text, std::string_view prefix) {
 void TextMirror::beginFrame() {
   building_.clear();
   windows_.clear();
+  buildingLayout_.clear();
+  buildingItems_.clear();
 }
 
 void TextMirror::beginWindow(std::string_view title) {
@@ -25,6 +27,7 @@ void TextMirror::beginWindow(std::string_view title) {
   building_ += title;
   building_ += " ==\n";
   windows_.push_back(Window{std::string(title), {Section{}}});
+  window_ = title;
 }
 
 void TextMirror::line(std::string_view text) {
@@ -46,6 +49,8 @@ void TextMirror::endWindow() {}
 void TextMirror::endFrame() {
   published_ = building_;
   publishedWindows_ = windows_;
+  publishedLayout_ = buildingLayout_;
+  publishedItems_ = buildingItems_;
   std::vector<Section> outline = accessibleOutline(publishedWindows_);
   const bool changed = outline.size() != outline_.size() || [&] {
     for (std::size_t i = 0; i < outline.size(); ++i) {
@@ -106,6 +111,38 @@ std::vector<TextMirror::Section> accessibleOutline(const std::vector<TextMirror:
     out.push_back(std::move(section));
   }
   return out;
+}
+
+void TextMirror::windowRect(MirrorRect rect, bool collapsed) {
+  buildingLayout_.push_back(LaidOutWindow{window_, rect, collapsed});
+}
+
+void TextMirror::item(std::string_view label, MirrorRect rect) {
+  buildingItems_.push_back(Item{window_, std::string(label), rect});
+}
+
+namespace {
+void writeRect(JsonWriter& w, const MirrorRect& r) {
+  w.field("x", r.x).field("y", r.y).field("width", r.width).field("height", r.height);
+}
+}  // namespace
+
+std::string TextMirror::layoutJson() const {
+  JsonWriter w;
+  w.beginObject().key("windows").beginArray();
+  for (const LaidOutWindow& win : publishedLayout_) {
+    w.beginObject().field("title", win.title);
+    writeRect(w, win.rect);
+    w.field("collapsed", win.collapsed).endObject();
+  }
+  w.endArray().key("items").beginArray();
+  for (const Item& item : publishedItems_) {
+    w.beginObject().field("window", item.window).field("label", item.label);
+    writeRect(w, item.rect);
+    w.endObject();
+  }
+  w.endArray().endObject();
+  return w.take();
 }
 
 }  // namespace qv

@@ -83,6 +83,9 @@ bool Widgets::begin(const char* title, bool* open, int flags) {
 }
 
 void Widgets::end() {
+  const ImVec2 pos = ImGui::GetWindowPos();
+  const ImVec2 size = ImGui::GetWindowSize();
+  mirror_.windowRect(MirrorRect{pos.x, pos.y, size.x, size.y}, ImGui::IsWindowCollapsed());
   ImGui::End();
   mirror_.endWindow();
 }
@@ -120,12 +123,20 @@ void Widgets::sameLine() {
 bool Widgets::button(const char* label) {
   mirror_.line(format("[%.*s]", static_cast<int>(visibleLabel(label).size()), visibleLabel(label).data()));
   const bool pressed = ImGui::Button(label);
+  recordItem(label);
   tabStop(label, "button", TabStopKind::Press);
   return pressed;
 }
 
+void Widgets::recordItem(const char* label) {
+  const ImVec2 min = ImGui::GetItemRectMin();
+  const ImVec2 max = ImGui::GetItemRectMax();
+  mirror_.item(visibleLabel(label), MirrorRect{min.x, min.y, max.x - min.x, max.y - min.y});
+}
+
 bool Widgets::checkbox(const char* label, bool* value) {
   const bool changed = ImGui::Checkbox(label, value);
+  recordItem(label);
   tabStop(label, "checkbox", TabStopKind::Press, *value ? "checked" : "not checked");
   const auto v = visibleLabel(label);
   mirror_.line(format("[%c] %.*s", *value ? 'x' : ' ', static_cast<int>(v.size()), v.data()));
@@ -179,6 +190,7 @@ bool Widgets::combo(const char* label, int* current, const char* const items[], 
 
 bool Widgets::collapsingHeader(const char* label, bool defaultOpen) {
   const bool open = ImGui::CollapsingHeader(label, defaultOpen ? ImGuiTreeNodeFlags_DefaultOpen : 0);
+  recordItem(label);
   tabStop(label, "section", TabStopKind::Press, open ? "expanded" : "collapsed");
   const auto v = visibleLabel(label);
   mirror_.heading(format("%s %.*s", open ? "v" : ">", static_cast<int>(v.size()), v.data()), v, open);

@@ -22,6 +22,9 @@ const BASE_FLAGS = [
 ];
 
 /// options.webgl === false launches with WebGL disabled (to test the fallback message).
+/// options.viewport {width, height} (CSS px, default 1280 x 720) and options.deviceScaleFactor
+/// (default 1) size the page; options.touch === true emulates a touch device (hasTouch and
+/// isMobile: touch events, page.touchscreen, a mobile viewport).
 export async function launchBrowser(options = {}) {
   if (!fs.existsSync(CHROMIUM)) {
     throw new Error(`Chromium not found at ${CHROMIUM}: run scripts/setup.sh (Debian package chromium)`);
@@ -34,7 +37,9 @@ export async function launchBrowser(options = {}) {
     headless: true,
     args,
     viewport: options.viewport || { width: 1280, height: 720 },
-    deviceScaleFactor: 1,
+    deviceScaleFactor: options.deviceScaleFactor || 1,
+    hasTouch: options.touch === true,
+    isMobile: options.touch === true,
   });
   const close = async () => {
     await context.close();

@@ -6,6 +6,7 @@
 #include <functional>
 #include <string>
 
+#include "qv/scene/PixelRatio.h"
 #include "qv/scene/Viewer.h"
 
 namespace qv::browser {
@@ -21,11 +22,14 @@ bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& opt
 struct CanvasSize {
   double cssWidth = 1.0, cssHeight = 1.0;
   int pixelWidth = 1, pixelHeight = 1;
+  /// Drawing-buffer pixels per CSS pixel: the device's ratio as the governor capped it.
   double devicePixelRatio = 1.0;
 };
 
-/// Reads the canvas's CSS size and resizes its drawing buffer to CSS size × devicePixelRatio.
-CanvasSize syncCanvasSize(const char* canvasSelector);
+/// Reads the canvas's CSS size and the device's pixel ratio, asks `governor` for the ratio to
+/// draw at (given the interval since the last frame, seconds), and resizes the canvas's drawing
+/// buffer to CSS size × that ratio when it differs.
+CanvasSize syncCanvasSize(const char* canvasSelector, PixelRatioGovernor& governor, double frameSeconds);
 
 /// Live heap bytes (malloc'd and not freed) and the size of the WASM memory.
 MemoryInfo memoryInfo();

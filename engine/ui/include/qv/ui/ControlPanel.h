@@ -27,6 +27,13 @@ enum class QualityPreset : int { High = 0, Balanced = 1, Low = 2 };
 
 class ControlPanel {
  public:
+  /// A canvas narrower than this (CSS px) gets the phone layout: the panel starts collapsed and
+  /// never grows wider than the screen, and the inspection window is a bottom sheet.
+  static constexpr float kNarrowWidthCss = 600.0f;
+  /// The bottom sheet's greatest height, as a fraction of the canvas height.
+  static constexpr float kBottomSheetFraction = 0.4f;
+  [[nodiscard]] static bool narrowLayout(double cssWidth) { return cssWidth < static_cast<double>(kNarrowWidthCss); }
+
   /// Draws every window for this frame. Call between ImGui::NewFrame and ImGui::Render.
   void draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);
 

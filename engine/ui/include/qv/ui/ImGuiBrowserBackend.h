@@ -60,6 +60,17 @@ void imguiBrowserPointerUp(int button);
 void imguiBrowserPointerMove(double x, double y);
 bool imguiBrowserWheel(double x, double y, double wheelY);
 
+/// Touch (the app decides taps and drags with qv::TouchGestureClassifier). A tap on a window's
+/// title bar (anywhere on it but its close button) toggles the window collapsed, a larger target
+/// for a finger than the collapse arrow; returns true when it did (the tap is then used up).
+/// Otherwise the app feeds the tap as a click: imguiBrowserPointerMove on one frame (ImGui must
+/// see the pointer over the item first), imguiBrowserPointerDown on the next, PointerUp after.
+bool imguiBrowserTapTitleBar(double x, double y);
+/// A finger dragged `dyCss` CSS pixels down over a window: scrolls the innermost window under
+/// (x, y) that can scroll, by the same distance (content follows the finger). Returns false when
+/// no window under the point scrolls.
+bool imguiBrowserTouchScroll(double x, double y, double dyCss);
+
 /// A key by KeyboardEvent.code with the modifier state of that event. Keys ImGui does not use
 /// only update the modifiers. A Tab press moves the keyboard focus to the next stop (Shift: the
 /// previous one, wrapping around; from the 3D view, with no focus shown, the first or the last);

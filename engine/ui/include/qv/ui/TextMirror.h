@@ -11,6 +11,11 @@
 
 namespace qv {
 
+/// Where something the mirror lists appears: CSS pixels from the canvas's top-left corner.
+struct MirrorRect {
+  float x = 0.0f, y = 0.0f, width = 0.0f, height = 0.0f;
+};
+
 class TextMirror {
  public:
   /// A run of lines under one heading: a window's lines before its first collapsing header
@@ -23,6 +28,19 @@ class TextMirror {
   struct Window {
     std::string title;
     std::vector<Section> sections;  ///< the first has the heading ""
+  };
+  /// The layout beside the text, for tests and tools that must point at a control (a tap on a
+  /// phone): each window drawn (its title, rectangle, folded to its title bar or not) and each
+  /// control recorded in it (its visible label and rectangle).
+  struct LaidOutWindow {
+    std::string title;
+    MirrorRect rect;
+    bool collapsed = false;
+  };
+  struct Item {
+    std::string window;  ///< the title of the window it is in
+    std::string label;
+    MirrorRect rect;
   };
 
   /// Starts a frame's text (clears the previous frame's).
@@ -46,6 +64,13 @@ class TextMirror {
   /// Publishes the frame being built (call after the last window).
   void endFrame();
 
+  /// The current window's rectangle (call before endWindow) and a control in it.
+  void windowRect(MirrorRect rect, bool collapsed);
+  void item(std::string_view label, MirrorRect rect);
+  /// The last completed frame's layout as JSON: {"windows": [{title, x, y, width, height,
+  /// collapsed}], "items": [{window, label, x, y, width, height}]}, windows in drawing order.
+  [[nodiscard]] std::string layoutJson() const;
+
  private:
   std::string building_;
   std::string published_;
@@ -54,6 +79,9 @@ class TextMirror {
   std::vector<TextMirror::Section> outline_;
   std::string outlineJson_;
   std::uint64_t outlineRevision_ = 0;
+  std::string window_;  ///< the title of the window being built
+  std::vector<LaidOutWindow> buildingLayout_, publishedLayout_;
+  std::vector<Item> buildingItems_, publishedItems_;
 };
 
 /// The outline a screen reader gets of the panels (the page turns each section into a heading and

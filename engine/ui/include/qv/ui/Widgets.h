@@ -67,6 +67,9 @@ class Widgets {
   [[nodiscard]] TextMirror& mirror() { return mirror_; }
 
  private:
+  /// Records the last ImGui item's rectangle in the mirror's layout under its visible label.
+  void recordItem(const char* label);
+
   TextMirror& mirror_;
 };
 
