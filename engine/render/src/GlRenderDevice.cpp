@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -65,30 +64,7 @@ void* byteOffset(std::size_t offset) {
 
 namespace {
 
-// GLSL for the palette of qv/scene/Palette.h: ramp(t) through its five stops and the named colours.
-std::string paletteGlsl() {
-  auto vec = [](const Rgb& c) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, "vec3(%.4f, %.4f, %.4f)", static_cast<double>(c.r), static_cast<double>(c.g),
-                  static_cast<double>(c.b));
-    return std::string(buffer);
-  };
-  std::string s = "const vec3 kNoResult = " + vec(kNoResultColor) + ";\n";
-  s += "const vec3 kSelected = " + vec(kSelectedColor) + ";\n";
-  s += "const vec3 kDimmed = " + vec(kDimmedColor) + ";\n";
-  s += "const vec3 kTagGreen = " + vec(kTagPalette[0]) + ";\n";
-  s += "const vec3 kTagYellow = " + vec(kTagPalette[1]) + ";\n";
-  s += "const vec3 kTagRed = " + vec(kTagPalette[2]) + ";\n";
-  s += "vec3 ramp(float t) {\n  t = clamp(t, 0.0, 1.0) * 4.0;\n";
-  for (int i = 0; i < 4; ++i) {
-    s += "  if (t < " + std::to_string(i + 1) + ".0) return mix(" + vec(kDamagePalette[static_cast<std::size_t>(i)]) +
-         ", " + vec(kDamagePalette[static_cast<std::size_t>(i) + 1]) + ", t - " + std::to_string(i) + ".0);\n";
-  }
-  s += "  return " + vec(kDamagePalette[4]) + ";\n}\n";
-  return s;
-}
-
-// A shader source with its generated blocks: the tables' layout and the palette.
+// A shader source with its generated blocks: the tables' layout and the palette (qv::paletteGlsl).
 std::string withGeneratedGlsl(const char* source) {
   std::string s = withGlslConstants(source);
   const auto at = s.find("@PALETTE@");

@@ -46,7 +46,7 @@ void main() {
   float lossCode = b.lossCode;  // packLossCode (qv/scene/RenderDevice.h); -1 without probabilities
 
   vec3 position = a_position;
-  float drift = peakValue;
+  float drift = 0.0;  // the storey's drift now, for animated buildings only
   float peakStorey = peakValue;
   if (floorBase >= 0) {
     // Skinning by height: the floors below and above the vertex, blended linearly in height (the
@@ -66,7 +66,9 @@ void main() {
   }
 
   vec3 color;
-  if (u_colorMode == kModeCurrentDrift) color = ramp(drift / u_driftFullScale);
+  // Current drift: the warm ramp only for a drift at this moment (animated buildings); the others
+  // show their peak over the whole record in grey levels, never in colours of damage (Palette.h).
+  if (u_colorMode == kModeCurrentDrift) color = floorBase >= 0 ? ramp(drift / u_driftFullScale) : notAnimatedGrey(peakValue / u_driftFullScale);
   else if (u_colorMode == kModePeakDrift) color = ramp(peakStorey / u_driftFullScale);
   else if (u_colorMode == kModeDamageState) color = damage < kDamageNoResult + 0.5 ? kNoResult : ramp(damage / kDamageComplete);
   else if (u_colorMode >= kModeModerateOrWorse) {

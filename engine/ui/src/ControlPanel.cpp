@@ -441,8 +441,10 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       for (std::size_t k = 0; k < 3; ++k) w.swatch(kTagPalette[k].r, kTagPalette[k].g, kTagPalette[k].b, tags[k]);
     } else if (byDamage || tileset == nullptr) {
       w.text("Damage state (HAZUS, from peak inter-storey drift):");
+    } else if (mode == ColorMode::PeakDrift) {
+      w.text("Inter-storey drift (peak):");
     } else {
-      w.text(ui::format("Inter-storey drift (%s):", viewer.colorMode() == ColorMode::PeakDrift ? "peak" : "now"));
+      w.text("Inter-storey drift (now), animated buildings:");
     }
     for (int k = 0; k < 5 && mode != ColorMode::InspectionTag; ++k) {
       const Rgb c = kDamagePalette[static_cast<std::size_t>(k)];
@@ -465,6 +467,28 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
                       : ui::format("%.1f %% drift or more", static_cast<double>(kDriftFullScale) * 100.0);
       }
       w.swatch(c.r, c.g, c.b, label);
+    }
+    if (mode == ColorMode::CurrentDrift && city != nullptr && tileset != nullptr) {
+      // Only animated buildings have a drift now; the others show their peak, in greys that no one
+      // can take for damage that has already happened (qv/scene/Palette.h).
+      w.textWrapped("Not animated (beyond the animation radius): peak drift over the whole record");
+      for (std::size_t k = 0; k < kNotAnimatedPalette.size(); ++k) {
+        const Rgb c = kNotAnimatedPalette[k];
+        const double drift = static_cast<double>(kDriftFullScale) * 25.0 * static_cast<double>(k);
+        w.swatch(c.r, c.g, c.b,
+                 k + 1 < kNotAnimatedPalette.size() ? ui::format("%.1f %% peak drift", drift)
+                                                    : ui::format("%.1f %% peak drift or more", drift));
+      }
+      const CitySceneOptions& o = city->options();
+      if (o.animationRadiusM > 0.0f && o.maxAnimatedBuildings > 0) {
+        w.textWrapped(
+            ui::format("Animated: the buildings within %s of the camera, at most %u (Performance panel), "
+                       "%u now; farther ones and the far-view tiles are grey.",
+                       lengthText(viewer, static_cast<double>(o.animationRadiusM)).c_str(), o.maxAnimatedBuildings,
+                       s.latest.buildingsAnimated));
+      } else {
+        w.textWrapped("Animation is off (General panel): every building shows its peak drift in grey.");
+      }
     }
     std::string noResult = probabilistic ? "No result or no probabilities (hatched)" : "No result (hatched)";
     if (tileset != nullptr && tileset->response) {
@@ -550,7 +574,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     if (city != nullptr) {
       CitySceneOptions& o = city->mutableOptions();
       bool animate = o.animationRadiusM > 0.0f;
-      if (w.checkbox("Animate buildings near the camera (off: static, peak colours)", &animate)) {
+      if (w.checkbox("Animate buildings near the camera (off: static, grey peak colours)", &animate)) {
         o.animationRadiusM = animate ? 1000.0f : 0.0f;
       }
       bool lod1 = city->showLod1();
@@ -598,6 +622,13 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
         "inferred from its tags; damage states from HAZUS drift thresholds. They show patterns across a "
         "city, not a safety assessment of any one building.");
     if (tileset != nullptr && tileset->response) w.textWrapped("Method: " + tileset->response->method);
+    w.textWrapped(
+        "Colours: in the current-drift mode only the animated buildings (within the animation radius of the "
+        "camera, up to the maximum animated) show their drift at the current time, from light grey through "
+        "yellow to dark red. Every other building shows its peak drift over the whole record in grey levels "
+        "(light to dark slate), never in the colours of damage, because that peak may not have happened yet: "
+        "paused before the shaking arrives, no building is yellow, orange or red. The peak-drift and damage "
+        "modes show every building's peak over the whole record in colour.");
     w.textWrapped("Map data © OpenStreetMap contributors (ODbL) where the city comes from OpenStreetMap.");
     w.textWrapped(
         "Keys: Space play/pause, , and . step time, arrows/WASD pan, Q/E turn, PageUp/PageDown tilt, +/- zoom, "

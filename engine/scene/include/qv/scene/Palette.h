@@ -5,9 +5,15 @@
 // lightness falls monotonically (about L* 93, 85, 66, 45, 21), so it reads in greyscale and for
 // the common colour-vision deficiencies (it runs along the yellow-red axis that deuteranopes and
 // protanopes still see as a lightness ramp). Buildings without a result are blue-grey and hatched.
+//
+// In the current-drift mode only the animated buildings (within the animation radius, up to the
+// cap, in full-detail tiles) have a drift "now". The others show their peak drift over the whole
+// record, and so that it is never mistaken for damage that has already happened, they use cool
+// grey levels instead of the warm ramp (kNotAnimatedPalette), with their own legend entry.
 #pragma once
 
 #include <array>
+#include <string>
 
 namespace qv {
 
@@ -30,10 +36,30 @@ inline constexpr std::array<Rgb, 3> kTagPalette = {
 inline constexpr Rgb kSelectedColor = {0.10f, 0.75f, 1.00f};
 inline constexpr Rgb kDimmedColor = {0.90f, 0.91f, 0.92f};
 
+/// Not animated, in the current-drift mode: peak drift over the whole record at 0, ¼, ½, ¾ and 1 of
+/// kDriftFullScale, from light grey to dark slate (about L* 75, 63, 51, 40, 27; CIE chroma below
+/// 9, a faint blue cast). The lightest level stays clearly darker than ramp(0) and kDimmedColor,
+/// every level apart from kNoResultColor (bluer, and hatched) by CIE76 ΔE*ab 17 or more, and far
+/// from the warm stops (ΔE*ab over 45).
+inline constexpr std::array<Rgb, 5> kNotAnimatedPalette = {{{0.70f, 0.72f, 0.75f},
+                                                            {0.58f, 0.60f, 0.64f},
+                                                            {0.46f, 0.48f, 0.53f},
+                                                            {0.35f, 0.37f, 0.42f},
+                                                            {0.23f, 0.25f, 0.30f}}};
+
 /// Drift ratio shown at the top of the ramp (2 %: beyond most buildings' extensive damage).
 inline constexpr float kDriftFullScale = 0.02f;
 
 /// The ramp at t in [0, 1] (clamped), piecewise linear through the five stops.
 Rgb paletteRamp(float t);
+
+/// The not-animated grey at t in [0, 1] (clamped), piecewise linear through kNotAnimatedPalette.
+Rgb notAnimatedGrey(float t);
+
+/// The palette as GLSL ES 3.00, inserted by the render layer at the `@PALETTE@` marker of its
+/// building shader: `const vec3 kNoResult`, `kSelected`, `kDimmed`, `kTagGreen`, `kTagYellow`,
+/// `kTagRed`; `vec3 ramp(float t)` (paletteRamp) and `vec3 notAnimatedGrey(float t)`
+/// (notAnimatedGrey), each with t clamped to [0, 1]. Colours are written with 4 decimals.
+std::string paletteGlsl();
 
 }  // namespace qv

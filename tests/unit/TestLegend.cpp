@@ -1,0 +1,125 @@
+// The legend ("Damage and colours") says what every building shows: in the current-drift mode the
+// animated buildings their drift now, the others their peak over the whole record in grey, with
+// the animation radius that separates them. Read through the text mirror behind uiText().
+#include <catch2/catch.hpp>
+
+#include <imgui.h>
+
+#include <regex>
+#include <string>
+
+#include "HeadlessImGui.h"
+#include "MiniCity.h"
+#include "qv/scene/NullRenderDevice.h"
+#include "qv/ui/ControlPanel.h"
+#include "qv/ui/TextMirror.h"
+
+using namespace qv;
+
+namespace {
+
+struct NoHost final : UiHost {
+  void openUrl(const std::string&) override {}
+  void download(const std::string&, const std::string&, const std::string&) override {}
+};
+
+// The mini city in a viewer, settled, looked at from 500 m: its buildings are within the default
+// animation radius (1 km).
+struct LegendSetup {
+  LegendSetup() {
+    city.serve(fetcher);
+    viewer.openCity("city/tileset.json", fetcher);
+    viewer.setViewport(1280, 720, 1280.0, 720.0);
+    viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+    for (int i = 0; i < 20; ++i) viewer.frame(1.0 / 60.0);
+  }
+  std::string draw() {
+    viewer.frame(1.0 / 60.0);
+    ImGui::NewFrame();
+    mirror.beginFrame();
+    ui::Widgets w(mirror);
+    panel.draw(viewer, w, MemoryInfo{}, host);
+    ImGui::Render();
+    mirror.endFrame();
+    return mirror.text();
+  }
+  HeadlessImGui imgui;
+  test::MiniCity city;
+  test::FakeFetcher fetcher;
+  NullRenderDevice device;
+  Viewer viewer{device};
+  TextMirror mirror;
+  ControlPanel panel;
+  NoHost host;
+};
+
+bool has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+// The "Damage and colours" section of the mirror (up to the next section header).
+std::string legendOf(const std::string& text) {
+  const std::size_t begin = text.find("v Damage and colours");
+  if (begin == std::string::npos) return {};
+  const std::size_t end = text.find("\n> ", begin);
+  return text.substr(begin, end == std::string::npos ? std::string::npos : end - begin);
+}
+
+}  // namespace
+
+TEST_CASE("In the current-drift mode the legend names the grey peak colours of buildings that are not animated",
+          "[ui][city][legend]") {
+  LegendSetup setup;
+  REQUIRE(setup.viewer.settled());
+  REQUIRE(setup.viewer.colorMode() == ColorMode::CurrentDrift);  // the default mode
+  const std::string legend = legendOf(setup.draw());
+  INFO(legend);
+  REQUIRE_FALSE(legend.empty());
+  CHECK(has(legend, "Inter-storey drift (now), animated buildings:\n"));
+  CHECK(has(legend, "Not animated (beyond the animation radius): peak drift over the whole record\n"));
+  // Five grey levels, labelled like the ramp, after the ramp's own five.
+  const std::size_t greys = legend.find("Not animated");
+  CHECK(legend.find("2.0 % drift or more\n") < greys);
+  CHECK(legend.find("0.0 % peak drift\n", greys) != std::string::npos);
+  CHECK(legend.find("1.0 % peak drift\n", greys) != std::string::npos);
+  CHECK(legend.find("2.0 % peak drift or more\n", greys) != std::string::npos);
+  // The radius that separates the two, with its value, and how many are animated now.
+  std::smatch m;
+  REQUIRE(std::regex_search(legend, m,
+                            std::regex("Animated: the buildings within 1\\.00 km of the camera, at most 20000 "
+                                       "\\(Performance panel\\), ([0-9]+) now; farther ones and the far-view tiles "
+                                       "are grey\\.")));
+  const unsigned animated = setup.viewer.stats().latest.buildingsAnimated;
+  CHECK(animated > 0);
+  CHECK(std::stoul(m[1]) == animated);
+
+  SECTION("the radius line follows the option") {
+    setup.viewer.city()->mutableOptions().animationRadiusM = 300.0f;
+    CHECK(has(legendOf(setup.draw()), "Animated: the buildings within 300.0 m of the camera"));
+    setup.viewer.setShowFeet(true);
+    CHECK(has(legendOf(setup.draw()), "Animated: the buildings within 984 ft of the camera"));
+  }
+  SECTION("with animation off, every building is grey and the legend says so") {
+    setup.viewer.city()->mutableOptions().animationRadiusM = 0.0f;
+    const std::string off = legendOf(setup.draw());
+    CHECK(has(off, "Animation is off (General panel): every building shows its peak drift in grey."));
+    CHECK_FALSE(has(off, "Animated: the buildings within"));
+    CHECK(setup.viewer.stats().latest.buildingsAnimated == 0);
+  }
+}
+
+TEST_CASE("The other colour modes have no not-animated entry", "[ui][city][legend]") {
+  LegendSetup setup;
+  REQUIRE(setup.viewer.settled());
+  for (ColorMode mode : {ColorMode::PeakDrift, ColorMode::DamageState, ColorMode::Neutral, ColorMode::ModerateOrWorse,
+                         ColorMode::ExpectedDamage, ColorMode::InspectionTag}) {
+    setup.viewer.setColorMode(mode);
+    const std::string legend = legendOf(setup.draw());
+    INFO(static_cast<int>(mode) << ": " << legend);
+    REQUIRE_FALSE(legend.empty());
+    CHECK_FALSE(has(legend, "Not animated"));
+    CHECK_FALSE(has(legend, "peak drift in grey"));
+  }
+  setup.viewer.setColorMode(ColorMode::PeakDrift);
+  CHECK(has(legendOf(setup.draw()), "Inter-storey drift (peak):\n"));
+}
