@@ -232,7 +232,7 @@
   if (hash.get('sel')) args.push('--select', hash.get('sel'));
   // f= is read as written: its '+' joins uses and categories (URLSearchParams would make it a space).
   const rawFilters = /(?:^|&)f=([^&]*)/.exec(window.location.hash.replace(/^#/, ''));
-  if (rawFilters && rawFilters[1]) {
+  if (hash.get('f') && rawFilters && rawFilters[1]) {
     let text = rawFilters[1];
     try { text = decodeURIComponent(text); } catch (e) { /* malformed escapes: the engine reports the text */ }
     args.push('--filters', text);
