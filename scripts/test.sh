@@ -78,6 +78,8 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
    ! "$prep" info "$e2e_data/lod2" --json >"$e2e_data/lod2-info.json" ||
    ! "$prep" city --input tests/e2e/data/hostile-names.geojson --out "$e2e_data/hostile" >/dev/null ||
    ! "$prep" response --city "$e2e_data/hostile" --synthetic 7 >/dev/null ||
+   ! "$prep" city --input tests/e2e/data/critical-facilities.geojson --out "$e2e_data/critical" >/dev/null ||
+   ! "$prep" response --city "$e2e_data/critical" --synthetic 7 >/dev/null ||
    ! "$prep" city --input tests/e2e/data/hostile-names.geojson --name "Actual-event test" \
        --out "$e2e_data/actual" >/dev/null ||
    ! "$prep" response --city "$e2e_data/actual" --shakemap tests/e2e/data/actual-shakemap.xml --synthetic 7 8 \

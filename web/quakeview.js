@@ -23,7 +23,10 @@
 //   setTime(s), time(), duration(), play(), pause(), playing()
 //   pick(x, y), building(id), select(id), selection()   picking and the selected building
 //   consequences()   totals of the city, the view and each district, and the shaking's provenance
-//   setFilters({minDamage, use, criticalOnly}), filters(), setLodVisibility({lod1, lod2}),
+//   setFilters({minDamage, use, criticalOnly, categories}), filters(), setLodVisibility({lod1, lod2}),
+//              use: one normalized use or several joined by '+' ('hospital+school'); criticalOnly:
+//              essential facilities, schools and shelters; categories: an array of 'essential',
+//              'school_shelter', 'high_occupancy', 'hazardous' (a building passes with any).
 //   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
 //   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
@@ -184,8 +187,9 @@
       let minDamage = -1;
       if (typeof f.minDamage === 'number') minDamage = f.minDamage;
       else if (typeof f.minDamage === 'string') minDamage = states.indexOf(f.minDamage);
-      return engine.ccall('qv_set_filters', 'number', ['number', 'string', 'number'],
-        [minDamage, typeof f.use === 'string' ? f.use : '', f.criticalOnly ? 1 : 0]) === 1;
+      const categories = Array.isArray(f.categories) ? f.categories.filter((c) => typeof c === 'string').join('+') : '';
+      return engine.ccall('qv_set_filters', 'number', ['number', 'string', 'number', 'string'],
+        [minDamage, typeof f.use === 'string' ? f.use : '', f.criticalOnly ? 1 : 0, categories]) === 1;
     },
     filters() {
       const text = callString('qv_filters_json');
@@ -343,7 +347,13 @@
   if (hash.get('cam')) args.push('--camera', hash.get('cam'));
   if (hash.get('t')) args.push('--time', hash.get('t'));
   if (hash.get('sel')) args.push('--select', hash.get('sel'));
-  if (hash.get('f')) args.push('--filters', hash.get('f'));
+  // f= is read as written: its '+' joins uses and categories (URLSearchParams would make it a space).
+  const rawFilters = /(?:^|&)f=([^&]*)/.exec(window.location.hash.replace(/^#/, ''));
+  if (hash.get('f') && rawFilters && rawFilters[1]) {
+    let text = rawFilters[1];
+    try { text = decodeURIComponent(text); } catch (e) { /* malformed escapes: the engine reports the text */ }
+    args.push('--filters', text);
+  }
   if (hash.get('play')) args.push('--playing', hash.get('play'));
 
   function viewHash() {
@@ -357,10 +367,18 @@
     const sel = api.selection();
     if (sel) parts.push('sel=' + encodeURIComponent(sel));
     const f = api.filters();
-    if (f && (f.minDamage || f.use || f.criticalOnly)) {
+    const categories = f && Array.isArray(f.categories) ? f.categories : [];
+    if (f && (f.minDamage || f.use || f.criticalOnly || categories.length)) {
       const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
       const d = f.minDamage ? states.indexOf(f.minDamage) : '';
-      parts.push('f=' + [d, f.use, f.criticalOnly ? 1 : ''].join(','));
+      // The critical field: "1" (essential, schools, shelters) or category names joined by '+'.
+      let critical = f.criticalOnly ? '1' : '';
+      if (categories.length) {
+        const names = new Set(categories);
+        if (f.criticalOnly) { names.add('essential'); names.add('school_shelter'); }
+        critical = [...names].join('+');
+      }
+      parts.push('f=' + [d, f.use, critical].join(','));
     }
     return parts.join('&');
   }

@@ -234,7 +234,7 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     const defaultView = await plain.evaluate(() => window.quakeview.getCamera());
     for (const k of Object.keys(defaultView)) assert.ok(Math.abs(fallback[k] - defaultView[k]) < 1e-6, `${k}: ${fallback[k]} vs ${defaultView[k]}`);
     assert.equal(await broken.evaluate(() => window.quakeview.selection()), null);
-    assert.deepEqual(await broken.evaluate(() => window.quakeview.filters()), { minDamage: null, use: '', criticalOnly: false });
+    assert.deepEqual(await broken.evaluate(() => window.quakeview.filters()), { minDamage: null, use: '', criticalOnly: false, categories: [] });
     // The message is on screen too.
     assert.match(await broken.evaluate(() => window.quakeview.uiText()), /camera in the link/);
   } finally {

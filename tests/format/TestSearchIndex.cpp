@@ -1,5 +1,5 @@
-// The search index codec (search.qvi, docs/formats.md): golden bytes pin version 2, entries
-// round-trip, and corrupt, truncated, old-version and out-of-range files are refused by name.
+// The search index codec (search.qvi, docs/formats.md): golden bytes pin version 3 (and version 2 still decodes),
+// entries round-trip, and corrupt, truncated, old-version and out-of-range files are refused by name.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -38,17 +38,31 @@ void requireError(const std::vector<std::uint8_t>& bytes, const std::string& fra
 
 }  // namespace
 
-TEST_CASE("Search index version 2 is pinned by golden bytes", "[format][search]") {
+TEST_CASE("Search index version 3 is pinned by golden bytes", "[format][search]") {
   const std::vector<std::uint8_t> golden = {
-      0x51, 0x56, 0x53, 0x49, 0x02, 0x00, 0x00, 0x00, 0x35, 0x00, 0x00, 0x00, 0x37, 0x96, 0x1d, 0x11, 0x01, 0x00,
+      0x51, 0x56, 0x53, 0x49, 0x03, 0x00, 0x00, 0x00, 0x36, 0x00, 0x00, 0x00, 0x82, 0x67, 0xa9, 0x1d, 0x01, 0x00,
       0x00, 0x00, 0x02, 0x77, 0x31, 0x01, 0x41, 0x00, 0x06, 0x6f, 0x66, 0x66, 0x69, 0x63, 0x65, 0x00, 0x00, 0xc0,
-      0x3f, 0x00, 0x00, 0x00, 0xc0, 0x00, 0x00, 0x20, 0x41, 0x03, 0x00, 0x01, 0x01, 0x04, 0x00, 0x00, 0x00};
-  const std::vector<SearchEntry> entries = {tinyEntry()};
+      0x3f, 0x00, 0x00, 0x00, 0xc0, 0x00, 0x00, 0x20, 0x41, 0x03, 0x00, 0x01, 0x01, 0x04, 0x00, 0x00, 0x00, 0x01};
+  SearchEntry entry = tinyEntry();
+  entry.facility = FacilityCategory::Essential;
+  const std::vector<SearchEntry> entries = {entry};
   CHECK(encodeSearchIndex(entries) == golden);
   const auto decoded = decodeSearchIndex(golden, "golden.qvi");
   REQUIRE(decoded.ok());
   REQUIRE(decoded->size() == 1);
-  CHECK((*decoded)[0] == tinyEntry());
+  CHECK((*decoded)[0] == entry);
+}
+
+TEST_CASE("A version 2 search index still decodes, its facility category derived from the use", "[format][search]") {
+  const std::vector<std::uint8_t> golden = {
+      0x51, 0x56, 0x53, 0x49, 0x02, 0x00, 0x00, 0x00, 0x35, 0x00, 0x00, 0x00, 0x37, 0x96, 0x1d, 0x11, 0x01, 0x00,
+      0x00, 0x00, 0x02, 0x77, 0x31, 0x01, 0x41, 0x00, 0x06, 0x6f, 0x66, 0x66, 0x69, 0x63, 0x65, 0x00, 0x00, 0xc0,
+      0x3f, 0x00, 0x00, 0x00, 0xc0, 0x00, 0x00, 0x20, 0x41, 0x03, 0x00, 0x01, 0x01, 0x04, 0x00, 0x00, 0x00};
+  const auto decoded = decodeSearchIndex(golden, "golden.qvi");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->size() == 1);
+  CHECK((*decoded)[0] == tinyEntry());  // an office: no facility category, though "critical" was stored
+  CHECK((*decoded)[0].facility == FacilityCategory::None);
 }
 
 TEST_CASE("Search entries round-trip, long strings and many entries included", "[format][search]") {
@@ -65,6 +79,7 @@ TEST_CASE("Search entries round-trip, long strings and many entries included", "
     e.importance = i % 7 == 0 ? Importance::Critical : Importance::General;
     e.lod = i % 11 == 0 ? 2 : 1;
     e.leaf = i / 100;
+    e.facility = static_cast<FacilityCategory>(i % static_cast<unsigned>(FacilityCategory::Count));
     entries.push_back(e);
   }
   const auto decoded = decodeSearchIndex(encodeSearchIndex(entries), "many.qvi");
@@ -110,6 +125,12 @@ TEST_CASE("Corrupt, truncated, old and out-of-range search indexes are refused w
     SearchEntry e = tinyEntry();
     e.heightM = -1.0f;
     requireError(encodeSearchIndex(std::vector<SearchEntry>{tinyEntry(), e}), "entry 1 at byte");
+  }
+  SECTION("an unknown facility category") {
+    auto b = good;
+    b.back() = 9;
+    requireError(fuzz::withValidSizeAndCrc(b), "entry 1 at byte");
+    requireError(fuzz::withValidSizeAndCrc(b), "unknown facility category");
   }
   SECTION("an unknown level of detail") {
     SearchEntry e = tinyEntry();

@@ -27,6 +27,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     e.importance = in.ConsumeBool() ? Importance::Critical : Importance::General;
     e.lod = in.ConsumeBool() ? 2 : 1;
     e.leaf = in.ConsumeIntegral<std::uint32_t>();
+    e.facility = static_cast<FacilityCategory>(
+        in.ConsumeIntegralInRange<unsigned>(0, static_cast<unsigned>(FacilityCategory::Count) - 1));
   }
   const auto decoded = decodeSearchIndex(encodeSearchIndex(entries), "roundtrip.qvi");
   if (!decoded.ok()) fuzz::contractBroken("the decoder rejects what the encoder wrote:", decoded.error());

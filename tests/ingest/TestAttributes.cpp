@@ -237,22 +237,31 @@ TEST_CASE("Code eras follow the HAZUS year bands", "[ingest][attributes]") {
   CHECK(inferCodeEra(2024) == CodeEra::HighCode);
 }
 
-TEST_CASE("Critical buildings carry their reasons", "[ingest][attributes]") {
+TEST_CASE("Importance reasons are kept, but only essential facilities, schools and shelters are critical",
+          "[ingest][attributes]") {
   struct Row {
     const char* use;
     const char* amenity;
     float heightM;
     bool hasParts;
     std::uint8_t reasons;
+    bool critical;
   };
   const Row rows[] = {
-      {"office", "", 30.0f, false, kReasonNone},           {"hospital", "", 20.0f, false, kReasonHospital},
-      {"unknown", "clinic", 8.0f, false, kReasonHospital}, {"fire_station", "", 10.0f, false, kReasonFireStation},
-      {"unknown", "police", 10.0f, false, kReasonPolice},  {"school", "", 12.0f, false, kReasonSchool},
-      {"university", "", 30.0f, false, kReasonSchool},     {"civic", "townhall", 20.0f, false, kReasonShelter},
-      {"office", "", 100.0f, false, kReasonNone},  // "taller than 100 m"
-      {"office", "", 100.5f, false, kReasonTall},          {"office", "", 443.2f, true, kReasonTall | kReasonComplex},
-      {"residential", "", 20.0f, true, kReasonComplex},
+      {"office", "", 30.0f, false, kReasonNone, false},
+      {"hospital", "", 20.0f, false, kReasonHospital, true},
+      {"unknown", "clinic", 8.0f, false, kReasonHospital, false},  // a clinic without beds
+      {"fire_station", "", 10.0f, false, kReasonFireStation, true},
+      {"unknown", "police", 10.0f, false, kReasonPolice, true},
+      {"school", "", 12.0f, false, kReasonSchool, true},
+      {"university", "", 30.0f, false, kReasonSchool, true},
+      {"civic", "townhall", 20.0f, false, kReasonNone, false},
+      {"civic", "community_centre", 9.0f, false, kReasonShelter, true},
+      {"office", "", 100.0f, false, kReasonNone, false},  // "taller than 100 m"
+      {"office", "", 100.5f, false, kReasonTall, false},  // a tall office is not critical
+      {"office", "", 443.2f, true, kReasonTall | kReasonComplex, false},
+      {"residential", "", 20.0f, true, kReasonComplex, false},
+      {"hospital", "", 120.0f, true, kReasonHospital | kReasonTall | kReasonComplex, true},
   };
   for (const Row& row : rows) {
     INFO(row.use << " / " << row.amenity << " " << row.heightM << " m");
@@ -262,8 +271,22 @@ TEST_CASE("Critical buildings carry their reasons", "[ingest][attributes]") {
     a.heightM = row.heightM;
     classifyImportance(a, row.hasParts);
     CHECK(a.importanceReasons == row.reasons);
-    CHECK(a.importance == (row.reasons == kReasonNone ? Importance::General : Importance::Critical));
+    CHECK(a.importance == (row.critical ? Importance::Critical : Importance::General));
   }
+}
+
+TEST_CASE("Facility tags other than amenity are folded into the stored amenity", "[ingest][attributes]") {
+  CHECK(normalizeFacility("school", "ambulance_station", "", "", "", "", "") == "school");  // amenity wins
+  CHECK(normalizeFacility("", "ambulance_station", "", "", "", "", "") == "ambulance_station");
+  CHECK(normalizeFacility("", "", "hospital", "", "", "", "") == "hospital");
+  CHECK(normalizeFacility("", "", "clinic", "", "", "", "") == "");
+  CHECK(normalizeFacility("", "", "", "shelter", "", "", "") == "shelter");
+  CHECK(normalizeFacility("", "", "", "", "plant", "", "") == "power_plant");
+  CHECK(normalizeFacility("", "", "", "", "substation", "", "") == "substation");
+  CHECK(normalizeFacility("", "", "", "", "", "mall", "") == "mall");
+  CHECK(normalizeFacility("", "", "", "", "", "", "chemical") == "chemical_works");
+  CHECK(normalizeFacility("", "", "", "", "", "", "oil") == "refinery");
+  CHECK(normalizeFacility(" ", "", "", "", "", "bakery", "brewery") == "");
 }
 
 TEST_CASE("Addresses are formatted from addr:*", "[ingest][attributes]") {

@@ -69,7 +69,7 @@ TEST_CASE("A hand-written OSM file gives exactly its buildings", "[ingest][osm]"
     CHECK(a.startYear == 1931);
     CHECK(a.structuralType == StructuralType::S1H);
     CHECK(a.codeEra == CodeEra::PreCode);
-    CHECK(a.importance == Importance::Critical);
+    CHECK(a.importance == Importance::General);  // several parts are a level-of-detail reason, not criticality
     CHECK(a.importanceReasons == kReasonComplex);
     CHECK(a.lod == 1);
     // The footprint is the outline's: 0.0002 degrees square at 40.75 N, about 16.9 m x 22.2 m.
@@ -177,7 +177,7 @@ TEST_CASE("The Empire State Building comes out whole", "[ingest][osm][data]") {
   CHECK(a.use == "office");
   CHECK(a.heightSource == ValueSource::Tagged);
   CHECK(a.storeysSource == ValueSource::Tagged);
-  CHECK(a.importance == Importance::Critical);
+  CHECK(a.importance == Importance::General);  // a tall office is not a critical facility
   CHECK(a.importanceReasons == (kReasonTall | kReasonComplex));
   CHECK(a.address == "350 5th Avenue, 10118 New York");
   CHECK(a.startYear == 1931);

@@ -147,6 +147,7 @@ TEST_CASE("Coarse tiles hold at most --max-coarse-buildings and the index holds 
       CHECK(e.storeys == a.storeys);
       CHECK(e.use == a.use);
       CHECK(e.importance == a.importance);
+      CHECK(e.facility == classifyFacility(a).category);
     }
   }
 

@@ -136,7 +136,8 @@ TEST_CASE("Filter text: empty fields mean any, as the shell writes them", "[opti
   };
   const Case c = GENERATE(Case{",,", -1, "", false}, Case{"1,,", 1, "", false}, Case{",school,", -1, "school", false},
                           Case{",,1", -1, "", true}, Case{"0,,0", 0, "", false},
-                          Case{"4,place_of_worship,1", 4, "place_of_worship", true});
+                          Case{"4,place_of_worship,1", 4, "place_of_worship", true},
+                          Case{",hospital+school+fire_station,", -1, "hospital+school+fire_station", false});
   CAPTURE(c.text);
   const Result<BuildingFilters> f = parseFilters(c.text);
   REQUIRE(f.ok());
@@ -145,16 +146,50 @@ TEST_CASE("Filter text: empty fields mean any, as the shell writes them", "[opti
   CHECK(f->criticalOnly == c.critical);
 }
 
+TEST_CASE("Filter text: the critical field takes facility categories joined by '+'", "[options]") {
+  const Result<BuildingFilters> f = parseFilters(",,essential+high_occupancy");
+  REQUIRE(f.ok());
+  CHECK_FALSE(f->criticalOnly);
+  BuildingFilters want;
+  want.categories =
+      facilityCategoryBit(FacilityCategory::Essential) | facilityCategoryBit(FacilityCategory::HighOccupancy);
+  CHECK(*f == want);
+  // "1" keeps its meaning: essential facilities, schools and shelters.
+  const Result<BuildingFilters> one = parseFilters(",,1");
+  REQUIRE(one.ok());
+  CHECK(one->passes(FacilityCategory::Essential, "hospital", nullptr));
+  CHECK(one->passes(FacilityCategory::SchoolShelter, "school", nullptr));
+  CHECK_FALSE(one->passes(FacilityCategory::HighOccupancy, "sports", nullptr));
+  CHECK_FALSE(one->passes(FacilityCategory::None, "office", nullptr));
+  const Result<BuildingFilters> all = parseFilters(",,essential+school_shelter+high_occupancy+hazardous");
+  REQUIRE(all.ok());
+  CHECK(all->passes(FacilityCategory::Hazardous, "retail", nullptr));
+  CHECK_FALSE(all->passes(FacilityCategory::None, "office", nullptr));
+  // Several uses: a building passes with any of them.
+  const Result<BuildingFilters> uses = parseFilters(",hospital+school,");
+  REQUIRE(uses.ok());
+  CHECK(uses->usePasses("school"));
+  CHECK(uses->usePasses("hospital"));
+  CHECK_FALSE(uses->usePasses("schoo"));
+  CHECK_FALSE(uses->usePasses("hospital+school"));
+  CHECK_FALSE(uses->usePasses("office"));
+}
+
 TEST_CASE("Bad filter text is refused with the field at fault", "[options]") {
   struct Case {
     std::string text;
     const char* expected;
   };
-  const Case c = GENERATE(Case{"banana", "1 field where 3 are expected"}, Case{"1,,,", "4 fields where 3"},
-                          Case{"9,,", "minDamage '9'"}, Case{"12,,", "minDamage '12'"}, Case{"x,,", "minDamage 'x'"},
-                          Case{"1,Hospital,0", "use 'Hospital'"}, Case{"1,hos pital,0", "use 'hos pital'"},
-                          Case{"1,,2", "critical '2'"}, Case{"1,,yes", "critical 'yes'"},
-                          Case{std::string(101, ','), "longer than 100 characters"});
+  const Case c = GENERATE(
+      Case{"banana", "1 field where 3 are expected"}, Case{"1,,,", "4 fields where 3"}, Case{"9,,", "minDamage '9'"},
+      Case{"12,,", "minDamage '12'"}, Case{"x,,", "minDamage 'x'"}, Case{"1,Hospital,0", "use 'Hospital'"},
+      Case{"1,hos pital,0", "use 'hos pital'"}, Case{"1,,2", "critical '2'"}, Case{"1,,yes", "critical 'yes'"},
+      Case{",hospital+,", "use 'hospital+' has an empty use"}, Case{",+school,", "use '+school' has an empty use"},
+      Case{",hospital++school,", "use 'hospital++school' has an empty use"},
+      Case{",Hospital+school,", "use 'Hospital+school'"},
+      Case{",,essential+critical", "critical 'essential+critical' is not 0, 1 or categories"},
+      Case{",,essential+", "critical 'essential+'"}, Case{",,none", "critical 'none'"},
+      Case{",,Essential", "critical 'Essential'"}, Case{std::string(301, ','), "longer than 300 characters"});
   CAPTURE(c.text);
   const Result<BuildingFilters> f = parseFilters(c.text);
   REQUIRE_FALSE(f.ok());

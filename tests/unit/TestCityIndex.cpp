@@ -1,6 +1,10 @@
 #include <catch2/catch.hpp>
 
+#include <set>
+#include <utility>
+
 #include "MiniCity.h"
+#include "qv/core/Crc32.h"
 #include "qv/scene/CityIndex.h"
 
 using namespace qv;
@@ -89,4 +93,102 @@ TEST_CASE("A search index that does not match the manifest is refused with why",
   CHECK(rig.errors[0].key == "city/search.qvi");
   CHECK(rig.errors[0].message.find("64 entries, but the manifest says the city has 65 buildings") != std::string::npos);
   CHECK(rig.index.search("Building", 10).empty());
+}
+
+TEST_CASE("The list filters by several uses and facility categories at once", "[scene][index][filters]") {
+  IndexRig rig;
+  // Plant uses and categories in the served index: (0, j) hospitals, (1, j) schools, (2, j) fire
+  // stations, (3, 0) a stadium; the rest stay offices.
+  auto& bytes = rig.fetcher.files.at("city/search.qvi");
+  auto entries = decodeSearchIndex(bytes, "planted");
+  REQUIRE(entries.ok());
+  std::size_t hospitals = 0, schools = 0, fireStations = 0;
+  for (SearchEntry& e : *entries) {
+    for (int j = 0; j < MiniCity::kSide; ++j) {
+      const auto planted = [&](int i, const char* use, FacilityCategory category, std::size_t& count) {
+        if (e.id != MiniCity::idOf(i, j)) return;
+        e.use = use;
+        e.facility = category;
+        ++count;
+      };
+      planted(0, "hospital", FacilityCategory::Essential, hospitals);
+      planted(1, "school", FacilityCategory::SchoolShelter, schools);
+      planted(2, "fire_station", FacilityCategory::Essential, fireStations);
+    }
+    if (e.id == MiniCity::idOf(3, 0)) {
+      e.use = "sports";
+      e.facility = FacilityCategory::HighOccupancy;
+    }
+  }
+  bytes = encodeSearchIndex(*entries);
+  rig.city.tileset.search->bytes = bytes.size();
+  rig.city.tileset.search->crc32 = crc32(bytes);
+  rig.load();
+  REQUIRE(rig.index.loaded());
+  REQUIRE(hospitals > 0);
+
+  auto idsOf = [&rig](const BuildingFilters& f) {
+    std::size_t total = 0;
+    std::set<std::string> uses;
+    for (const BuildingListEntry& e : rig.index.filteredList(f, 100000, &total)) uses.insert(e.use);
+    return std::pair{total, uses};
+  };
+  BuildingFilters several;
+  several.use = "hospital+school";
+  const auto [total, uses] = idsOf(several);
+  CHECK(total == hospitals + schools);
+  CHECK(uses == std::set<std::string>{"hospital", "school"});
+
+  BuildingFilters critical;
+  critical.criticalOnly = true;
+  const auto [criticalTotal, criticalUses] = idsOf(critical);
+  CHECK(criticalTotal == hospitals + schools + fireStations);
+  CHECK(criticalUses == std::set<std::string>{"fire_station", "hospital", "school"});
+
+  BuildingFilters highOccupancy;
+  highOccupancy.categories = facilityCategoryBit(FacilityCategory::HighOccupancy);
+  CHECK(idsOf(highOccupancy).second == std::set<std::string>{"sports"});
+
+  BuildingFilters criticalFireStations = critical;
+  criticalFireStations.use = "fire_station+office";  // both filters apply: no office is critical
+  CHECK(idsOf(criticalFireStations).first == fireStations);
+
+  // The use filter's choices: the uses present, most first, with their counts.
+  const auto counts = rig.index.useCounts();
+  REQUIRE(!counts.empty());
+  CHECK(counts.front().first == "office");
+  std::size_t sum = 0;
+  for (const auto& [use, n] : counts) sum += n;
+  CHECK(sum == static_cast<std::size_t>(MiniCity::kSide * MiniCity::kSide));
+}
+
+TEST_CASE("List rows name a building by its name, else its address, never only an id that has one", "[scene][index]") {
+  BuildingListEntry e;
+  e.id = "w42";
+  e.address = "12 Main Street, 10001 New York";
+  e.use = "hospital";
+  e.facility = FacilityCategory::Essential;
+  e.damage = DamageState::Moderate;
+  e.peakDriftRatio = 0.0042f;
+  e.x = 300.0;
+  e.y = 400.0;
+  CHECK(listName(e) == e.address);
+  const std::string row = listRowText(e, 0.0, 0.0);
+  CHECK(row.find("12 Main Street") == 0);
+  CHECK(row.find("w42") == std::string::npos);
+  CHECK(row.find("moderate 0.42 %") != std::string::npos);
+  CHECK(row.find("hospital (essential)") != std::string::npos);
+  CHECK(row.find("500 m") != std::string::npos);  // a 3-4-5 triangle from the camera target
+  CHECK(listRowText(e, 3000.0, 4000.0).find("4.5 km") != std::string::npos);
+  e.name = "City Hospital";
+  CHECK(listName(e) == "City Hospital");
+  e.name.clear();
+  e.address.clear();
+  CHECK(listName(e) == "w42");
+  e.damage = DamageState::NoResult;
+  e.facility = FacilityCategory::None;
+  e.use = "office";
+  const std::string plain = listRowText(e, 300.0, 400.0);
+  CHECK(plain.find("(") == std::string::npos);  // no category for general stock
+  CHECK(plain.find("| 0 m") != std::string::npos);
 }

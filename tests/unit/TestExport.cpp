@@ -346,6 +346,18 @@ TEST_CASE("Export file names carry the city, the event, what they hold and the f
   CHECK(exportFileName(tileset, filters, "buildings", "geojson") ==
         "quakeview-synthetic-city-100000-buildings-scenario-buildings-damage-extensive-use-fire-station-critical."
         "geojson");
+  BuildingFilters several;
+  several.use = "hospital+school+fire_station";
+  several.categories =
+      facilityCategoryBit(FacilityCategory::HighOccupancy) | facilityCategoryBit(FacilityCategory::Hazardous);
+  CHECK(exportFileName(tileset, several, "buildings", "csv") ==
+        "quakeview-synthetic-city-100000-buildings-scenario-buildings-use-hospital-school-fire-station-facility-high-"
+        "occupancy-hazardous.csv");
+  CHECK(describeFilters(several) == "use: hospital or school or fire_station | facility: high occupancy or hazardous");
+  BuildingFilters critical;
+  critical.criticalOnly = true;
+  CHECK(describeFilters(critical) == "critical facilities only (essential or school/shelter)");
+  CHECK(exportProvenance(tileset, several).filter == describeFilters(several));
   tileset.name = "midtown";
   tileset.response->eventType = "ACTUAL";
   tileset.response->shakingField = "shakemap";
@@ -357,4 +369,25 @@ TEST_CASE("Export file names carry the city, the event, what they hold and the f
   const std::string longName = exportFileName(tileset, filters, "buildings", "csv");
   CHECK(longName.size() == 150 + 4);
   CHECK(longName.rfind("quakeview-xxx", 0) == 0);
+}
+
+TEST_CASE("Exports call only essential facilities, schools and shelters critical, never a tall tower",
+          "[scene][export]") {
+  BuildingListEntry tower;  // an old search index stored "critical" for its height
+  tower.id = "w1";
+  tower.use = "office";
+  tower.importance = Importance::Critical;
+  tower.facility = FacilityCategory::None;
+  BuildingListEntry school;
+  school.id = "w2";
+  school.use = "school";
+  school.facility = FacilityCategory::SchoolShelter;
+  const std::vector<BuildingListEntry> list = {tower, school};
+  const GeoFrame geo(-73.98, 40.75);
+  const std::string csv = exportCsv(list, geo);
+  CHECK(csv.find("w1,,,office,general,") != std::string::npos);
+  CHECK(csv.find("w2,,,school,critical,") != std::string::npos);
+  const std::string geojson = exportGeoJson(list, geo);
+  CHECK(geojson.find("\"importance\":\"general\",\"facility\":\"none\"") != std::string::npos);
+  CHECK(geojson.find("\"importance\":\"critical\",\"facility\":\"school_shelter\"") != std::string::npos);
 }

@@ -190,13 +190,20 @@ EMSCRIPTEN_KEEPALIVE const char* qv_lod_visibility_json() {
   return hand(w.take());
 }
 
-/// Filters: minDamage -1..4, use ("" any), critical 0/1. Returns 0 when there is no city.
-EMSCRIPTEN_KEEPALIVE int qv_set_filters(int minDamage, const char* use, int critical) {
-  if (gApp == nullptr || gApp->viewer().city() == nullptr || use == nullptr) return 0;
+/// Filters: minDamage -1..4, use ("" any; several joined by '+'), critical 0/1, categories
+/// (FacilityCategory names joined by '+', "" none; unknown names are ignored). Returns 0 when
+/// there is no city.
+EMSCRIPTEN_KEEPALIVE int qv_set_filters(int minDamage, const char* use, int critical, const char* categories) {
+  if (gApp == nullptr || gApp->viewer().city() == nullptr || use == nullptr || categories == nullptr) return 0;
   qv::BuildingFilters f;
   f.minDamage = minDamage < 0 || minDamage > 4 ? -1 : minDamage;
   f.use = use;
   f.criticalOnly = critical != 0;
+  for (std::string_view rest = categories; !rest.empty();) {
+    const std::size_t plus = rest.find('+');
+    if (const auto c = qv::parseFacilityCategory(rest.substr(0, plus))) f.categories |= qv::facilityCategoryBit(*c);
+    rest = plus == std::string_view::npos ? std::string_view() : rest.substr(plus + 1);
+  }
   gApp->viewer().city()->setFilters(f);
   return 1;
 }
@@ -210,7 +217,13 @@ EMSCRIPTEN_KEEPALIVE const char* qv_filters_json() {
     w.field("minDamage", qv::damageStateName(static_cast<qv::DamageState>(f.minDamage)));
   else
     w.key("minDamage").null();
-  w.field("use", f.use).field("criticalOnly", f.criticalOnly).endObject();
+  w.field("use", f.use).field("criticalOnly", f.criticalOnly);
+  w.key("categories").beginArray();
+  for (auto i = 1u; i < static_cast<unsigned>(qv::FacilityCategory::Count); ++i) {
+    const auto c = static_cast<qv::FacilityCategory>(i);
+    if ((f.categories & qv::facilityCategoryBit(c)) != 0) w.value(qv::facilityCategoryName(c));
+  }
+  w.endArray().endObject();
   return hand(w.take());
 }
 
@@ -219,6 +232,7 @@ void writeEntries(qv::JsonWriter& w, const std::vector<qv::BuildingListEntry>& l
   w.beginArray();
   for (const auto& e : list) {
     w.beginObject().field("id", e.id).field("name", e.name).field("address", e.address).field("use", e.use);
+    w.field("facility", qv::facilityCategoryName(e.facility)).field("label", qv::listName(e));
     w.field("damageState", qv::damageStateName(e.damage)).field("peakDriftRatio", e.peakDriftRatio);
     w.field("x", e.x).field("y", e.y).endObject();
   }

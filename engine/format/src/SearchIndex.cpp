@@ -17,7 +17,8 @@ constexpr std::size_t kMinEntryBytes = 4 + 20;  // four empty strings and the fi
 
 // Layout: "QVSI", version u16, flags u16, file size u32, CRC-32 of [16, end) u32, entry count
 // u32; then per entry four LEB128-length UTF-8 strings (id, name, address, use) and x, y,
-// height (f32), storeys (u16), importance (u8), lod (u8), leaf (u32).
+// height (f32), storeys (u16), importance (u8), lod (u8), leaf (u32), and from version 3 the
+// facility category (u8).
 std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries) {
   ByteWriter w;
   w.fourcc("QVSI");
@@ -38,6 +39,7 @@ std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries
     w.u8(static_cast<std::uint8_t>(e.importance));
     w.u8(e.lod);
     w.u32(e.leaf);
+    w.u8(static_cast<std::uint8_t>(e.facility));
   }
   w.patchU32(8, static_cast<std::uint32_t>(w.size()));
   w.patchU32(12, crc32(std::span(w.data()).subspan(16)));
@@ -51,7 +53,7 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
   }
   ByteReader h(bytes.subspan(4, kHeaderSize - 4), 4);
   const std::uint16_t version = h.u16("version");
-  if (version != kSearchIndexVersion) {
+  if (version != kSearchIndexVersion && version != 2) {
     return Error{prefix + "unsupported search index version " + std::to_string(version) +
                  " (this build reads version " + std::to_string(kSearchIndexVersion) + ")"};
   }
@@ -88,6 +90,8 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
     const std::uint8_t importance = r.u8("importance");
     e.lod = r.u8("lod");
     e.leaf = r.u32("leaf");
+    const std::uint8_t facility =
+        version >= 3 ? r.u8("facility") : static_cast<std::uint8_t>(classifyFacility(e.use, {}, 0.0f, 0, 0).category);
     if (!r.ok()) break;
     const char* bad = nullptr;
     if (!std::isfinite(e.x) || !std::isfinite(e.y) || std::abs(e.x) > 1e7f || std::abs(e.y) > 1e7f)
@@ -96,12 +100,15 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
       bad = "height is not in [0, 10000] m";
     else if (importance > static_cast<std::uint8_t>(Importance::Critical))
       bad = "unknown importance";
+    else if (facility >= static_cast<std::uint8_t>(FacilityCategory::Count))
+      bad = "unknown facility category";
     else if (e.lod != 1 && e.lod != 2)
       bad = "lod is neither 1 nor 2";
     if (bad != nullptr) {
       return Error{prefix + "entry " + std::to_string(i) + " at byte " + std::to_string(at) + ": " + bad};
     }
     e.importance = static_cast<Importance>(importance);
+    e.facility = static_cast<FacilityCategory>(facility);
   }
   if (!r.ok()) return Error{prefix + "entries: " + r.error()};
   return entries;

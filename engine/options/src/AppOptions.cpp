@@ -179,7 +179,9 @@ std::span<const AppArgument> appArguments() {
 }
 
 Result<BuildingFilters> parseFilters(std::string_view text) {
-  if (text.size() > 100) return Error{"longer than 100 characters"};
+  if (text.size() > kMaxFilterTextBytes) {
+    return Error{"longer than " + std::to_string(kMaxFilterTextBytes) + " characters"};
+  }
   const std::vector<std::string_view> parts = splitCommas(text);
   if (parts.size() != 3) {
     return Error{std::to_string(parts.size()) + (parts.size() == 1 ? " field" : " fields") +
@@ -193,15 +195,32 @@ Result<BuildingFilters> parseFilters(std::string_view text) {
     f.minDamage = parts[0][0] - '0';
   }
   for (const char c : parts[1]) {
-    if (!((c >= 'a' && c <= 'z') || c == '_')) {
-      return Error{"use '" + shown(parts[1]) + "' has characters other than a to z and _"};
+    if (!((c >= 'a' && c <= 'z') || c == '_' || c == '+')) {
+      return Error{"use '" + shown(parts[1]) + "' has characters other than a to z, _ and +"};
     }
   }
-  f.use = std::string(parts[1]);
-  if (!parts[2].empty() && parts[2] != "0" && parts[2] != "1") {
-    return Error{"critical '" + shown(parts[2]) + "' is not 0 or 1"};
+  const std::string_view uses = parts[1];
+  if (!uses.empty() && (uses.front() == '+' || uses.back() == '+' || uses.find("++") != std::string_view::npos)) {
+    return Error{"use '" + shown(uses) + "' has an empty use between the '+' that join uses"};
   }
-  f.criticalOnly = parts[2] == "1";
+  f.use = std::string(uses);
+  const std::string_view critical = parts[2];
+  if (critical == "1") {
+    f.criticalOnly = true;
+  } else if (!critical.empty() && critical != "0") {
+    std::string_view rest = critical;
+    while (true) {
+      const std::size_t plus = rest.find('+');
+      const std::optional<FacilityCategory> category = parseFacilityCategory(rest.substr(0, plus));
+      if (!category) {
+        return Error{"critical '" + shown(critical) + "' is not 0, 1 or categories joined by '+' (" +
+                     "essential, school_shelter, high_occupancy, hazardous)"};
+      }
+      f.categories |= facilityCategoryBit(*category);
+      if (plus == std::string_view::npos) break;
+      rest.remove_prefix(plus + 1);
+    }
+  }
   return f;
 }
 

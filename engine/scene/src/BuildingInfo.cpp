@@ -1,6 +1,7 @@
 #include "qv/scene/BuildingInfo.h"
 
 #include "qv/core/JsonWriter.h"
+#include "qv/format/FacilityCategory.h"
 
 namespace qv {
 
@@ -42,6 +43,8 @@ std::string buildingInfoJson(const BuildingInfo& info) {
   w.field("storeys", static_cast<unsigned>(a.storeys)).field("storeysSource", valueSourceName(a.storeysSource));
   w.field("structuralType", structuralTypeCode(a.structuralType));
   w.field("codeEra", codeEraName(a.codeEra)).field("importance", importanceName(a.importance));
+  const FacilityClass facility = classifyFacility(a);
+  w.field("facility", facilityCategoryName(facility.category)).field("facilityKind", facility.kind);
   w.field("lod", static_cast<unsigned>(a.lod));
   w.field("damageState", info.hasResponse ? damageStateName(info.response.damage) : std::string_view("no_result"));
   w.key("peakDriftRatio").beginArray();

@@ -1,18 +1,60 @@
 #include "qv/scene/CityIndex.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <functional>
+#include <map>
 
 namespace qv {
 
-bool BuildingFilters::passes(Importance importance, std::string_view buildingUse, const BuildingResponse* r) const {
-  if (criticalOnly && importance != Importance::Critical) return false;
-  if (!use.empty() && buildingUse != use) return false;
+bool BuildingFilters::usePasses(std::string_view buildingUse) const {
+  if (use.empty()) return true;
+  std::string_view rest = use;
+  while (true) {
+    const std::size_t plus = rest.find('+');
+    if (rest.substr(0, plus) == buildingUse) return true;
+    if (plus == std::string_view::npos) return false;
+    rest.remove_prefix(plus + 1);
+  }
+}
+
+bool BuildingFilters::passes(FacilityCategory facility, std::string_view buildingUse, const BuildingResponse* r) const {
+  if (const unsigned mask = categoryMask(); mask != 0 && (mask & facilityCategoryBit(facility)) == 0) return false;
+  if (!usePasses(buildingUse)) return false;
   if (minDamage >= 0) {
     if (r == nullptr || r->damage == DamageState::NoResult) return false;
     if (static_cast<int>(r->damage) < minDamage) return false;
   }
   return true;
+}
+
+std::string_view listName(const BuildingListEntry& entry) {
+  if (!entry.name.empty()) return entry.name;
+  if (!entry.address.empty()) return entry.address;
+  return entry.id;
+}
+
+std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY) {
+  std::string text(listName(entry));
+  text += " | ";
+  text += damageStateName(entry.damage);
+  if (entry.damage != DamageState::NoResult) {
+    char drift[32];
+    std::snprintf(drift, sizeof drift, " %.2f %%", static_cast<double>(entry.peakDriftRatio) * 100.0);
+    text += drift;
+  }
+  text += " | " + (entry.use.empty() ? std::string("unknown use") : entry.use);
+  if (entry.facility != FacilityCategory::None) {
+    text += " (" + std::string(facilityCategoryLabel(entry.facility)) + ")";
+  }
+  const double distanceM = std::hypot(entry.x - fromX, entry.y - fromY);
+  char distance[32];
+  if (distanceM < 999.5)
+    std::snprintf(distance, sizeof distance, " | %.0f m", distanceM);
+  else
+    std::snprintf(distance, sizeof distance, " | %.1f km", distanceM / 1000.0);
+  return text + distance;
 }
 
 CityIndex::CityIndex(FileLoader& loader, std::string manifestUrl)
@@ -155,6 +197,7 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
   e.address = s.address;
   e.use = s.use;
   e.importance = s.importance;
+  e.facility = s.facility;
   e.heightM = s.heightM;
   e.storeys = s.storeys;
   e.x = s.x;
@@ -183,6 +226,17 @@ std::vector<BuildingListEntry> CityIndex::search(std::string_view query, std::si
   return out;
 }
 
+std::vector<std::pair<std::string, std::size_t>> CityIndex::useCounts() const {
+  std::vector<std::pair<std::string, std::size_t>> out;
+  if (search_.state != TileState::Loaded) return out;
+  std::map<std::string_view, std::size_t> counts;
+  for (const SearchEntry& e : entries_) ++counts[e.use];
+  out.reserve(counts.size());
+  for (const auto& [use, n] : counts) out.emplace_back(std::string(use), n);
+  std::stable_sort(out.begin(), out.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  return out;
+}
+
 std::vector<BuildingListEntry> CityIndex::filteredList(const BuildingFilters& filters, std::size_t limit,
                                                        std::size_t* total) const {
   std::vector<BuildingListEntry> out;
@@ -196,7 +250,7 @@ std::vector<BuildingListEntry> CityIndex::filteredList(const BuildingFilters& fi
   std::vector<Key> keys;
   for (std::uint32_t i = 0; i < entries_.size(); ++i) {
     const BuildingResponse* r = response(i);
-    if (!filters.passes(entries_[i].importance, entries_[i].use, r)) continue;
+    if (!filters.passes(entries_[i].facility, entries_[i].use, r)) continue;
     const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
     keys.push_back({damage, r != nullptr ? r->peakDriftRatio : 0.0f, i});
   }

@@ -80,14 +80,50 @@ std::string shakingStatement(const ResponseInfo& r) {
   return "NOT STATED whether a scenario or an actual event";
 }
 
+namespace {
+
+// The importance column: "critical" for essential facilities, schools and shelters only (never
+// for height or parts, which older search indexes still stored as critical).
+std::string_view criticalName(FacilityCategory facility) {
+  return importanceName((facilityCategoryBit(facility) & kCriticalCategories) != 0 ? Importance::Critical
+                                                                                   : Importance::General);
+}
+
+// "hospital+school" -> "hospital or school".
+std::string joinedWith(std::string_view plusJoined, std::string_view separator) {
+  std::string out;
+  for (const char c : plusJoined) {
+    if (c == '+')
+      out += separator;
+    else
+      out += c;
+  }
+  return out;
+}
+
+// The names (or labels) of the categories set in `mask`, in category order.
+std::string categoryNames(unsigned mask, std::string_view separator, bool names) {
+  std::string out;
+  for (auto i = 1u; i < static_cast<unsigned>(FacilityCategory::Count); ++i) {
+    const auto category = static_cast<FacilityCategory>(i);
+    if ((mask & facilityCategoryBit(category)) == 0) continue;
+    if (!out.empty()) out += separator;
+    out += names ? facilityCategoryName(category) : facilityCategoryLabel(category);
+  }
+  return out;
+}
+
+}  // namespace
+
 std::string describeFilters(const BuildingFilters& f) {
   std::string text;
   auto add = [&text](const std::string& phrase) { text += (text.empty() ? "" : " | ") + phrase; };
   if (f.minDamage >= 0 && f.minDamage <= 4) {
     add("damage at least " + std::string(damageStateName(static_cast<DamageState>(f.minDamage))));
   }
-  if (!f.use.empty()) add("use: " + f.use);
-  if (f.criticalOnly) add("critical facilities only");
+  if (!f.use.empty()) add("use: " + joinedWith(f.use, " or "));
+  if (f.criticalOnly) add("critical facilities only (essential or school/shelter)");
+  if (f.categories != 0) add("facility: " + categoryNames(f.categories, " or ", false));
   return text.empty() ? "none" : text;
 }
 
@@ -131,8 +167,9 @@ std::string exportFileName(const Tileset& tileset, const BuildingFilters& filter
   if (filters.minDamage >= 0 && filters.minDamage <= 4) {
     add("damage-" + std::string(damageStateName(static_cast<DamageState>(filters.minDamage))));
   }
-  if (!filters.use.empty()) add("use-" + filters.use);
+  if (!filters.use.empty()) add("use-" + filters.use);  // "use-hospital-school": slug turns '+' into '-'
   if (filters.criticalOnly) add("critical");
+  if (filters.categories != 0) add("facility-" + categoryNames(filters.categories, "-", true));
   if (name.size() > 150) name.resize(150);
   while (name.back() == '-') name.pop_back();
   return name + "." + std::string(extension);
@@ -172,7 +209,7 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
   for (const BuildingListEntry& b : buildings) {
     const auto ll = geo.reverse({b.x, b.y});
     out += csvField(b.id) + ',' + csvField(b.name) + ',' + csvField(b.address) + ',' + csvField(b.use) + ',';
-    out += std::string(importanceName(b.importance)) + ',' + std::string(damageStateName(b.damage)) + ',';
+    out += std::string(criticalName(b.facility)) + ',' + std::string(damageStateName(b.damage)) + ',';
     // Peaks exist only for a building with a result: blank otherwise (a zero would read as "no motion").
     if (b.damage != DamageState::NoResult) {
       out += number(b.peakDriftRatio, 6) + ',' + number(b.peakRoofDisplacementM, 4) + ',' + number(b.pgaG, 4) + ',';
@@ -221,7 +258,9 @@ std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const Ge
     w.endObject();
     w.key("properties").beginObject();
     w.field("id", b.id).field("name", b.name).field("address", b.address).field("use", b.use);
-    w.field("importance", importanceName(b.importance)).field("damage_state", damageStateName(b.damage));
+    w.field("importance", criticalName(b.facility))
+        .field("facility", facilityCategoryName(b.facility))
+        .field("damage_state", damageStateName(b.damage));
     if (b.damage != DamageState::NoResult) {
       w.field("peak_drift_ratio", b.peakDriftRatio).field("peak_roof_displacement_m", b.peakRoofDisplacementM);
       w.field("pga_g", b.pgaG);

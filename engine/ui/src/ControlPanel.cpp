@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 
+#include "qv/format/FacilityCategory.h"
 #include "qv/scene/Export.h"
 #include "qv/scene/Palette.h"
 #include "qv/seismic/Damage.h"
@@ -50,10 +51,6 @@ const char* const kColorModes[] = {
     "Current inter-storey drift", "Peak inter-storey drift", "Damage state (median drift)", "Neutral",
     "P(damage >= moderate)",      "Expected damage state",   "Inspection tag (most likely)"};
 static_assert(sizeof(kColorModes) / sizeof(kColorModes[0]) == kColorModeCount);
-const char* const kUses[] = {"any",         "hospital",   "school",    "fire_station", "police",
-                             "residential", "house",      "office",    "retail",       "commercial",
-                             "hotel",       "industrial", "warehouse", "religious",    "civic"};
-constexpr int kUseCount = static_cast<int>(sizeof kUses / sizeof kUses[0]);
 
 std::string megabytes(std::uint64_t bytes) {
   return ui::format("%.1f MB", static_cast<double>(bytes) / (1024.0 * 1024.0));
@@ -540,12 +537,36 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     int damage = std::clamp(f.minDamage, 0, 4);
     if (f.minDamage < 0) damage = 0;
     if (w.combo("Damage", &damage, damageItems, 5)) f.minDamage = damage == 0 ? -1 : damage;
-    int use = 0;
-    for (int i = 1; i < kUseCount; ++i) {
-      if (f.use == kUses[i]) use = i;
+    // Facility categories (FacilityCategory.h: Hazus essential facilities, FEMA community lifelines).
+    w.checkbox("Critical facilities only (essential, schools and shelters)", &f.criticalOnly);
+    w.text("Facility categories (any checked):");
+    for (auto i = 1u; i < static_cast<unsigned>(FacilityCategory::Count); ++i) {
+      const auto category = static_cast<FacilityCategory>(i);
+      bool on = (f.categories & facilityCategoryBit(category)) != 0;
+      const std::string label = std::string(facilityCategoryLabel(category)) + "##category";
+      if (w.checkbox(label.c_str(), &on)) f.categories ^= facilityCategoryBit(category);
     }
-    if (w.combo("Use", &use, kUses, kUseCount)) f.use = use == 0 ? std::string() : kUses[use];
-    w.checkbox("Critical facilities only", &f.criticalOnly);
+    // Uses: several at once, those present in the city with their counts.
+    std::vector<std::string_view> chosen;
+    for (std::string_view rest = f.use; !rest.empty();) {
+      const std::size_t plus = rest.find('+');
+      chosen.push_back(rest.substr(0, plus));
+      rest = plus == std::string_view::npos ? std::string_view() : rest.substr(plus + 1);
+    }
+    w.text(chosen.empty() ? "Uses (any checked; none checked: every use):" : "Uses (any checked):");
+    std::string uses = f.use;
+    for (const auto& [use, count] : city->useCounts()) {
+      bool on = std::find(chosen.begin(), chosen.end(), use) != chosen.end();
+      const std::string label = ui::format("%s (%zu)##use", use.c_str(), count);
+      if (w.checkbox(label.c_str(), &on)) {
+        uses.clear();
+        for (const std::string_view c : chosen) {
+          if (c != use) uses += (uses.empty() ? "" : "+") + std::string(c);
+        }
+        if (on) uses += (uses.empty() ? "" : "+") + use;
+      }
+    }
+    f.use = uses;
     city->setFilters(f);
     std::size_t total = 0;
     const auto list = city->filteredList(12, &total);
@@ -553,11 +574,10 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     w.text(ui::format("Filtered: %zu of %llu buildings%s", total,
                       static_cast<unsigned long long>(tileset != nullptr ? tileset->buildings : 0),
                       f.active() ? " (the rest is dimmed)" : ""));
+    // Each row: name or address, damage, use and category, distance from the camera's target.
+    const CameraState& camera = viewer.camera();
     for (const BuildingListEntry& e : list) {
-      const std::string label =
-          ui::format("[%s] %s  %s", std::string(damageStateName(e.damage)).c_str(),
-                     (e.name.empty() ? e.id : e.name).c_str(), percent(e.peakDriftRatio).c_str()) +
-          "##list" + e.id;
+      const std::string label = listRowText(e, camera.x, camera.y) + "##list" + e.id;
       if (w.selectable(label.c_str(), e.id == viewer.selection())) {
         if (!viewer.select(e.id) || !viewer.flyToSelection())
           viewer.flyTo(e.x, e.y, std::max(200.0, static_cast<double>(e.heightM) * 3.0));

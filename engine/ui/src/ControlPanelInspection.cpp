@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "qv/format/FacilityCategory.h"
 #include "qv/scene/InspectionValues.h"
 #include "qv/scene/Palette.h"
 #include "qv/seismic/Damage.h"
@@ -223,17 +224,15 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
                              std::string(structuralTypeDescription(a.structuralType)) + " (inferred)");
     w.field("Code era", std::string(codeEraName(a.codeEra)) + (a.startYear > 0 ? ui::format(" (built %d)", a.startYear)
                                                                                : std::string(" (year unknown)")));
-    std::string importance(importanceName(a.importance));
-    const std::pair<unsigned, const char*> reasons[] = {
-        {kReasonHospital, "hospital"}, {kReasonFireStation, "fire station"}, {kReasonPolice, "police"},
-        {kReasonSchool, "school"},     {kReasonTall, "over 100 m"},          {kReasonComplex, "several parts"},
-        {kReasonShelter, "shelter"}};
-    std::string why;
-    for (const auto& [bit, name] : reasons) {
-      if ((a.importanceReasons & bit) != 0) why += (why.empty() ? "" : ", ") + std::string(name);
+    // The facility category (FacilityCategory.h), never height or parts.
+    const FacilityClass facility = classifyFacility(a);
+    if (facility.category == FacilityCategory::None) {
+      w.field("Facility", "general (not a critical, high-occupancy or hazardous facility)");
+    } else {
+      w.field("Facility",
+              std::string(facilityCategoryLabel(facility.category)) + " (" + std::string(facility.kind) + ")");
+      w.textWrapped("Source: " + std::string(facilityCategorySource(facility.category)));
     }
-    if (!why.empty()) importance += " (" + why + ")";
-    w.field("Importance", importance);
     // Why values were inferred or changed (docs/attributes.md, "Plausibility rules").
     for (unsigned bit = 1; bit < 256; bit <<= 1) {
       if ((a.notes & bit) != 0) w.textWrapped("Inferred: " + std::string(attributeNoteText(bit)));

@@ -9,6 +9,7 @@
 #include "Commands.h"
 #include "Summary.h"
 #include "qv/core/JsonWriter.h"
+#include "qv/format/FacilityCategory.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/prep/Cli.h"
 #include "qv/prep/Consequences.h"
@@ -48,7 +49,8 @@ struct CitySummary {
   std::uint64_t buildings = 0;
   std::array<std::uint64_t, kStoreyBuckets.size()> storeys{};
   std::uint64_t heightTagged = 0, heightInferred = 0, storeysTagged = 0, storeysInferred = 0;
-  std::uint64_t critical = 0, lod2 = 0;
+  std::uint64_t critical = 0, lod2 = 0;  // critical: facility category Essential or SchoolShelter
+  std::array<std::uint64_t, static_cast<std::size_t>(FacilityCategory::Count)> facilities{};
   std::vector<std::string> lod2Ids;  // the first kMaxLod2Ids, in tile order
   double totalStoreys = 0;
   std::map<std::string, std::uint64_t> types, eras, uses;
@@ -66,6 +68,8 @@ void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNod
   w.key("importance_reasons").beginArray();
   for (const std::string_view name : importanceReasonNames(a.importanceReasons)) w.value(name);
   w.endArray();
+  const FacilityClass facility = classifyFacility(a);
+  w.field("facility", facilityCategoryName(facility.category)).field("facility_kind", facility.kind);
   w.field("lod", static_cast<unsigned>(a.lod));
   w.field("start_year", static_cast<int>(a.startYear)).field("material", a.material).field("structure", a.structure);
   w.field("amenity", a.amenity);
@@ -419,7 +423,10 @@ int runInfo(const CommandArgs& argv) {
       s.totalStoreys += a.storeys;
       (a.heightSource == ValueSource::Tagged ? s.heightTagged : s.heightInferred)++;
       (a.storeysSource == ValueSource::Tagged ? s.storeysTagged : s.storeysInferred)++;
-      if (a.importance == Importance::Critical) ++s.critical;
+      // Critical by facility category (never height or parts, which older tiles stored as critical).
+      const FacilityCategory facility = classifyFacility(a).category;
+      ++s.facilities[static_cast<std::size_t>(facility)];
+      if ((facilityCategoryBit(facility) & kCriticalCategories) != 0) ++s.critical;
       if (a.lod == 2 && ++s.lod2 <= kMaxLod2Ids) s.lod2Ids.push_back(a.id);
       ++s.types[std::string(structuralTypeCode(a.structuralType))];
       ++s.eras[std::string(codeEraName(a.codeEra))];
@@ -496,6 +503,11 @@ int runInfo(const CommandArgs& argv) {
     for (const auto& [k, v] : s.uses) w.field(k, v);
     w.endObject();
     w.field("critical", s.critical).field("lod2", s.lod2);
+    w.key("facility_categories").beginObject();  // buildings by FacilityCategory name
+    for (std::size_t i = 0; i < s.facilities.size(); ++i) {
+      w.field(facilityCategoryName(static_cast<FacilityCategory>(i)), s.facilities[i]);
+    }
+    w.endObject();
     w.key("lod2_ids").beginArray();  // which buildings have a detailed model (the first 1000)
     for (const std::string& id : s.lod2Ids) w.value(id);
     w.endArray();
@@ -580,6 +592,12 @@ int runInfo(const CommandArgs& argv) {
   std::printf("buildings   %llu (%llu critical, %llu LOD2), mean %.2f storeys\n",
               static_cast<unsigned long long>(s.buildings), static_cast<unsigned long long>(s.critical),
               static_cast<unsigned long long>(s.lod2), meanStoreys);
+  auto facilities = [&s](FacilityCategory c) {
+    return static_cast<unsigned long long>(s.facilities[static_cast<std::size_t>(c)]);
+  };
+  std::printf("facilities  %llu essential, %llu school or shelter, %llu high occupancy, %llu hazardous\n",
+              facilities(FacilityCategory::Essential), facilities(FacilityCategory::SchoolShelter),
+              facilities(FacilityCategory::HighOccupancy), facilities(FacilityCategory::Hazardous));
   if (!t.excluded.empty()) {
     std::printf("excluded   ");
     for (const auto& [reason, n] : t.excluded)

@@ -1,5 +1,7 @@
 #include "qv/prep/Attributes.h"
 
+#include "qv/format/FacilityCategory.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -591,11 +593,30 @@ void classifyImportance(BuildingAttributes& attributes, bool hasParts) {
   if (use == "school" || use == "university" || amenity == "school" || amenity == "kindergarten" ||
       amenity == "college" || amenity == "university")
     reasons |= kReasonSchool;
-  if (amenity == "townhall" || amenity == "community_centre") reasons |= kReasonShelter;
+  if (amenity == "community_centre" || amenity == "shelter") reasons |= kReasonShelter;
   if (attributes.heightM > kTallBuildingHeightM) reasons |= kReasonTall;
   if (hasParts) reasons |= kReasonComplex;
   attributes.importanceReasons = reasons;
-  attributes.importance = reasons != kReasonNone ? Importance::Critical : Importance::General;
+  const FacilityCategory category = classifyFacility(attributes).category;
+  attributes.importance =
+      (facilityCategoryBit(category) & kCriticalCategories) != 0 ? Importance::Critical : Importance::General;
+}
+
+std::string normalizeFacility(std::string_view amenity, std::string_view emergency, std::string_view healthcare,
+                              std::string_view socialFacility, std::string_view power, std::string_view shop,
+                              std::string_view industrial) {
+  amenity = trim(amenity);
+  if (!amenity.empty()) return std::string(amenity);
+  // In order of criticality: emergency response, medical care, shelter, hazardous, assembly.
+  if (trim(emergency) == "ambulance_station") return "ambulance_station";
+  if (trim(healthcare) == "hospital") return "hospital";
+  if (trim(socialFacility) == "shelter") return "shelter";
+  if (trim(power) == "plant") return "power_plant";
+  if (trim(power) == "substation") return "substation";
+  if (trim(industrial) == "chemical") return "chemical_works";
+  if (trim(industrial) == "refinery" || trim(industrial) == "oil") return "refinery";
+  if (trim(shop) == "mall") return "mall";
+  return {};
 }
 
 void inferSeismicAttributes(BuildingAttributes& attributes, bool hasParts) {

@@ -200,6 +200,12 @@ class GeoJsonReader {
     if (key == "roof:shape") return &tags.roofShape;
     if (key == "roof:height") return &tags.roofHeight;
     if (key == "amenity") return &tags.amenity;
+    if (key == "emergency") return &tags.emergency;
+    if (key == "healthcare") return &tags.healthcare;
+    if (key == "social_facility") return &tags.socialFacility;
+    if (key == "power") return &tags.power;
+    if (key == "shop") return &tags.shop;
+    if (key == "industrial") return &tags.industrial;
     if (key == "addr:housenumber") return &tags.houseNumber;
     if (key == "addr:street") return &tags.street;
     if (key == "addr:postcode") return &tags.postcode;

@@ -315,7 +315,8 @@ void fillIdentity(const RawFeature& feature, const Prepared& prepared, BuildingA
   a.address = formatAddress(tags.houseNumber, tags.street, tags.postcode, tags.city);
   a.material = tags.material;
   a.structure = tags.structure;
-  a.amenity = tags.amenity;
+  a.amenity = normalizeFacility(tags.amenity, tags.emergency, tags.healthcare, tags.socialFacility, tags.power,
+                                tags.shop, tags.industrial);
   a.startYear = static_cast<std::int16_t>(prepared.startYear);
   a.occupants = prepared.occupants;
   a.replacementValueUsd = prepared.replacementValueUsd;

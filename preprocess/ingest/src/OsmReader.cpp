@@ -66,8 +66,18 @@ void keepTags(const osmium::TagList& tags, RawTags& out) {
         if (key == "building:material") slot = &out.material;
         if (key == "building:structure") slot = &out.structure;
         break;
+      case 'e':
+        if (key == "emergency") slot = &out.emergency;
+        break;
       case 'h':
         if (key == "height") slot = &out.height;
+        if (key == "healthcare") slot = &out.healthcare;
+        break;
+      case 'i':
+        if (key == "industrial") slot = &out.industrial;
+        break;
+      case 'p':
+        if (key == "power") slot = &out.power;
         break;
       case 'l':
         if (key == "location") slot = &out.location;
@@ -85,6 +95,8 @@ void keepTags(const osmium::TagList& tags, RawTags& out) {
         break;
       case 's':
         if (key == "start_date") slot = &out.startDate;
+        if (key == "shop") slot = &out.shop;
+        if (key == "social_facility") slot = &out.socialFacility;
         break;
       default:
         break;

@@ -35,6 +35,12 @@ struct RawTags {
   std::string structure;
   std::string startDate;
   std::string amenity;
+  std::string emergency;       ///< emergency=* (ambulance_station; folded into the amenity, normalizeFacility)
+  std::string healthcare;      ///< healthcare=*
+  std::string socialFacility;  ///< social_facility=*
+  std::string power;           ///< power=* (plant, substation)
+  std::string shop;            ///< shop=* (mall)
+  std::string industrial;      ///< industrial=* (chemical, refinery, oil)
   std::string houseNumber;
   std::string street;
   std::string postcode;

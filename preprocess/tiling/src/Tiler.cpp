@@ -478,6 +478,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       e.heightM = a.heightM;
       e.storeys = a.storeys;
       e.importance = a.importance;
+      e.facility = classifyFacility(a).category;
       e.lod = a.lod;
       e.leaf = static_cast<std::uint32_t>(k);
       search.push_back(std::move(e));

@@ -15,10 +15,13 @@
 
 #include "qv/core/Result.h"
 #include "qv/format/BuildingAttributes.h"
+#include "qv/format/FacilityCategory.h"
 
 namespace qv {
 
-inline constexpr std::uint16_t kSearchIndexVersion = 2;
+/// Version 3 adds the facility category; version 2 files still decode (their category is derived
+/// from the use alone).
+inline constexpr std::uint16_t kSearchIndexVersion = 3;
 
 struct SearchEntry {
   std::string id;
@@ -28,16 +31,18 @@ struct SearchEntry {
   float x = 0.0f, y = 0.0f;                     ///< centroid, metres in the city frame
   float heightM = 0.0f;                         ///< top above ground
   std::uint16_t storeys = 1;                    ///< BuildingAttributes::storeys
-  Importance importance = Importance::General;  ///< for the "critical only" filter
-  std::uint8_t lod = 1;                         ///< 1 extruded footprint, 2 detailed model
-  std::uint32_t leaf = 0;                       ///< index into Tileset::nodes of its leaf tile
+  Importance importance = Importance::General;  ///< the stored importance (old meaning: see BuildingAttributes)
+  /// classifyFacility of the building: the "critical facilities" and category filters.
+  FacilityCategory facility = FacilityCategory::None;
+  std::uint8_t lod = 1;    ///< 1 extruded footprint, 2 detailed model
+  std::uint32_t leaf = 0;  ///< index into Tileset::nodes of its leaf tile
 
   bool operator==(const SearchEntry&) const = default;
 };
 
 std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries);
 /// Checks magic, version, size, CRC, counts and every value (finite positions within 1e7 m,
-/// heights within [0, 1e4] m, importance and lod known); errors name `name` and the byte offset.
+/// heights within [0, 1e4] m, importance, facility category and lod known); errors name `name` and the byte offset.
 /// Leaf indices are checked against the manifest by the reader that has it.
 Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t> bytes, std::string_view name);
 

@@ -60,10 +60,16 @@ std::span<const AppArgument> appArguments();
 /// to `errors` and is otherwise ignored; a --shell-error value is passed through as a message.
 AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std::string>& errors);
 
+/// Longest filter text parseFilters accepts, bytes.
+inline constexpr std::size_t kMaxFilterTextBytes = 300;
+
 /// Parses the hash's filter text "minDamage,use,critical": exactly three fields, each empty for
-/// "any": minDamage a digit 0..4 (none .. complete), use lower-case letters and '_' ("hospital"),
-/// critical "0" or "1". At most 100 characters. The error names the field at fault and its value
-/// ("minDamage '9' is not a damage state 0 to 4").
+/// "any": minDamage a digit 0..4 (none .. complete); use one normalized use (lower-case letters
+/// and '_': "hospital") or several joined by '+' ("hospital+school+fire_station"); critical "0" or
+/// "1" (1: critical facilities, FacilityCategory Essential or SchoolShelter) or facility category
+/// names joined by '+' ("essential+school_shelter+high_occupancy+hazardous", facilityCategoryName).
+/// At most kMaxFilterTextBytes. The error names the field at fault and its value ("minDamage '9'
+/// is not a damage state 0 to 4").
 Result<BuildingFilters> parseFilters(std::string_view text);
 
 }  // namespace qv

@@ -29,7 +29,8 @@ struct BuildingInfo {
 };
 
 /// `quakeview.building(id)` JSON: {id, name, use, address, x, y, heightM, heightSource, storeys,
-/// storeysSource, structuralType, codeEra, importance, lod, damageState, peakDriftRatio: [...],
+/// storeysSource, structuralType, codeEra, importance, facility (facilityCategoryName),
+/// facilityKind (FacilityClass::kind), lod, damageState, peakDriftRatio: [...],
 /// peakRoofDisplacementM, pgaG} plus informative extras (minHeightM, footprintAreaM2,
 /// structuralTypeDescription, importanceReasons, startYear, responseSource, noResultReason (null
 /// with a result), approximate, unconvergedSteps, worstResidualRatio, detailed, and for LOD2 models

@@ -11,8 +11,10 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
+#include "qv/format/FacilityCategory.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/format/SearchIndex.h"
 #include "qv/format/Tileset.h"
@@ -23,14 +25,23 @@ namespace qv {
 
 /// Which buildings are shown at full strength; the others are dimmed.
 struct BuildingFilters {
-  int minDamage = -1;         ///< -1: any; 0..4: damage state at least this (none .. complete)
-  std::string use;            ///< empty: any; else the normalized use ("hospital", "school", ...)
-  bool criticalOnly = false;  ///< only critical facilities
-  [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly; }
+  int minDamage = -1;  ///< -1: any; 0..4: damage state at least this (none .. complete)
+  /// Empty: any; else one normalized use or several joined by '+' ("hospital+school+fire_station").
+  std::string use;
+  /// Only critical facilities: FacilityCategory Essential or SchoolShelter (kCriticalCategories).
+  bool criticalOnly = false;
+  /// Only these facility categories (facilityCategoryBit bits); 0: any. With criticalOnly, a
+  /// building passes when its category is critical or in this set.
+  unsigned categories = 0;
+  [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly || categories != 0; }
   [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const {
-    return passes(a.importance, a.use, r);
+    return passes(classifyFacility(a).category, a.use, r);
   }
-  [[nodiscard]] bool passes(Importance importance, std::string_view use, const BuildingResponse* r) const;
+  [[nodiscard]] bool passes(FacilityCategory facility, std::string_view use, const BuildingResponse* r) const;
+  /// Whether `buildingUse` is one of the uses (true when no use is chosen).
+  [[nodiscard]] bool usePasses(std::string_view buildingUse) const;
+  /// The category bits a building must match (criticalOnly folded in); 0: any.
+  [[nodiscard]] unsigned categoryMask() const { return categories | (criticalOnly ? kCriticalCategories : 0u); }
   friend bool operator==(const BuildingFilters&, const BuildingFilters&) = default;
 };
 
@@ -41,6 +52,7 @@ struct BuildingListEntry {
   std::string address;
   std::string use;
   Importance importance = Importance::General;
+  FacilityCategory facility = FacilityCategory::None;
   DamageState damage = DamageState::NoResult;
   float peakDriftRatio = 0.0f;
   float peakRoofDisplacementM = 0.0f;
@@ -50,6 +62,15 @@ struct BuildingListEntry {
   double x = 0.0, y = 0.0;           ///< centroid, metres in the city frame
   std::optional<BuildingLoss> loss;  ///< HAZUS probabilities and consequences, when the response has them
 };
+
+/// What a list row names a building by: its name, else its address, else (only when it has
+/// neither) its id.
+std::string_view listName(const BuildingListEntry& entry);
+/// The text of one row of the on-screen list: name (listName), damage, use and facility
+/// category, and the distance from (fromX, fromY) (metres in the city frame, the camera target):
+/// "City Hospital | moderate 0.42 % | hospital (essential) | 1.2 km". Distances under 1 km in
+/// whole metres, else km with one decimal.
+std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY);
 
 class CityIndex {
  public:
@@ -86,6 +107,9 @@ class CityIndex {
   [[nodiscard]] const SearchEntry* entry(std::string_view id) const;
   /// Buildings whose id, name or address contain every word of `query`: at most `limit`, index order.
   [[nodiscard]] std::vector<BuildingListEntry> search(std::string_view query, std::size_t limit) const;
+  /// How many buildings of each use the city has, most first (then by name): the use filter's
+  /// choices. Empty until the index loads.
+  [[nodiscard]] std::vector<std::pair<std::string, std::size_t>> useCounts() const;
   /// Buildings passing `filters`, most damaged first (then by peak drift, then index order), at
   /// most `limit`; `total` receives how many pass in all.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(const BuildingFilters& filters, std::size_t limit,

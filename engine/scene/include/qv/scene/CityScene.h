@@ -154,6 +154,8 @@ class CityScene {
   /// Buildings passing the filters, most damaged first (then by peak drift), at most `limit`;
   /// `total` receives how many pass in all.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(std::size_t limit, std::size_t* total = nullptr);
+  /// How many buildings of each use the city has, most first (CityIndex::useCounts).
+  [[nodiscard]] std::vector<std::pair<std::string, std::size_t>> useCounts() const { return index_.useCounts(); }
   [[nodiscard]] bool searchIndexLoaded() const { return index_.loaded(); }
   /// The search index (and the response summary in its order) has loaded or failed, or the city has none.
   [[nodiscard]] bool searchIndexSettled() const;

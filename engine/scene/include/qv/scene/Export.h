@@ -28,8 +28,9 @@ struct ExportProvenance {
 /// whether a scenario or an actual event)" or "NOT STATED whether a scenario or an actual event".
 std::string shakingStatement(const ResponseInfo& response);
 
-/// The active filters as short phrases joined by " | " ("damage at least moderate | use: school"),
-/// "none" when no filter is active.
+/// The active filters as short phrases joined by " | " ("damage at least moderate | use: school or
+/// hospital | critical facilities only (essential or school/shelter) | facility: high occupancy or
+/// hazardous"), "none" when no filter is active. No commas (the CSV provenance line keeps it whole).
 std::string describeFilters(const BuildingFilters& filters);
 
 /// The provenance of exports from `tileset` (without a response: shaking "no response computed").
@@ -37,8 +38,9 @@ ExportProvenance exportProvenance(const Tileset& tileset, const BuildingFilters&
 
 /// A download's file name that says what it holds: "quakeview-<city>-<event>-<what>[-<filter>].<ext>",
 /// each part lower-case ASCII letters, digits and '-' ("quakeview-midtown-actual-us7000abcd-buildings-
-/// damage-moderate-use-school.csv"); <event> is "scenario", "actual" (with the ShakeMap's event id),
-/// "imported", "unstated" or "no-response". At most 150 characters before the extension.
+/// damage-moderate-use-school.csv"; several uses "use-hospital-school", the critical filter
+/// "critical", categories "facility-essential-high-occupancy"); <event> is "scenario", "actual" (with the ShakeMap's
+/// event id), "imported", "unstated" or "no-response". At most 150 characters before the extension.
 std::string exportFileName(const Tileset& tileset, const BuildingFilters& filters, std::string_view what,
                            std::string_view extension);
 
@@ -60,7 +62,9 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
                       const ExportProvenance* provenance = nullptr);
 
 /// A GeoJSON FeatureCollection of Points (WGS84 lon/lat at each building's centroid) with the
-/// same fields as properties (null where the CSV is blank). Strings are valid UTF-8 (invalid bytes
+/// same fields as properties (null where the CSV is blank) plus "facility" (facilityCategoryName).
+/// In both formats "importance" is "critical" only for essential facilities, schools and shelters
+/// (FacilityCategory; never for height or parts). Strings are valid UTF-8 (invalid bytes
 /// become U+FFFD) and kept otherwise as they are: a GIS shows them as text. With a provenance, the
 /// collection has a foreign member "quakeview" holding its fields (city, shaking, earthquake,
 /// records, method, filter, time_of_day).

@@ -135,12 +135,23 @@ StructuralType inferStructuralType(std::string_view use, float heightM, int stor
 /// 1000) gives Unknown.
 CodeEra inferCodeEra(int startYear);
 
-/// Height above which a building is critical for being very tall, metres.
+/// Height above which the tall reason bit is set (a level-of-detail reason, not criticality), metres.
 inline constexpr float kTallBuildingHeightM = 100.0f;
 
-/// Sets attributes.importance and importanceReasons from use, amenity and heightM: hospitals and
-/// clinics, fire stations, police, schools/universities, emergency shelters and town halls,
-/// buildings taller than 100 m, and buildings assembled from parts (`hasParts`) are critical.
+/// The stored amenity value (docs/attributes.md "Facility categories"): the amenity tag when set,
+/// else the facility another tag names, for qv::classifyFacility: emergency=ambulance_station
+/// "ambulance_station", healthcare=hospital "hospital", social_facility=shelter "shelter",
+/// power=plant "power_plant", power=substation "substation", shop=mall "mall",
+/// industrial=chemical "chemical_works", industrial=refinery or oil "refinery"; else empty.
+std::string normalizeFacility(std::string_view amenity, std::string_view emergency, std::string_view healthcare,
+                              std::string_view socialFacility, std::string_view power, std::string_view shop,
+                              std::string_view industrial);
+
+/// Sets attributes.importanceReasons from use, amenity and heightM (hospital, fire station,
+/// police, school, shelter for community centres and shelters; tall over 100 m;
+/// complex when assembled from parts: `hasParts`), then attributes.importance: Critical exactly
+/// when qv::classifyFacility gives Essential or SchoolShelter (height and parts are not
+/// criticality; they stay reason bits for the level of detail).
 void classifyImportance(BuildingAttributes& attributes, bool hasParts);
 
 /// Fills structuralType, codeEra and importance of attributes whose use, heightM, storeys,
