@@ -12,6 +12,7 @@
 #include "qv/platform/Browser.h"
 #include "qv/platform/BrowserFetcher.h"
 #include "qv/platform/BrowserInput.h"
+#include "qv/quality/FrameGovernor.h"
 #include "qv/render/GlRenderDevice.h"
 #include "qv/scene/Viewer.h"
 #include "qv/ui/ControlPanel.h"
@@ -38,10 +39,15 @@ class App {
   [[nodiscard]] const std::string& uiText() const { return mirror_.text(); }
   [[nodiscard]] ControlPanel& panel() { return panel_; }
   [[nodiscard]] UiHost& host() { return host_; }
+  /// The viewer's stats() JSON with the device's quality state added: softwareRenderer, renderer,
+  /// antialias, maxPixelRatio, quality (the preset's name), governor (on/off) and qualityStep.
+  [[nodiscard]] std::string statsJson(const MemoryInfo& memory) const;
 
  private:
   void dispatchInput();
   void dispatchKey(const InputEvent& e);
+  /// Feeds the frame time to the governor and applies the panel's quality requests.
+  void adaptQuality(double frameMs);
 
   std::unique_ptr<GlRenderDevice> device_;
   BrowserFetcher fetcher_;
@@ -58,6 +64,9 @@ class App {
   double lastFrameSeconds_ = 0.0;
   bool readySent_ = false;
   bool cameraOwnsPointer_ = false;
+  QualityState quality_;
+  FrameGovernor governor_;
+  int appliedStep_ = 0;
 };
 
 }  // namespace qv

@@ -5,6 +5,7 @@
 #include <emscripten/html5.h>
 #include <malloc.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace qv::browser {
@@ -82,11 +83,12 @@ bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& opt
   return true;
 }
 
-CanvasSize syncCanvasSize(const char* canvasSelector) {
+CanvasSize syncCanvasSize(const char* canvasSelector, double maxPixelRatio) {
   CanvasSize size;
   emscripten_get_element_css_size(canvasSelector, &size.cssWidth, &size.cssHeight);
   size.devicePixelRatio = emscripten_get_device_pixel_ratio();
   if (!(size.devicePixelRatio > 0.0)) size.devicePixelRatio = 1.0;
+  if (maxPixelRatio > 0.0) size.devicePixelRatio = std::min(size.devicePixelRatio, maxPixelRatio);
   size.pixelWidth = std::max(1, static_cast<int>(std::lround(size.cssWidth * size.devicePixelRatio)));
   size.pixelHeight = std::max(1, static_cast<int>(std::lround(size.cssHeight * size.devicePixelRatio)));
   int currentWidth = 0, currentHeight = 0;

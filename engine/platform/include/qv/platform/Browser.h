@@ -24,8 +24,9 @@ struct CanvasSize {
   double devicePixelRatio = 1.0;
 };
 
-/// Reads the canvas's CSS size and resizes its drawing buffer to CSS size × devicePixelRatio.
-CanvasSize syncCanvasSize(const char* canvasSelector);
+/// Reads the canvas's CSS size and resizes its drawing buffer to CSS size × devicePixelRatio, the
+/// ratio capped at `maxPixelRatio` when that is > 0 (fewer pixels on a slow renderer).
+CanvasSize syncCanvasSize(const char* canvasSelector, double maxPixelRatio = 0.0);
 
 /// Live heap bytes (malloc'd and not freed) and the size of the WASM memory.
 MemoryInfo memoryInfo();
