@@ -127,7 +127,9 @@ test('street level: full-detail tiles replace the coarse ones and buildings anim
 test('a corrupted tile and a missing tile are reported while the rest renders', async () => {
   const { context, close } = await launchBrowser();
   try {
-    const { page } = await openPage(context, `${server.url}/?data=/broken/tileset.json`);
+    // Full detail (a fixed preset, no governor): the broken leaves must be wanted by the view also on
+    // the software renderers the tests run on, which otherwise start in the weak-device preset.
+    const { page } = await openPage(context, `${server.url}/?data=/broken/tileset.json&quality=high`);
     assert.deepEqual(await waitReady(page), { ok: true });
     const overview = await page.evaluate(() => window.quakeview.getCamera());
     // Close enough that every leaf is wanted.
