@@ -6,7 +6,8 @@
 # - Dear ImGui 1.86 sources from Debian's source package (and simdjson's single-header sources and
 #   GeographicLib's, used by the WebAssembly build), unpacked under .deps/ (git-ignored, never
 #   committed);
-# - npm packages pinned by tests/e2e/package-lock.json (playwright-core; never a browser download).
+# - npm packages pinned by tests/e2e/package-lock.json (playwright-core for Chromium, puppeteer-core
+#   for Firefox ESR; never a browser download).
 #
 # On a system without apt it stops and lists what to install.
 set -Eeuo pipefail
@@ -25,8 +26,9 @@ trap 'on_error $? $LINENO "$BASH_COMMAND"' ERR
 # shellcheck source=SCRIPTDIR/lib/apt-sources.sh
 source "$root/scripts/lib/apt-sources.sh"
 
-# Build tools, libraries (native tools and tests), the WebAssembly toolchain, the browser for the
-# end-to-end tests, and the fuzzing runtime.
+# Build tools, libraries (native tools and tests), the WebAssembly toolchain, the two browsers for
+# the end-to-end tests, and the fuzzing runtime. Headless Firefox draws WebGL2 only on Mesa's
+# llvmpipe through EGL (libgl1-mesa-dri, libegl1, libegl-mesa0; ../shared/TOOLCHAIN.md).
 packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates dpkg-dev clang-format
   emscripten clang-14 libclang-rt-14-dev
@@ -36,6 +38,7 @@ packages=(
   libmimalloc-dev
   osmium-tool
   chromium fonts-dejavu-core
+  firefox-esr libgl1-mesa-dri libegl1 libegl-mesa0
 )
 
 if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>&1; then
@@ -130,7 +133,7 @@ stamp="$e2e/node_modules/.quakeview-lock.sha256"
 want=$(sha256sum "$e2e/package-lock.json" | cut -d' ' -f1)
 if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   log "installing npm packages (tests/e2e)"
-  (cd "$e2e" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
+  (cd "$e2e" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
   echo "$want" >"$stamp"
 fi
 

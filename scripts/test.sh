@@ -4,7 +4,8 @@
 #   2. the same pure-library tests compiled to WebAssembly, run under node
 #   (the native code is also compiled with clang 14, optimized, warnings as errors; its
 #   quakeview-prep prepares the browser tests' cities)
-#   3. browser end-to-end tests (playwright-core + Debian's headless Chromium, pages served over HTTP)
+#   3. browser end-to-end tests (playwright-core + Debian's headless Chromium, pages served over HTTP),
+#      then the core of them again in Debian's headless Firefox ESR (puppeteer-core, WebDriver BiDi)
 #   4. a bounded run of every libFuzzer target (scripts/fuzz.sh: clang 14, ASan + UBSan, 20 s each)
 # Ends with one summary line; exits non-zero if anything failed. Every stage runs even after a
 # failure so one run shows everything that is wrong.
@@ -102,12 +103,26 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
   counts[e2e]="${e2e_pass:-0}"
   if [ -z "$e2e_pass" ] || [ "${e2e_fail:-1}" != 0 ]; then failures+=("e2e"); fi
   rm -f "$log"
+
+  # The same tests of what a user meets first (first light, the city with its broken tiles,
+  # interaction on a real city, weak-device detection) in a second engine: Debian's Firefox ESR, WebGL2 on llvmpipe,
+  # driven by puppeteer-core over WebDriver BiDi (tests/e2e/lib/browser.mjs). A few minutes.
+  stage "browser end-to-end tests (headless Firefox ESR)"
+  log=$(mktemp)
+  (cd tests/e2e && QUAKEVIEW_BROWSER=firefox QUAKEVIEW_SITE="$root/build/wasm-release/site" \
+    QUAKEVIEW_E2E_DATA="$e2e_data" \
+    node --test --test-reporter=tap first-light.test.mjs city.test.mjs interaction.test.mjs weak-device.test.mjs) 2>&1 | tee "$log"
+  e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)
+  e2e_fail=$(sed -nE 's/^# fail ([0-9]+)/\1/p' "$log" | tail -n 1)
+  counts[e2e_firefox]="${e2e_pass:-0}"
+  if [ -z "$e2e_pass" ] || [ "${e2e_fail:-1}" != 0 ]; then failures+=("e2e-firefox"); fi
+  rm -f "$log"
 else
   failures+=("wasm build")
 fi
 
 elapsed=$(( $(date +%s) - start ))
-summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests, fuzz ${counts[fuzz]:-0} targets in ${elapsed}s"
+summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests, e2e-firefox ${counts[e2e_firefox]:-0} tests, fuzz ${counts[fuzz]:-0} targets in ${elapsed}s"
 if [ "${#failures[@]}" -eq 0 ]; then
   echo "QuakeView tests: ALL PASSED ($summary)"
 else

@@ -1,7 +1,7 @@
 # Fails when a pure engine library includes GL, Emscripten or ImGui headers or tests for
 # __EMSCRIPTEN__. Pure libraries must compile natively and in WASM unchanged (STYLE.md, rule 1).
 # Run: cmake -DSOURCE_DIR=<repo> -P tests/CheckLayering.cmake
-set(pure_libraries core geometry scene spatial lod anim format seismic options)
+set(pure_libraries core geometry scene spatial lod anim format seismic options quality)
 set(forbidden "#[ \t]*include[ \t]*[<\"](GLES[23]?/|GL/|emscripten|imgui)|__EMSCRIPTEN__")
 set(violations "")
 foreach(lib IN LISTS pure_libraries)

@@ -329,6 +329,15 @@
           'Use a current Chrome, Edge, Firefox or Safari with hardware acceleration enabled.');
     return;
   }
+  // The renderer's name: a software rasterizer (SwiftShader, WARP, llvmpipe) makes the engine start
+  // in its weak-device preset. Chromium masks RENDERER ("WebKit WebGL") and names the real one
+  // through WEBGL_debug_renderer_info; Firefox answers RENDERER directly (and deprecates the
+  // extension, so it is asked only when needed).
+  let renderer = String(gl.getParameter(gl.RENDERER) || '');
+  if (/^WebKit WebGL$/i.test(renderer) || renderer === '') {
+    const info = gl.getExtension('WEBGL_debug_renderer_info');
+    if (info) renderer = String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL) || renderer);
+  }
   const lose = gl.getExtension('WEBGL_lose_context');
   if (lose) lose.loseContext();
 
@@ -337,6 +346,9 @@
   const args = [];
   if (params.get('scene')) args.push('--scene', params.get('scene'));
   if (params.get('aa') === '0') args.push('--no-antialias');
+  if (params.get('aa') === '1') args.push('--antialias');
+  if (params.get('quality')) args.push('--quality', params.get('quality'));
+  if (renderer) args.push('--webgl-renderer', renderer);
   if (params.get('bench')) args.push('--bench', params.get('bench'));
   if (params.get('memory')) args.push('--memory-mb', params.get('memory'));
 

@@ -94,7 +94,9 @@ test('the synthetic city streams over HTTP and renders buildings where they are'
 test('street level: full-detail tiles replace the coarse ones and buildings animate', async () => {
   const { context, close } = await launchBrowser();
   try {
-    const { page, problems } = await openCity(context, `${server.url}/?data=/data/synth/tileset.json`);
+    // Full detail, fixed (no governor): a step of the frame-time governor would change the picture
+    // while paused.
+    const { page, problems } = await openCity(context, `${server.url}/?data=/data/synth/tileset.json&quality=high`);
     const overview = await page.evaluate(() => window.quakeview.getCamera());
     await frameWith(page, { distance: 260, pitchDeg: 35, headingDeg: 30, x: overview.x, y: overview.y });
     const stats = await page.evaluate(() => window.quakeview.stats());
@@ -127,7 +129,9 @@ test('street level: full-detail tiles replace the coarse ones and buildings anim
 test('a corrupted tile and a missing tile are reported while the rest renders', async () => {
   const { context, close } = await launchBrowser();
   try {
-    const { page } = await openPage(context, `${server.url}/?data=/broken/tileset.json`);
+    // Full detail (a fixed preset, no governor): the broken leaves must be wanted by the view also on
+    // the software renderers the tests run on, which otherwise start in the weak-device preset.
+    const { page } = await openPage(context, `${server.url}/?data=/broken/tileset.json&quality=high`);
     assert.deepEqual(await waitReady(page), { ok: true });
     const overview = await page.evaluate(() => window.quakeview.getCamera());
     // Close enough that every leaf is wanted.

@@ -40,7 +40,9 @@ test('a failing tile server: failures are shown, the frame loop keeps going, and
   try {
     const camera = centreCamera(manifest);
     const hash = `#cam=${[camera.x, camera.y, camera.distance, camera.headingDeg, camera.pitchDeg, camera.fovDeg].join(',')}&t=6`;
-    const { page } = await openPage(context, `${server.url}/?data=/city/tileset.json${hash}`);
+    // A fixed preset (no frame-time governor): the recovered and the healthy page are compared
+    // pixel by pixel, so both must draw at the same detail.
+    const { page } = await openPage(context, `${server.url}/?data=/city/tileset.json&quality=high${hash}`);
     // ready settles (resolves) even though tiles fail: the page never hangs.
     assert.deepEqual(await waitReady(page, 120000), { ok: true });
     await page.evaluate(() => window.quakeview.pause());
@@ -73,7 +75,7 @@ test('a failing tile server: failures are shown, the frame loop keeps going, and
     const recovered = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'reliability-recovered.png') }));
 
     // The same view from a healthy server looks the same.
-    const { page: healthy } = await openPage(context, `${server.url}/?data=/city/tileset.json${hash}`);
+    const { page: healthy } = await openPage(context, `${server.url}/?data=/city/tileset.json&quality=high${hash}`);
     assert.deepEqual(await waitReady(healthy), { ok: true });
     await healthy.evaluate(() => { window.quakeview.pause(); window.quakeview.setTime(6); });
     await calm(healthy);

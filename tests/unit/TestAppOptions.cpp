@@ -72,6 +72,31 @@ TEST_CASE("Every URL option the README documents reaches the options", "[options
   }
   SECTION("?aa=0 turns antialiasing off") {
     CHECK_FALSE(parse({"--no-antialias"}).options.antialias);
+    CHECK_FALSE(parse({"--no-antialias"}).options.antialiasForced);
+  }
+  SECTION("?aa=1 forces antialiasing on, also on a software renderer; the later flag wins") {
+    const Parsed on = parse({"--antialias"});
+    CHECK(on.errors.empty());
+    CHECK(on.options.antialias);
+    CHECK(on.options.antialiasForced);
+    CHECK_FALSE(parse({"--antialias", "--no-antialias"}).options.antialias);
+    CHECK_FALSE(parse({}).options.antialiasForced);
+  }
+  SECTION("?quality= fixes a preset; anything else lets the device decide, with a message") {
+    CHECK(parse({}).options.quality == QualityChoice::Auto);
+    CHECK(parse({"--quality", "high"}).options.quality == QualityChoice::High);
+    CHECK(parse({"--quality", "balanced"}).options.quality == QualityChoice::Balanced);
+    CHECK(parse({"--quality", "low"}).options.quality == QualityChoice::Low);
+    CHECK(parse({"--quality", "auto"}).options.quality == QualityChoice::Auto);
+    const Parsed bad = parse({"--quality", "ultra"});
+    CHECK(bad.options.quality == QualityChoice::Auto);
+    REQUIRE(bad.errors.size() == 1);
+    CHECK(bad.errors[0] ==
+          "The quality in the URL (quality=ultra) is not auto, high, balanced or low; the device decides.");
+  }
+  SECTION("the shell passes the WebGL renderer's name, made safe to display") {
+    CHECK(parse({"--webgl-renderer", "llvmpipe, or similar"}).options.webGlRenderer == "llvmpipe, or similar");
+    CHECK(parse({"--webgl-renderer", std::string(500, 'x')}).options.webGlRenderer.size() <= 200);
   }
   SECTION("?memory=MB, 16 to 4096") {
     CHECK(parse({"--memory-mb", "256"}).options.city.memoryBudgetBytes == 256ull << 20);

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <iterator>
 
+#include "qv/core/JsonWriter.h"
+#include "qv/quality/SoftwareRenderer.h"
 #include "qv/ui/ImGuiBrowserBackend.h"
 
 namespace qv {
@@ -15,9 +17,38 @@ constexpr const char* kCanvas = "#canvas";
 
 }  // namespace
 
+namespace {
+
+QualityPreset presetOf(QualityChoice choice) {
+  switch (choice) {
+    case QualityChoice::Balanced:
+      return QualityPreset::Balanced;
+    case QualityChoice::Low:
+      return QualityPreset::Low;
+    default:
+      return QualityPreset::High;
+  }
+}
+
+}  // namespace
+
 bool App::start(const AppOptions& options, const std::vector<std::string>& startupErrors) {
+  // On a software renderer the frame time is the triangles and the antialiased pixels: start in
+  // the weak-device preset, without antialiasing, at a pixel ratio of at most 1, unless the link
+  // asks for antialiasing (?aa=1) or a preset (?quality=). The context's antialiasing is fixed for
+  // its life, so this is decided before it exists, from the shell's probe of the renderer.
+  quality_.renderer = options.webGlRenderer;
+  quality_.softwareRenderer = isSoftwareRenderer(options.webGlRenderer);
+  quality_.weakStart = quality_.softwareRenderer && !options.antialiasForced && options.quality == QualityChoice::Auto;
+  quality_.antialias = options.antialias && !quality_.weakStart;
+  quality_.maxPixelRatio = quality_.weakStart ? 1.0 : 0.0;
+  quality_.governorOn = options.quality == QualityChoice::Auto;
+  quality_.governorMaxStep = governor_.options().maxStep;
+  quality_.slowFrameMs = governor_.options().slowFrameMs;
+  quality_.fastFrameMs = governor_.options().fastFrameMs;
+
   std::string error;
-  if (!browser::createWebGl2Context(kCanvas, browser::GlContextOptions{options.antialias}, error)) {
+  if (!browser::createWebGl2Context(kCanvas, browser::GlContextOptions{quality_.antialias}, error)) {
     browser::notifyFatal(error);
     return false;
   }
@@ -49,6 +80,9 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   } else {
     viewer_->showTestScene();
   }
+  panel_.setQualityState(&quality_);
+  panel_.setQuality(quality_.weakStart ? QualityPreset::Low : presetOf(options.quality));
+  if (panel_.quality() != QualityPreset::High) ControlPanel::applyQuality(*viewer_, panel_.quality());
   if (options.benchSeconds > 0.0) viewer_->startBench(options.benchSeconds);
   if (options.camera) viewer_->setCamera(*options.camera);
   pendingTime_ = options.timeSeconds;
@@ -234,12 +268,64 @@ void App::dispatchKey(const InputEvent& e) {
   viewer_->controller().key(cameraKeyForCode(e.code), down);
 }
 
+void App::adaptQuality(double frameMs) {
+  if (quality_.fullQualityRequested) {
+    quality_.fullQualityRequested = false;
+    quality_.weakStart = false;
+    quality_.maxPixelRatio = 0.0;
+    quality_.governorOn = false;
+    panel_.setQuality(QualityPreset::High);
+    governor_.reset();
+    appliedStep_ = 0;
+    ControlPanel::applyQuality(*viewer_, QualityPreset::High);
+  }
+  if (quality_.presetChosen || quality_.governorToggled) {
+    // The preset was just applied as it is (step 0); the governor starts again from there.
+    if (quality_.governorToggled && appliedStep_ != 0) ControlPanel::applyQuality(*viewer_, panel_.quality());
+    quality_.presetChosen = false;
+    quality_.governorToggled = false;
+    governor_.reset();
+    appliedStep_ = 0;
+  }
+  if (quality_.governorOn) {
+    const int step = governor_.addFrame(frameMs);
+    if (step != appliedStep_) {
+      appliedStep_ = step;
+      ControlPanel::applyQuality(*viewer_, panel_.quality(), step);
+    }
+  }
+  quality_.governorStep = appliedStep_;
+  quality_.governorReason = governor_.reason();
+  quality_.governorChangeMedianMs = governor_.lastChangeMedianMs();
+  quality_.governorMedianMs = governor_.medianMs();
+}
+
+std::string App::statsJson(const MemoryInfo& memory) const {
+  std::string json = viewer_->statsJson(memory);
+  JsonWriter w;
+  w.beginObject();
+  w.field("softwareRenderer", quality_.softwareRenderer).field("renderer", quality_.renderer);
+  w.field("antialias", quality_.antialias).field("maxPixelRatio", quality_.maxPixelRatio);
+  w.field("quality", ControlPanel::qualityName(panel_.quality())).field("governor", quality_.governorOn);
+  w.field("qualityStep", quality_.governorStep);
+  w.endObject();
+  const std::string extra = w.take();
+  // Both are JSON objects: the extra fields go before the viewer's closing brace.
+  if (json.size() < 2 || json.back() != '}' || extra.size() < 3) return json;
+  json.pop_back();
+  json += ",";
+  json += extra.substr(1);
+  return json;
+}
+
 void App::frame() {
   const double now = browser::nowSeconds();
+  const double frameMs = (now - lastFrameSeconds_) * 1000.0;
   const double dt = std::clamp(now - lastFrameSeconds_, 0.0, 0.25);
   lastFrameSeconds_ = now;
+  adaptQuality(frameMs);
 
-  const browser::CanvasSize canvas = browser::syncCanvasSize(kCanvas, pixelRatio_, dt);
+  const browser::CanvasSize canvas = browser::syncCanvasSize(kCanvas, pixelRatio_, dt, quality_.maxPixelRatio);
   viewer_->setViewport(canvas.pixelWidth, canvas.pixelHeight, canvas.cssWidth, canvas.cssHeight);
   ui::imguiBrowserNewFrame(canvas.cssWidth, canvas.cssHeight, canvas.devicePixelRatio, dt);
   ImGui_ImplOpenGL3_NewFrame();

@@ -13,6 +13,7 @@
 #include "qv/platform/Browser.h"
 #include "qv/platform/BrowserFetcher.h"
 #include "qv/platform/BrowserInput.h"
+#include "qv/quality/FrameGovernor.h"
 #include "qv/render/GlRenderDevice.h"
 #include "qv/scene/PixelRatio.h"
 #include "qv/scene/TouchGesture.h"
@@ -47,6 +48,9 @@ class App {
   [[nodiscard]] std::string uiLayoutJson() const { return mirror_.layoutJson(); }
   [[nodiscard]] ControlPanel& panel() { return panel_; }
   [[nodiscard]] UiHost& host() { return host_; }
+  /// The viewer's stats() JSON with the device's quality state added: softwareRenderer, renderer,
+  /// antialias, maxPixelRatio, quality (the preset's name), governor (on/off) and qualityStep.
+  [[nodiscard]] std::string statsJson(const MemoryInfo& memory) const;
 
  private:
   void dispatchInput();
@@ -59,6 +63,8 @@ class App {
   /// On a narrow screen, a newly selected building hidden by the bottom sheet (or off screen) is
   /// brought into the part of the view above it.
   void keepSelectionAboveSheet(double cssWidth, double cssHeight);
+  /// Feeds the frame time to the governor and applies the panel's quality requests.
+  void adaptQuality(double frameMs);
 
   std::unique_ptr<GlRenderDevice> device_;
   BrowserFetcher fetcher_;
@@ -85,6 +91,9 @@ class App {
   double touchLastY_ = 0.0;  ///< the dragging finger's last height (CSS px), to scroll the UI
   PixelRatioGovernor pixelRatio_;
   std::string revealedSelection_;  ///< the selection keepSelectionAboveSheet last looked at
+  QualityState quality_;
+  FrameGovernor governor_;
+  int appliedStep_ = 0;
 };
 
 }  // namespace qv

@@ -26,7 +26,7 @@ extern "C" {
 
 EMSCRIPTEN_KEEPALIVE const char* qv_stats_json() {
   if (gApp == nullptr) return hand("null");
-  return hand(gApp->viewer().statsJson(qv::browser::memoryInfo()));
+  return hand(gApp->statsJson(qv::browser::memoryInfo()));
 }
 
 EMSCRIPTEN_KEEPALIVE const char* qv_errors_json() {

@@ -9,10 +9,12 @@
 namespace qv {
 namespace {
 
-constexpr std::array<AppArgument, 14> kArguments = {{
+constexpr std::array<AppArgument, 17> kArguments = {{
     {"--data", ArgumentSource::UrlQuery, "data", true},
     {"--scene", ArgumentSource::UrlQuery, "scene", true},
     {"--no-antialias", ArgumentSource::UrlQuery, "aa", false},
+    {"--antialias", ArgumentSource::UrlQuery, "aa", false},
+    {"--quality", ArgumentSource::UrlQuery, "quality", true},
     {"--memory-mb", ArgumentSource::UrlQuery, "memory", true},
     {"--bench", ArgumentSource::UrlQuery, "bench", true},
     {"--camera", ArgumentSource::UrlHash, "cam", true},
@@ -24,6 +26,7 @@ constexpr std::array<AppArgument, 14> kArguments = {{
     {"--data-origin", ArgumentSource::Shell, "", true},
     {"--allow-origin", ArgumentSource::Shell, "", true},
     {"--shell-error", ArgumentSource::Shell, "", true},
+    {"--webgl-renderer", ArgumentSource::Shell, "", true},
 }};
 
 const AppArgument* findArgument(std::string_view argument) {
@@ -106,6 +109,21 @@ void applyValue(const AppArgument& a, const std::string& v, AppOptions& options,
     if (v != "test")
       errors.push_back("The scene in the URL (" + named(a, v) +
                        ") is not known (known: test); showing the test scene.");
+  } else if (name == "--quality") {
+    if (v == "auto") {
+      options.quality = QualityChoice::Auto;
+    } else if (v == "high") {
+      options.quality = QualityChoice::High;
+    } else if (v == "balanced") {
+      options.quality = QualityChoice::Balanced;
+    } else if (v == "low") {
+      options.quality = QualityChoice::Low;
+    } else {
+      errors.push_back("The quality in the URL (" + named(a, v) +
+                       ") is not auto, high, balanced or low; the device decides.");
+    }
+  } else if (name == "--webgl-renderer") {
+    options.webGlRenderer = displaySafe(v.substr(0, 200));
   } else if (name == "--memory-mb") {
     const std::optional<double> mb = parseNumber(v);
     if (!mb || !(*mb >= 16.0 && *mb <= 4096.0)) {
@@ -231,7 +249,9 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
     if (a == nullptr) {
       errors.push_back("Ignored unknown engine argument '" + shown(args[i]) + "'.");
     } else if (!a->takesValue) {
-      options.antialias = false;  // --no-antialias, the only flag
+      // The flags: --no-antialias (?aa=0) and --antialias (?aa=1); the later one wins.
+      options.antialiasForced = a->argument == "--antialias";
+      options.antialias = options.antialiasForced;
     } else if (i + 1 >= args.size()) {
       errors.push_back("Ignored engine argument '" + args[i] + "' without a value.");
     } else {

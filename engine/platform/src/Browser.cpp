@@ -5,6 +5,7 @@
 #include <emscripten/html5.h>
 #include <malloc.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace qv::browser {
@@ -82,10 +83,14 @@ bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& opt
   return true;
 }
 
-CanvasSize syncCanvasSize(const char* canvasSelector, PixelRatioGovernor& governor, double frameSeconds) {
+CanvasSize syncCanvasSize(const char* canvasSelector, PixelRatioGovernor& governor, double frameSeconds,
+                          double maxPixelRatio) {
   CanvasSize size;
   emscripten_get_element_css_size(canvasSelector, &size.cssWidth, &size.cssHeight);
-  size.devicePixelRatio = governor.update(emscripten_get_device_pixel_ratio(), size.cssWidth, frameSeconds);
+  double deviceRatio = emscripten_get_device_pixel_ratio();
+  if (!(deviceRatio > 0.0)) deviceRatio = 1.0;
+  size.devicePixelRatio = governor.update(deviceRatio, size.cssWidth, frameSeconds);
+  if (maxPixelRatio > 0.0) size.devicePixelRatio = std::min(size.devicePixelRatio, maxPixelRatio);
   size.pixelWidth = std::max(1, static_cast<int>(std::lround(size.cssWidth * size.devicePixelRatio)));
   size.pixelHeight = std::max(1, static_cast<int>(std::lround(size.cssHeight * size.devicePixelRatio)));
   int currentWidth = 0, currentHeight = 0;

@@ -73,6 +73,45 @@ std::string degrees(double value, char positive, char negative) {
   return ui::format("%.5f° %c", std::abs(value), value >= 0.0 ? positive : negative);
 }
 
+// The device's quality state in the Performance panel: the software renderer and the way back to
+// full quality, antialiasing and the pixel ratio, and the frame-time governor's step and why.
+void drawQualityState(QualityState& q, ui::Widgets& w) {
+  const std::string renderer = q.renderer.empty() ? std::string("unknown") : q.renderer;
+  if (q.softwareRenderer && q.weakStart) {
+    w.textWrapped("Software rendering detected (" + renderer + "): weak-device preset.");
+    if (w.button("Use full quality")) q.fullQualityRequested = true;
+  } else if (q.softwareRenderer) {
+    w.textWrapped("Software rendering detected (" + renderer + "): full quality as chosen.");
+  } else {
+    w.textWrapped("Renderer: " + renderer);
+  }
+  w.text(ui::format("antialiasing %s, pixel ratio %s", q.antialias ? "on" : "off",
+                    q.maxPixelRatio > 0.0 ? ui::format("capped at %.1f", q.maxPixelRatio).c_str() : "not capped"));
+  if (!q.antialias && q.softwareRenderer) w.textWrapped("Antialiasing needs a reload: add ?aa=1 to the address.");
+  bool on = q.governorOn;
+  if (w.checkbox("Adapt detail to the frame time", &on)) {
+    q.governorOn = on;
+    q.governorToggled = true;
+  }
+  if (!q.governorOn) {
+    w.text("detail step 0 (governor off)");
+    return;
+  }
+  std::string why;
+  switch (q.governorReason) {
+    case GovernorReason::TooSlow:
+      why = ui::format("lowered: median frame %.0f ms > %.0f ms", q.governorChangeMedianMs, q.slowFrameMs);
+      break;
+    case GovernorReason::Headroom:
+      why = ui::format("raised: median frame %.0f ms < %.0f ms", q.governorChangeMedianMs, q.fastFrameMs);
+      break;
+    case GovernorReason::Steady:
+      why = ui::format("steady: frames within %.0f ms", q.slowFrameMs);
+      break;
+  }
+  w.text(ui::format("detail step %d of %d below the preset (%s)", q.governorStep, q.governorMaxStep, why.c_str()));
+}
+
 }  // namespace
 
 const char* ControlPanel::qualityName(QualityPreset preset) {
@@ -86,7 +125,7 @@ const char* ControlPanel::qualityName(QualityPreset preset) {
   }
 }
 
-void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset) {
+void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset, int governorStep) {
   CityScene* city = viewer.city();
   if (city == nullptr) return;
   CitySceneOptions& o = city->mutableOptions();
@@ -110,6 +149,13 @@ void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset) {
       o.maxAnimatedBuildings = 1500;
       break;
   }
+  const DetailScale scale = detailScaleForStep(governorStep);
+  o.maxScreenSpaceError *= scale.screenSpaceError;
+  o.maxDrawTiles = std::max<std::uint32_t>(
+      8u, static_cast<std::uint32_t>(std::lround(static_cast<float>(o.maxDrawTiles) * scale.drawTiles)));
+  o.animationRadiusM *= scale.animationRadius;
+  o.maxAnimatedBuildings =
+      static_cast<std::uint32_t>(std::lround(static_cast<float>(o.maxAnimatedBuildings) * scale.animatedBuildings));
 }
 
 std::string ControlPanel::lengthText(const Viewer& viewer, double metres) const {
@@ -609,13 +655,17 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     if (w.radio("Feet##units", feet)) viewer.setShowFeet(true);
   }
 
-  if (w.collapsingHeader("Performance", false)) {
+  // Open from the start when the device made the viewer start in the weak-device preset, so the
+  // person sees why and how to get full quality back.
+  if (w.collapsingHeader("Performance", qualityState_ != nullptr && qualityState_->weakStart)) {
     int quality = static_cast<int>(quality_);
     static const char* const qualities[] = {"High (desktop)", "Balanced", "Low (weak devices)"};
     if (w.combo("Quality", &quality, qualities, 3)) {
       quality_ = static_cast<QualityPreset>(quality);
       applyQuality(viewer, quality_);
+      if (qualityState_ != nullptr) qualityState_->presetChosen = true;
     }
+    if (qualityState_ != nullptr) drawQualityState(*qualityState_, w);
     if (city != nullptr) {
       CitySceneOptions& o = city->mutableOptions();
       w.sliderFloat("Animation radius (m)", &o.animationRadiusM, 0.0f, 5000.0f, "%.0f");

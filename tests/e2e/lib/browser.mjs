@@ -1,11 +1,28 @@
-// Launches Debian's Chromium headless with SwiftShader WebGL2 through playwright-core (never a
-// downloaded browser), and collects what a page logs, so tests can assert there were no errors.
+// Launches the browser the end-to-end tests run in, never a downloaded one, and collects what a page
+// logs, so tests can assert there were no errors. QUAKEVIEW_BROWSER chooses the engine:
+// - "chromium" (default): Debian's Chromium, WebGL2 on SwiftShader, driven by playwright-core;
+// - "firefox": Debian's Firefox ESR, WebGL2 on Mesa's llvmpipe, driven by puppeteer-core over
+//   WebDriver BiDi (playwright-core drives only its own patched Firefox, a download).
+// Tests are written against the subset of Playwright's Page API below; for Firefox the puppeteer
+// page is wrapped so the same test file runs unchanged in either engine:
+//   page.evaluate(fn, arg), page.waitForFunction(fn, arg, {timeout, polling}), page.waitForTimeout(ms),
+//   page.screenshot({path}) -> Buffer, page.mouse.{move(x, y, {steps}), down(), up(), click(x, y),
+//   wheel(dx, dy)}, page.keyboard.{press, down, up, type}, page.focus(selector),
+//   page.locator(selector).{innerText(), isVisible()}, page.waitForEvent('download', {timeout}) ->
+//   {suggestedFilename(), path()}, page.on('console' | 'pageerror'), page.setDefaultTimeout(ms),
+//   page.goto(url, {waitUntil: 'load'}), page.close(); context.newPage().
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { chromium } from 'playwright-core';
 
 export const CHROMIUM = process.env.QUAKEVIEW_CHROMIUM || '/usr/bin/chromium';
+export const FIREFOX = process.env.QUAKEVIEW_FIREFOX || '/usr/bin/firefox-esr';
+/// The engine the tests run in: 'chromium' or 'firefox'.
+export const BROWSER = (process.env.QUAKEVIEW_BROWSER || 'chromium').toLowerCase();
+if (!['chromium', 'firefox'].includes(BROWSER)) {
+  throw new Error(`QUAKEVIEW_BROWSER=${process.env.QUAKEVIEW_BROWSER}: expected chromium or firefox`);
+}
 
 const BASE_FLAGS = [
   '--no-sandbox',
@@ -24,8 +41,13 @@ const BASE_FLAGS = [
 /// options.webgl === false launches with WebGL disabled (to test the fallback message).
 /// options.viewport {width, height} (CSS px, default 1280 x 720) and options.deviceScaleFactor
 /// (default 1) size the page; options.touch === true emulates a touch device (hasTouch and
-/// isMobile: touch events, page.touchscreen, a mobile viewport).
+/// isMobile: touch events, page.touchscreen, a mobile viewport; Chromium only).
+/// Resolves to {context, close, browser} where browser is 'chromium' or 'firefox'.
 export async function launchBrowser(options = {}) {
+  return BROWSER === 'firefox' ? launchFirefox(options) : launchChromium(options);
+}
+
+async function launchChromium(options) {
   if (!fs.existsSync(CHROMIUM)) {
     throw new Error(`Chromium not found at ${CHROMIUM}: run scripts/setup.sh (Debian package chromium)`);
   }
@@ -45,7 +67,133 @@ export async function launchBrowser(options = {}) {
     await context.close();
     fs.rmSync(userDataDir, { recursive: true, force: true });
   };
-  return { context, close };
+  return { context, close, browser: 'chromium' };
+}
+
+// Headless Firefox has WebGL2 only on llvmpipe through EGL, and only with WebGL force-enabled
+// (../shared/TOOLCHAIN.md; needs Debian's libgl1-mesa-dri, libegl1 and libegl-mesa0). Downloads go
+// without a dialog into a folder of the test run, which waitForEvent('download') watches.
+async function launchFirefox(options) {
+  if (!fs.existsSync(FIREFOX)) {
+    throw new Error(`Firefox not found at ${FIREFOX}: run scripts/setup.sh (Debian package firefox-esr)`);
+  }
+  const { default: puppeteer } = await import('puppeteer-core');
+  const downloads = fs.mkdtempSync(path.join(os.tmpdir(), 'quakeview-firefox-downloads-'));
+  const prefs = {
+    'browser.download.dir': downloads,
+    'browser.download.folderList': 2,
+    'browser.download.useDownloadDir': true,
+    'browser.download.always_ask_before_handling_new_types': false,
+    'browser.download.start_downloads_in_tmp_dir': false,
+    'browser.download.alwaysOpenPanel': false,
+    'browser.download.panel.shown': true,
+    'browser.helperApps.neverAsk.saveToDisk': 'text/csv,application/geo+json,application/json,text/plain,application/octet-stream',
+  };
+  if (options.webgl === false) prefs['webgl.disabled'] = true;
+  else prefs['webgl.force-enabled'] = true;
+  const viewport = options.viewport || { width: 1280, height: 720 };
+  const browser = await puppeteer.launch({
+    browser: 'firefox',
+    executablePath: FIREFOX,
+    headless: true,
+    defaultViewport: { width: viewport.width, height: viewport.height, deviceScaleFactor: 1 },
+    extraPrefsFirefox: prefs,
+    env: { ...process.env, MOZ_WEBGL_FORCE_EGL: '1' },
+    // Firefox says "RenderCompositorSWGL failed mapping default framebuffer" on stderr, harmlessly.
+    dumpio: false,
+  });
+  const context = {
+    newPage: async () => wrapPuppeteerPage(await browser.newPage(), downloads),
+  };
+  const close = async () => {
+    await browser.close();
+    fs.rmSync(downloads, { recursive: true, force: true });
+  };
+  return { context, close, browser: 'firefox' };
+}
+
+const sleep = (ms) => new Promise((resolve) => setTimeout(resolve, ms));
+
+// A puppeteer Page seen through Playwright's API (the subset listed at the top of this file).
+function wrapPuppeteerPage(page, downloads) {
+  let defaultTimeout = 30000;
+  // Chromium (over CDP) acknowledges an input event only once the page has handled it, and the
+  // engine handles input in its next animation frame; WebDriver BiDi returns as soon as the event
+  // is dispatched. Waiting two animation frames after each action gives Firefox the same order:
+  // what a test reads after an action sees its effect.
+  const settled = async (result) => {
+    await page.evaluate(() => new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve))));
+    return result;
+  };
+  const mouse = {
+    move: async (x, y, opts) => settled(await page.mouse.move(x, y, opts)),
+    down: async (opts) => settled(await page.mouse.down(opts)),
+    up: async (opts) => settled(await page.mouse.up(opts)),
+    click: async (x, y, opts) => settled(await page.mouse.click(x, y, opts)),
+    // Playwright: wheel(deltaX, deltaY); puppeteer: wheel({deltaX, deltaY}).
+    wheel: async (deltaX, deltaY) => settled(await page.mouse.wheel({ deltaX, deltaY })),
+  };
+  // Playwright's key names are the DOM `code`/`key` names; puppeteer's US layout knows the space
+  // bar only as ' '.
+  const keyName = (key) => (key === 'Space' ? ' ' : key);
+  const keyboard = {
+    press: async (key, opts) => settled(await page.keyboard.press(keyName(key), opts)),
+    down: async (key, opts) => settled(await page.keyboard.down(keyName(key), opts)),
+    up: async (key) => settled(await page.keyboard.up(keyName(key))),
+    type: async (text, opts) => settled(await page.keyboard.type(text, opts)),
+  };
+  const wrapped = {
+    raw: page,
+    mouse,
+    keyboard,
+    evaluate: (fn, arg) => (arg === undefined ? page.evaluate(fn) : page.evaluate(fn, arg)),
+    // Playwright: (fn, arg, options); puppeteer: (fn, options, ...args). Playwright polls on
+    // animation frames by default; puppeteer's 'raf' is the same.
+    waitForFunction: (fn, arg, options = {}) => {
+      const opts = { timeout: options.timeout ?? defaultTimeout, polling: options.polling ?? 'raf' };
+      return arg === undefined || arg === null ? page.waitForFunction(fn, opts) : page.waitForFunction(fn, opts, arg);
+    },
+    waitForTimeout: (ms) => sleep(ms),
+    screenshot: async (options = {}) => Buffer.from(await page.screenshot(options)),
+    focus: (selector) => page.focus(selector),
+    goto: (url, options = {}) => page.goto(url, { timeout: defaultTimeout, waitUntil: options.waitUntil || 'load' }),
+    close: () => page.close(),
+    url: () => page.url(),
+    setDefaultTimeout: (ms) => {
+      defaultTimeout = ms;
+      page.setDefaultTimeout(ms);
+    },
+    on: (event, handler) => {
+      page.on(event, handler);
+      return wrapped;
+    },
+    locator: (selector) => ({
+      innerText: () => page.$eval(selector, (e) => e.innerText),
+      isVisible: () => page.$eval(selector, (e) => {
+        const style = window.getComputedStyle(e);
+        const box = e.getBoundingClientRect();
+        return style.display !== 'none' && style.visibility !== 'hidden' && box.width > 0 && box.height > 0;
+      }),
+    }),
+    // Resolves when a new file has fully arrived in the download folder (Firefox writes NAME.part
+    // first, then renames it).
+    waitForEvent: async (event, options = {}) => {
+      if (event !== 'download') throw new Error(`waitForEvent('${event}') is not adapted for Firefox`);
+      const before = new Set(fs.readdirSync(downloads));
+      const deadline = Date.now() + (options.timeout ?? defaultTimeout);
+      while (Date.now() < deadline) {
+        const fresh = fs.readdirSync(downloads).filter((f) => !before.has(f) && !f.endsWith('.part'));
+        const partial = fs.readdirSync(downloads).some((f) => f.endsWith('.part'));
+        if (fresh.length > 0 && !partial) {
+          const file = path.join(downloads, fresh[0]);
+          return { suggestedFilename: () => fresh[0], path: async () => file };
+        }
+        await sleep(100);
+      }
+      throw new Error(`no download arrived in ${downloads} within ${options.timeout ?? defaultTimeout} ms`);
+    },
+  };
+  return wrapped;
 }
 
 /// Opens a page and records console errors, page errors and failed requests.

@@ -2,7 +2,7 @@
 // config.json into engine arguments ("--camera", "12,34,900,0,45"); this parses and checks them.
 // The URL names are a contract with everyone who shares a link (README, "URL options" and
 // "Sharing a view"):
-//   query: ?data=URL ?scene=test ?aa=0 ?memory=MB ?bench=SECONDS
+//   query: ?data=URL ?scene=test ?aa=0|1 ?quality=high|balanced|low ?memory=MB ?bench=SECONDS
 //   hash:  #cam=x,y,distance,heading,pitch[,fov] &t=seconds &play=0|1 &sel=id &f=minDamage,use,critical
 // A bad value never stops the viewer: the option keeps its default and a message for the person
 // reading the page names the URL parameter and the value given ("The time in the link (t=-3) is
@@ -23,10 +23,20 @@
 
 namespace qv {
 
+/// The quality the viewer starts in (?quality=).
+enum class QualityChoice : std::uint8_t { Auto, High, Balanced, Low };
+
 struct AppOptions {
-  std::string scene;    ///< "test" for the built-in test scene (then dataUrl is empty)
-  std::string dataUrl;  ///< tileset.json URL, as the page gave it (checked later by the origin policy)
-  bool antialias = true;
+  std::string scene;             ///< "test" for the built-in test scene (then dataUrl is empty)
+  std::string dataUrl;           ///< tileset.json URL, as the page gave it (checked later by the origin policy)
+  bool antialias = true;         ///< ?aa=0: false
+  bool antialiasForced = false;  ///< ?aa=1: on, and full quality even on a software renderer
+  /// ?quality=: a fixed preset (the frame-time governor off); Auto: the device decides (the
+  /// weak-device preset on a software renderer) and the governor adapts.
+  QualityChoice quality = QualityChoice::Auto;
+  /// The WebGL renderer's name as the shell's probe read it (UNMASKED_RENDERER_WEBGL or RENDERER);
+  /// empty when unknown.
+  std::string webGlRenderer;
   double benchSeconds = 0.0;  ///< > 0: run the benchmark flight for this long
   CitySceneOptions city;      ///< memoryBudgetBytes and the data origin policy set here
   // The shareable view (from the URL hash), applied once the city is there.
@@ -49,7 +59,7 @@ struct AppArgument {
   std::string_view argument;  ///< "--camera"
   ArgumentSource source = ArgumentSource::Shell;
   std::string_view urlName;  ///< "cam"; empty for Shell
-  bool takesValue = true;    ///< false: a flag ("--no-antialias", from ?aa=0)
+  bool takesValue = true;    ///< false: a flag ("--no-antialias" from ?aa=0, "--antialias" from ?aa=1)
 };
 
 /// Every argument parseAppOptions understands (a fixed table; the strings are static).

@@ -27,9 +27,11 @@ struct CanvasSize {
 };
 
 /// Reads the canvas's CSS size and the device's pixel ratio, asks `governor` for the ratio to
-/// draw at (given the interval since the last frame, seconds), and resizes the canvas's drawing
-/// buffer to CSS size × that ratio when it differs.
-CanvasSize syncCanvasSize(const char* canvasSelector, PixelRatioGovernor& governor, double frameSeconds);
+/// draw at (given the interval since the last frame, seconds), caps it at `maxPixelRatio` when
+/// that is > 0 (fewer pixels on a slow renderer: the weak-device preset), and resizes the
+/// canvas's drawing buffer to CSS size × that ratio when it differs.
+CanvasSize syncCanvasSize(const char* canvasSelector, PixelRatioGovernor& governor, double frameSeconds,
+                          double maxPixelRatio = 0.0);
 
 /// Live heap bytes (malloc'd and not freed) and the size of the WASM memory.
 MemoryInfo memoryInfo();

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "qv/quality/FrameGovernor.h"
 #include "qv/scene/Viewer.h"
 #include "qv/ui/Widgets.h"
 
@@ -24,6 +25,27 @@ class UiHost {
 
 /// Quality presets for weak devices: draw budget, detail and animation radius.
 enum class QualityPreset : int { High = 0, Balanced = 1, Low = 2 };
+
+/// How the viewer adapts to the device, shared by the app (which decides) and the Performance
+/// panel (which shows it and lets the user override it). Owned by the app.
+struct QualityState {
+  std::string renderer;           ///< the WebGL renderer's name; empty when unknown
+  bool softwareRenderer = false;  ///< isSoftwareRenderer(renderer)
+  bool weakStart = false;         ///< started in the Low preset because of the software renderer
+  bool antialias = true;          ///< of the context (fixed for the page's life)
+  double maxPixelRatio = 0.0;     ///< cap on the device pixel ratio; 0: none
+  bool governorOn = true;         ///< the frame-time governor adapts the detail step
+  int governorStep = 0;           ///< steps below the preset (0 .. FrameGovernorOptions::maxStep)
+  int governorMaxStep = 3;
+  GovernorReason governorReason = GovernorReason::Steady;
+  double governorChangeMedianMs = 0.0;  ///< the median frame time behind the last change
+  double governorMedianMs = 0.0;        ///< the median frame time of the current window
+  double slowFrameMs = 50.0, fastFrameMs = 25.0;
+  // Requests from the panel, cleared by the app once handled.
+  bool fullQualityRequested = false;  ///< "Use full quality": High preset, no pixel ratio cap, governor off
+  bool presetChosen = false;          ///< the user picked a preset: the governor starts again from step 0
+  bool governorToggled = false;       ///< the governor checkbox changed
+};
 
 class ControlPanel {
  public:
@@ -45,7 +67,12 @@ class ControlPanel {
   std::string exportList(Viewer& viewer, const std::string& format, UiHost& host);
 
   [[nodiscard]] static const char* qualityName(QualityPreset preset);
-  static void applyQuality(Viewer& viewer, QualityPreset preset);
+  /// Sets the city's detail from the preset, lowered by `governorStep` steps (detailScaleForStep).
+  static void applyQuality(Viewer& viewer, QualityPreset preset, int governorStep = 0);
+  [[nodiscard]] QualityPreset quality() const { return quality_; }
+  void setQuality(QualityPreset preset) { quality_ = preset; }
+  /// The app's quality state shown in the Performance panel (nullptr: none); not owned.
+  void setQualityState(QualityState* state) { qualityState_ = state; }
 
  private:
   void drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);
@@ -73,6 +100,7 @@ class ControlPanel {
   std::string search_;
   std::string inspected_;  // the building the inspection window showed last frame
   QualityPreset quality_ = QualityPreset::High;
+  QualityState* qualityState_ = nullptr;
 };
 
 }  // namespace qv
