@@ -281,10 +281,14 @@
   }
 
   function announceSelection(id) {
-    // A building selected from the search may have no loaded tile yet: the search index names it.
-    const b = api.building(id) || api.search(id, 5).find((entry) => entry.id === id);
-    if (!b && ++access.tries < 40) return false;  // not known yet: ask again
-    const name = b ? (b.name || b.address || b.id) : id;
+    // A building selected from the search may have no loaded tile yet, and a far-view tile may not
+    // carry its name: the search index names it.
+    const loaded = api.building(id);
+    const hit = api.search(id, 5).find((entry) => entry.id === id);
+    const label = (loaded && (loaded.name || loaded.address)) || (hit && (hit.name || hit.address));
+    if (!label && ++access.tries < 40) return false;  // not known yet: ask again
+    const b = loaded || hit;
+    const name = label || id;
     const damage = b ? (DAMAGE_WORDS[b.damageState] || 'no earthquake result') : 'details loading';
     setText(statusBox, 'Selected: ' + name + ', ' + damage);
     return true;

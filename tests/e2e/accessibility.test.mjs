@@ -111,7 +111,7 @@ test('Tab reaches headers, checkboxes, buttons and the inspection window beyond 
     assert.equal(await page.evaluate(() => window.quakeview.uiFocus()), null, 'Escape hides the focus');
 
     const before = decodePng(await page.screenshot());
-    const seen = await tabUntil(page, (f) => f.startsWith('Critical facilities only, checkbox'));
+    const seen = await tabUntil(page, (f) => f.startsWith('Critical facilities only') && f.includes(', checkbox,'));
     assert.ok(seen.some((f) => f && f.endsWith(', section, expanded')), `a section header: ${JSON.stringify(seen)}`);
     assert.ok(seen.some((f) => f && f.startsWith('Play (Space), button') || f && f.startsWith('Pause (Space), button')),
       `the play button: ${JSON.stringify(seen)}`);
