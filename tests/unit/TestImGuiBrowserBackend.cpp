@@ -332,7 +332,7 @@ TEST_CASE("A tap on a window's title bar folds and unfolds it, except on its clo
   fixture.end([&] { closable(); });
 }
 
-TEST_CASE("A finger dragged over a window scrolls it with the finger; elsewhere nothing scrolls",
+TEST_CASE("A finger dragged over a window scrolls it with the finger, elsewhere nothing scrolls",
           "[ui][backend][touch]") {
   BackendFixture fixture;
   float scrollY = 0.0f, scrollMaxY = 0.0f;
