@@ -5,29 +5,15 @@
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
 import { changedFraction, colourAt, colourDistance, decodePng } from './lib/pixels.mjs';
-import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
+import { ESB, MIDTOWN, URL_PATH, serveMidtown } from './lib/midtown.mjs';
+import { ARTIFACTS } from './lib/server.mjs';
 
-const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
-const MIDTOWN = path.join(DATA, 'midtown');
-const ESB = 'w34633854';
-const URL_PATH = '/?data=/data/midtown/tileset.json';
+const midtown = serveMidtown();
 
-let server;
-let esb; // what `quakeview-prep info --building w34633854 --json` says
-before(async () => {
-  assert.ok(fs.existsSync(path.join(MIDTOWN, 'tileset.json')), `test city missing: ${MIDTOWN} (scripts/test.sh prepares it)`);
-  esb = JSON.parse(fs.readFileSync(path.join(DATA, 'midtown-esb.json'), 'utf8'));
-  server = await serveSite({ '/data': DATA });
-  fs.mkdirSync(ARTIFACTS, { recursive: true });
-});
-after(async () => {
-  if (server) await server.close();
-});
-
-async function openCity(context, url = `${server.url}${URL_PATH}`) {
+async function openCity(context, url = `${midtown.server.url}${URL_PATH}`) {
   const { page, problems } = await openPage(context, url);
   assert.deepEqual(await waitReady(page), { ok: true });
   return { page, problems };
@@ -45,9 +31,9 @@ async function settle(page) {
 // (200 m above the street, inside its 443 m tower) appears on the canvas.
 async function lookAtEsb(page) {
   assert.ok(await page.evaluate(({ x, y }) => window.quakeview.setCamera({ x, y, distance: 1400, headingDeg: 20, pitchDeg: 55, fovDeg: 45 }),
-    { x: esb.x_m, y: esb.y_m }));
+    { x: midtown.esb.x_m, y: midtown.esb.y_m }));
   await settle(page);
-  const [sx, sy] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: esb.x_m, y: esb.y_m });
+  const [sx, sy] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: midtown.esb.x_m, y: midtown.esb.y_m });
   return { x: sx, y: sy };
 }
 
@@ -69,7 +55,7 @@ test('clicking the Empire State Building selects it and the inspection window sh
     assert.equal(building.name, 'Empire State Building');
     assert.ok(Math.abs(building.heightM - 443.2) < 0.05, `height ${building.heightM}`);
     assert.equal(building.heightSource, 'tagged');
-    assert.ok(Math.abs(building.x - esb.x_m) < 1 && Math.abs(building.y - esb.y_m) < 1);
+    assert.ok(Math.abs(building.x - midtown.esb.x_m) < 1 && Math.abs(building.y - midtown.esb.y_m) < 1);
     assert.ok(['none', 'slight', 'moderate', 'extensive', 'complete'].includes(building.damageState), building.damageState);
     assert.equal(building.peakDriftRatio.length, building.storeys);
     assert.ok(building.peakRoofDisplacementM > 0 && building.pgaG > 0);
@@ -117,7 +103,7 @@ test('search finds the Empire State Building; the damage filter dims the others;
 
     // Before filtering: a screenshot of the whole city.
     await page.evaluate(() => window.quakeview.pause());
-    await page.evaluate(({ x, y }) => window.quakeview.setCamera({ x, y, distance: 2500, headingDeg: 0, pitchDeg: 60, fovDeg: 45 }), { x: esb.x_m, y: esb.y_m });
+    await page.evaluate(({ x, y }) => window.quakeview.setCamera({ x, y, distance: 2500, headingDeg: 0, pitchDeg: 60, fovDeg: 45 }), { x: midtown.esb.x_m, y: midtown.esb.y_m });
     await settle(page);
     await page.waitForTimeout(300);
     const before = decodePng(await page.screenshot());
@@ -192,7 +178,7 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
   try {
     const { page } = await openCity(context);
     await page.evaluate(() => window.quakeview.pause());
-    const camera = { x: esb.x_m + 120.5, y: esb.y_m - 80.25, distance: 900, headingDeg: 33, pitchDeg: 40, fovDeg: 45 };
+    const camera = { x: midtown.esb.x_m + 120.5, y: midtown.esb.y_m - 80.25, distance: 900, headingDeg: 33, pitchDeg: 40, fovDeg: 45 };
     assert.ok(await page.evaluate((c) => window.quakeview.setCamera(c), camera));
     assert.ok(await page.evaluate(() => window.quakeview.setTime(7.5)));
     assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
@@ -221,14 +207,14 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     assert.deepEqual(problems, []);
 
     // A corrupted link: every value broken.
-    const { page: broken } = await openPage(context, `${server.url}${URL_PATH}#cam=12,abc,9&t=-3&sel=&f=banana`);
+    const { page: broken } = await openPage(context, `${midtown.server.url}${URL_PATH}#cam=12,abc,9&t=-3&sel=&f=banana`);
     assert.deepEqual(await waitReady(broken), { ok: true });
     const errors = await broken.evaluate(() => window.quakeview.errors());
     assert.ok(errors.some((e) => /camera in the link/.test(e)), JSON.stringify(errors));
     assert.ok(errors.some((e) => /time in the link/.test(e)), JSON.stringify(errors));
     assert.ok(errors.some((e) => /filters in the link/.test(e)), JSON.stringify(errors));
     // The default view: the same camera as a link without a hash.
-    const { page: plain } = await openPage(context, `${server.url}${URL_PATH}`);
+    const { page: plain } = await openPage(context, `${midtown.server.url}${URL_PATH}`);
     assert.deepEqual(await waitReady(plain), { ok: true });
     const fallback = await broken.evaluate(() => window.quakeview.getCamera());
     const defaultView = await plain.evaluate(() => window.quakeview.getCamera());

@@ -6,26 +6,12 @@
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
-import { after, before, test } from 'node:test';
+import { test } from 'node:test';
 import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
-import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
+import { ESB, URL_PATH, serveMidtown } from './lib/midtown.mjs';
+import { ARTIFACTS } from './lib/server.mjs';
 
-const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
-const MIDTOWN = path.join(DATA, 'midtown');
-const ESB = 'w34633854';
-const URL_PATH = '/?data=/data/midtown/tileset.json';
-
-let server;
-let esb; // what `quakeview-prep info --building w34633854 --json` says
-before(async () => {
-  assert.ok(fs.existsSync(path.join(MIDTOWN, 'tileset.json')), `test city missing: ${MIDTOWN} (scripts/test.sh prepares it)`);
-  esb = JSON.parse(fs.readFileSync(path.join(DATA, 'midtown-esb.json'), 'utf8'));
-  server = await serveSite({ '/data': DATA });
-  fs.mkdirSync(ARTIFACTS, { recursive: true });
-});
-after(async () => {
-  if (server) await server.close();
-});
+const midtown = serveMidtown();
 
 async function settle(page) {
   await page.waitForFunction(() => {
@@ -94,9 +80,9 @@ async function timeStops(page) {
 // its upper part (200 m up, inside its 443 m tower) appears.
 async function lookAtEsb(page, distance) {
   assert.ok(await page.evaluate(({ x, y, d }) => window.quakeview.setCamera({ x, y, distance: d, headingDeg: 20, pitchDeg: 55, fovDeg: 45 }),
-    { x: esb.x_m, y: esb.y_m, d: distance }));
+    { x: midtown.esb.x_m, y: midtown.esb.y_m, d: distance }));
   await settle(page);
-  const [x, y] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: esb.x_m, y: esb.y_m });
+  const [x, y] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: midtown.esb.x_m, y: midtown.esb.y_m });
   return { x, y };
 }
 
@@ -105,7 +91,7 @@ const inside = (p, r) => p.x >= r.x && p.x <= r.x + r.width && p.y >= r.y && p.y
 test('on a phone, taps open the folded panel, press Pause and select a building shown above a bottom sheet; the canvas is not drawn at 3x', async () => {
   const { context, close } = await launchBrowser({ viewport: { width: 390, height: 844 }, deviceScaleFactor: 3, touch: true });
   try {
-    const { page, problems } = await openPage(context, `${server.url}${URL_PATH}`);
+    const { page, problems } = await openPage(context, `${midtown.server.url}${URL_PATH}`);
     assert.deepEqual(await waitReady(page), { ok: true });
     await settle(page);
     const cdp = await context.newCDPSession(page);
@@ -161,7 +147,7 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
     assert.equal(sheet.width, 390);
     assert.ok(Math.abs(sheet.y + sheet.height - 844) < 1, JSON.stringify(sheet));
     assert.ok(sheet.height <= 844 * 0.4 + 1 && sheet.height > 150, JSON.stringify(sheet));
-    const [, shownY] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: esb.x_m, y: esb.y_m });
+    const [, shownY] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: midtown.esb.x_m, y: midtown.esb.y_m });
     assert.ok(shownY < sheet.y, `the building (${shownY}) above the sheet (${sheet.y})`);
     await page.screenshot({ path: path.join(ARTIFACTS, 'touch-phone-sheet.png') });
 
@@ -176,15 +162,15 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
     // A tap on a building selected from a sheet-hidden spot brings it above the sheet.
     await page.evaluate(() => window.quakeview.select(''));
     const low = await lookAtEsb(page, 1600);
-    await page.evaluate(({ x, y, d }) => window.quakeview.setCamera({ x, y: y + 500, distance: d }), { x: esb.x_m, y: esb.y_m, d: 1600 });
+    await page.evaluate(({ x, y, d }) => window.quakeview.setCamera({ x, y: y + 500, distance: d }), { x: midtown.esb.x_m, y: midtown.esb.y_m, d: 1600 });
     await settle(page);
-    const [, hiddenY] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: esb.x_m, y: esb.y_m });
+    const [, hiddenY] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: midtown.esb.x_m, y: midtown.esb.y_m });
     assert.ok(hiddenY > 844 * 0.6, `set-up: the building low on the screen (${hiddenY}, was ${low.y})`);
     assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
     await page.waitForFunction(({ x, y, limit }) => {
       const p = window.quakeview.worldToScreen(x, y, 200);
       return p && p[1] < limit;
-    }, { x: esb.x_m, y: esb.y_m, limit: 844 * 0.6 }, { timeout: 20000, polling: 100 });
+    }, { x: midtown.esb.x_m, y: midtown.esb.y_m, limit: 844 * 0.6 }, { timeout: 20000, polling: 100 });
 
     assert.deepEqual(problems, []);
   } finally {
@@ -195,7 +181,7 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
 test('on a tablet, a tap presses Pause in the open panel and a tap selects a building', async () => {
   const { context, close } = await launchBrowser({ viewport: { width: 768, height: 1024 }, deviceScaleFactor: 2, touch: true });
   try {
-    const { page, problems } = await openPage(context, `${server.url}${URL_PATH}`);
+    const { page, problems } = await openPage(context, `${midtown.server.url}${URL_PATH}`);
     assert.deepEqual(await waitReady(page), { ok: true });
     await settle(page);
     const cdp = await context.newCDPSession(page);
