@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, settle, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -29,15 +29,6 @@ before(async () => {
 after(async () => {
   if (server) await server.close();
 });
-
-async function settle(page) {
-  await page.evaluate(() => { window.__calm = 0; });
-  await page.waitForFunction(() => {
-    const s = window.quakeview.stats();
-    window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
-    return window.__calm >= 4;
-  }, null, { timeout: 60000, polling: 250 });
-}
 
 // Selects `id`, flies to it, waits for the flight, the tiles and the window's motion plots.
 async function inspect(page, id) {

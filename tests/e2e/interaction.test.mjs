@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, settle, waitReady } from './lib/browser.mjs';
 import { changedFraction, colourAt, colourDistance, decodePng } from './lib/pixels.mjs';
 import { ESB, MIDTOWN, URL_PATH, serveMidtown } from './lib/midtown.mjs';
 import { ARTIFACTS } from './lib/server.mjs';
@@ -17,14 +17,6 @@ async function openCity(context, url = `${midtown.server.url}${URL_PATH}`) {
   const { page, problems } = await openPage(context, url);
   assert.deepEqual(await waitReady(page), { ok: true });
   return { page, problems };
-}
-
-async function settle(page) {
-  await page.waitForFunction(() => {
-    const s = window.quakeview.stats();
-    window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
-    return window.__calm >= 4;
-  }, null, { timeout: 60000, polling: 250 });
 }
 
 // Looks down on the Empire State Building from the south-east and returns where its upper part

@@ -7,19 +7,11 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, settle, waitReady } from './lib/browser.mjs';
 import { ESB, URL_PATH, serveMidtown } from './lib/midtown.mjs';
 import { ARTIFACTS } from './lib/server.mjs';
 
 const midtown = serveMidtown();
-
-async function settle(page) {
-  await page.waitForFunction(() => {
-    const s = window.quakeview.stats();
-    window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
-    return window.__calm >= 4;
-  }, null, { timeout: 60000, polling: 250 });
-}
 
 const layout = (page) => page.evaluate(() => window.quakeview.uiLayout());
 const panelOf = (l) => l.windows.find((w) => w.title === 'QuakeView');

@@ -209,6 +209,17 @@ export async function openPage(context, url, { timeoutMs = 60000 } = {}) {
   return { page, problems };
 }
 
+/// Waits until the view has nothing left to load (no tile pending) for four polls in a row, 250 ms
+/// apart: after a camera move or a flight, what it brought into view is there.
+export async function settle(page) {
+  await page.evaluate(() => { window.__calm = 0; });
+  await page.waitForFunction(() => {
+    const s = window.quakeview.stats();
+    window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
+    return window.__calm >= 4;
+  }, null, { timeout: 60000, polling: 250 });
+}
+
 /// Waits for quakeview.ready; resolves to {ok: true} or {ok: false, message}.
 export async function waitReady(page, timeoutMs = 90000) {
   return page.evaluate(async (ms) => {
