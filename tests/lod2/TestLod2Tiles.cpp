@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "qv/format/CityTile.h"
 #include "qv/format/Tileset.h"
 #include "qv/prep/Files.h"
+#include "qv/prep/Ingest.h"
 #include "qv/prep/Lod2CityModel.h"
 #include "qv/prep/Tiler.h"
 
@@ -179,6 +181,51 @@ TEST_CASE("tiler: coarse tiles carry every attribute of the leaf except the desc
     expected.centroidY = c.centroidY;
     CHECK(c == expected);
   }
+  removeTree(dir);
+}
+
+}  // namespace qv::prep::test
+
+namespace qv::prep::test {
+
+TEST_CASE("tiler: far away the Empire State Building keeps its setbacks: a prism per part, not one 443 m box",
+          "[lod2][tiles][data]") {
+  Result<CityModel> city = readCity({sharedData("osm/fixture-midtown-empire-state.osm")}, {});
+  REQUIRE(city.ok());
+  const std::string dir =
+      (std::filesystem::temp_directory_path() / ("qv-coarse-parts-" + std::to_string(::getpid()))).string();
+  TilerOptions options;
+  options.maxBuildingsPerLeaf = 64;  // inner tiles above the leaves
+  options.threads = 1;
+  options.showProgress = false;
+  const Result<TilerReport> report = writeCityTiles(*city, dir, options);
+  REQUIRE(report.ok());
+  int seen = 0;
+  for (const TileNode& node : report->tileset.nodes) {
+    if (!node.coarse) continue;
+    const auto bytes = readFile(dir + "/" + node.file);
+    REQUIRE(bytes.ok());
+    const Result<CityTile> tile = decodeCityTile(*bytes, node.file);
+    REQUIRE(tile.ok());
+    for (const TileBuilding& b : tile->buildings) {
+      if (b.attributes.id != "w34633854") continue;
+      INFO(node.file);
+      ++seen;
+      // Several prisms at several heights, the highest the spire's top, the lowest on the ground.
+      std::set<long> tops;
+      float highest = 0.0f, lowestBase = 1e9f;
+      for (std::uint32_t p = b.firstPart; p < b.firstPart + b.partCount; ++p) {
+        tops.insert(std::lround(tile->parts[p].heightM));
+        highest = std::max(highest, tile->parts[p].heightM);
+        lowestBase = std::min(lowestBase, tile->parts[p].minHeightM);
+      }
+      CHECK(b.partCount >= 4);
+      CHECK(tops.size() >= 4);
+      CHECK(highest == Approx(443.2f).margin(0.5f));
+      CHECK(lowestBase == 0.0f);
+    }
+  }
+  CHECK(seen >= 1);
   removeTree(dir);
 }
 

@@ -219,6 +219,50 @@ TEST_CASE("Only the visible buildings' triangles are drawn: a narrow view draws 
   CHECK(viewer.stats().latest.buildingsVisible == 64);
 }
 
+TEST_CASE("Far away a far-view tile is drawn as blocks: a box per cell, its worst member's colour, picking a building",
+          "[scene][city][blocks]") {
+  SceneRig rig;
+  CitySceneOptions options;
+  options.blockPixels = 60.0f;  // cells up to 60 px: blocks already 6 km away from this small city
+  rig.open(0.0f, options);
+  Viewer& viewer = rig.viewer;
+  viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  const auto& latest = viewer.stats().latest;
+  CHECK(latest.buildingsVisible == 64);  // every building still counts as in view
+  // 320 m of city on 256 m cells aligned to the origin: 2 x 2 blocks, 10 triangles each.
+  const auto drawn = rig.device.drawnSlots();
+  REQUIRE(drawn.size() == 4);
+  CHECK(latest.triangles == 40 + 2);  // and the ground's two
+  // Each quadrant holds damage states 0 .. 4: each block shows the worst, complete damage.
+  for (const auto& [slot, centre] : drawn) {
+    CAPTURE(slot);
+    REQUIRE(rig.device.buildings.count(slot) == 1);
+    CHECK(rig.device.buildings.at(slot).damageState == 4.0f);
+    CHECK(rig.device.buildings.at(slot).floorBase == -1.0f);
+  }
+  // A click on a building's roof answers with that building, not a block.
+  const double x = MiniCity::centreX(2), y = MiniCity::centreY(5);
+  const auto screen = viewer.worldToScreen(x, y, MiniCity::kStoreys * MiniCity::kStoreyHeight * 0.99);
+  REQUIRE(screen.has_value());
+  const auto picked = viewer.pick(screen->x, screen->y);
+  REQUIRE(picked.has_value());
+  CHECK(picked->attributes.id == MiniCity::idOf(2, 5));
+  // Selecting it marks its block, and a filter that only it passes keeps its block undimmed.
+  viewer.city()->select(MiniCity::idOf(2, 5));
+  runFrames(viewer, 2);
+  int selectedBlocks = 0;
+  for (const auto& [slot, centre] : rig.device.drawnSlots())
+    selectedBlocks += (static_cast<unsigned>(rig.device.buildings.at(slot).flags) & kFlagSelected) != 0 ? 1 : 0;
+  CHECK(selectedBlocks == 1);
+  // Close by, building by building again.
+  viewer.city()->select("");
+  viewer.setCamera(CameraState{0.0, 0.0, 600.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 20);
+  CHECK(rig.device.drawnSlots().size() == viewer.stats().latest.buildingsVisible);
+}
+
 TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {
   SceneRig rig;
   rig.open(1000.0f);

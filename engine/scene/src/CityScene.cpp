@@ -56,6 +56,11 @@ CityScene::~CityScene() {
   if (manifestRequest_ != 0) fetcher_.cancel(manifestRequest_);
   for (const auto& t : tiles_) {
     if (t && t->loaded && t->loaded->mesh) device_.destroyMesh(t->loaded->mesh);
+    if (t && t->loaded) {
+      for (const auto& blocks : t->loaded->blocks) {
+        if (blocks) device_.destroyMesh(blocks->mesh);
+      }
+    }
     if (!t) continue;
     for (FileLoad* load : {&t->tile, &t->summaryLoad, &t->historyLoad}) loader_.cancel(*load);
   }
@@ -196,7 +201,9 @@ void CityScene::finishTile(std::uint32_t node) {
   }
   tile->slotBase = *slotBase;
   initialBuildingRows(*tile, tileset_->nodes[node].response.has_value(), table_.edit(tile->slotBase, count));
-  const MeshData mesh = buildTileMesh(*tile, tile->slotBase, &tile->runs);
+  // Far-view tiles are drawn region by region: their buildings' mesh in region order.
+  if (tile->data.coarse) tile->regions = buildTileRegions(*tile);
+  const MeshData mesh = buildTileMesh(*tile, tile->slotBase, &tile->runs, tile->regions.appendOrder);
   tile->mesh = device_.createMesh(mesh);
   tile->gpuBytes = meshGpuBytes(mesh);
   tile->cpuBytes = tileCpuBytes(*tile) + tile->runs.firstIndex.size() * 3 * sizeof(std::uint32_t);
@@ -241,6 +248,7 @@ void CityScene::markNoResult(std::uint32_t node) {
   if (!t.loaded) return;
   const LoadedTile& tile = *t.loaded;
   for (BuildingGpuRecord& row : table_.edit(tile.slotBase, tile.buildingCount())) row.damageState = -1.0f;
+  refreshBlockRows(node);
 }
 
 void CityScene::applySummary(std::uint32_t node) {
@@ -411,12 +419,18 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
     t.inView.clear();
     t.visible.clear();
     t.spans.clear();
+    t.regionForm.clear();
+    for (auto& spans : t.blockSpans) spans.clear();
     if (!t.loaded) continue;
     const auto n = static_cast<std::uint32_t>(t.loaded->positionOf.size());
     if (frustum.classify(nodeBox(tileset_->nodes[i])) == Containment::Outside) continue;
     // What is in view is counted (the panel's totals in view), what shows on screen is drawn.
     t.loaded->tree.query(frustum, t.inView);
     for (const IndexRange& r : t.inView) visibleBuildings += r.end - r.begin;
+    if (t.loaded->data.coarse) {
+      cullRegions(i, view, items);
+      continue;
+    }
     if (size.minAngle > 0.0f)
       t.loaded->tree.query(frustum, t.visible, size);
     else
@@ -432,6 +446,103 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
     items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin, t.spans});
   }
   return visibleBuildings;
+}
+
+void CityScene::cullRegions(std::uint32_t node, const CameraView& view, std::vector<DrawItem>& items) {
+  // Region by region (TileBlocks.h): building by building, or the blocks of the level its
+  // distance allows; neighbours in the same form are one run of one mesh.
+  TileRuntime& t = *tiles_[node];
+  LoadedTile& tile = *t.loaded;
+  const TileRegions& regions = tile.regions;
+  const Frustum& frustum = view.frustum();
+  t.regionForm.assign(regions.boxes.size(), kRegionHidden);
+  auto extend = [](std::vector<IndexSpan>& spans, std::uint32_t first, std::uint32_t end) {
+    if (end <= first) return;
+    if (!spans.empty() && spans.back().firstIndex + spans.back().indexCount == first) {
+      spans.back().indexCount += end - first;
+    } else {
+      spans.push_back(IndexSpan{first, end - first, 0, 0});
+    }
+  };
+  for (std::uint32_t r = 0; r < regions.boxes.size(); ++r) {
+    const Box& box = regions.boxes[r];
+    if (frustum.classify(box) == Containment::Outside) continue;
+    const int level = blockLevelFor(node, box, view);
+    t.regionForm[r] = static_cast<std::int8_t>(level);
+    if (level < 0) {
+      extend(t.spans, tile.runs.firstIndex[regions.positionStart[r]],
+             tile.runs.firstIndex[regions.positionStart[r + 1]]);
+    } else {
+      const BlockLevelRuntime& blocks = *tile.blocks[level];
+      extend(t.blockSpans[level], blocks.runs.firstIndex[blocks.level.regionStart[r]],
+             blocks.runs.firstIndex[blocks.level.regionStart[r + 1]]);
+    }
+  }
+  if (!t.spans.empty()) items.push_back(DrawItem{tile.mesh, tile.origin, t.spans});
+  for (int level = 0; level < kBlockLevels; ++level) {
+    if (!t.blockSpans[level].empty())
+      items.push_back(DrawItem{tile.blocks[level]->mesh, tile.origin, t.blockSpans[level]});
+  }
+}
+
+int CityScene::blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view) {
+  LoadedTile& tile = *tiles_[node]->loaded;
+  if (!tile.data.coarse || options_.blockPixels <= 0.0f || tile.buildingCount() == 0) return -1;
+  // Cells of about blockPixels where the box is nearest the eye.
+  const glm::vec3 eye = view.eye();
+  const float dx = std::max({box.minX - eye.x, 0.0f, eye.x - box.maxX});
+  const float dy = std::max({box.minY - eye.y, 0.0f, eye.y - box.maxY});
+  const float dz = std::max({box.minZ - eye.z, 0.0f, eye.z - box.maxZ});
+  const float distance = std::sqrt(dx * dx + dy * dy + dz * dz);
+  const float cellM = options_.blockPixels * distance / std::max(view.pixelsPerMeterAt(1.0f), 1e-6f);
+  if (!(cellM >= kBlockCellM * 0.75f)) return -1;
+  // The level whose cells are nearest that size (between 0.71 and 1.41 times it).
+  const int level = std::min(static_cast<int>(std::lround(std::log2(cellM / kBlockCellM))), kBlockRegionLevel);
+  if (level < tile.minBlockLevel) return -1;
+  if (tile.blocks[level]) return level;
+  // Cells smaller than the buildings' mean spacing merge next to nothing: not worth making.
+  const Rect bounds = tile.tree.bounds().rect();
+  const float spacing = std::sqrt(std::max(bounds.maxX - bounds.minX, 1.0f) *
+                                  std::max(bounds.maxY - bounds.minY, 1.0f) / static_cast<float>(tile.buildingCount()));
+  if (blockCellM(level) < spacing) {
+    tile.minBlockLevel = level + 1;
+    return -1;
+  }
+  auto blocks = std::make_unique<BlockLevelRuntime>();
+  blocks->level = buildBlockLevel(tile, blockCellM(level), tile.regions);
+  const auto count = static_cast<std::uint32_t>(blocks->level.boxes.size());
+  // Worth it only where the blocks' boxes take well under the buildings' triangles.
+  const std::uint64_t buildingTriangles = tile.runs.firstIndex.empty() ? 0 : tile.runs.firstIndex.back() / 3;
+  if (count == 0 || static_cast<std::uint64_t>(count) * 10 * 2 > buildingTriangles) {
+    tile.minBlockLevel = level + 1;
+    return -1;
+  }
+  const auto slotBase = table_.reserveBuildings(count);
+  if (!slotBase) return -1;  // the building table is full: drawn building by building
+  blocks->slotBase = *slotBase;
+  const MeshData mesh = buildBlockMesh(blocks->level, tile.origin, blocks->slotBase, &blocks->runs);
+  blocks->mesh = device_.createMesh(mesh);
+  if (!blocks->mesh) {
+    table_.releaseBuildings(blocks->slotBase, count);
+    return -1;
+  }
+  tile.gpuBytes += meshGpuBytes(mesh);
+  tile.cpuBytes += blockLevelCpuBytes(blocks->level) + blocks->runs.firstIndex.size() * 3 * sizeof(std::uint32_t);
+  tile.blocks[level] = std::move(blocks);
+  refreshBlockRows(node);
+  return level;
+}
+
+void CityScene::refreshBlockRows(std::uint32_t node) {
+  TileRuntime& t = *tiles_[node];
+  if (!t.loaded) return;
+  const LoadedTile& tile = *t.loaded;
+  const std::span<const BuildingGpuRecord> rows(&table_.row(tile.slotBase), tile.buildingCount());
+  for (const auto& blocks : tile.blocks) {
+    if (!blocks) continue;
+    const auto count = static_cast<std::uint32_t>(blocks->level.boxes.size());
+    aggregateBlockRows(blocks->level, rows, table_.edit(blocks->slotBase, count));
+  }
 }
 
 void CityScene::countDamageInView() {

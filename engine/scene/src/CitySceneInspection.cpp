@@ -22,6 +22,7 @@ void CityScene::applyFlags(std::uint32_t node) {
     BuildingTable::setFlag(row, kFlagHidden, hiddenByLod(a.lod));
   }
   table_.changed(tile.slotBase, tile.buildingCount());
+  refreshBlockRows(node);
 }
 
 void CityScene::applyFlagsEverywhere() {
@@ -189,6 +190,66 @@ std::vector<Box> CityScene::buildingBoxesNear(double x, double y, double radiusM
   return out;
 }
 
+std::optional<std::uint32_t> CityScene::pickInBlocks(const TileRuntime& t, int level, const glm::vec3& origin,
+                                                     const glm::vec3& direction, float& best) const {
+  // The block's box is what is drawn, so the ray's entry into it is where it meets the picture.
+  // Of its members, the one whose prisms the ray meets first, else the one nearest that point.
+  const LoadedTile& tile = *t.loaded;
+  const TileBlockLevel& blocks = tile.blocks[level]->level;
+  std::vector<std::pair<float, std::uint32_t>> candidates;
+  blocks.tree.raycast(origin, direction, best == INFINITY ? 1.0e7f : best, candidates);
+  const float o[3] = {origin.x, origin.y, origin.z};
+  const float dir[3] = {direction.x, direction.y, direction.z};
+  for (const auto& [entry, position] : candidates) {
+    if (entry > best) break;
+    const std::uint32_t block = blocks.tree.order()[position];
+    // Only where this level is drawn this frame.
+    const auto region = static_cast<std::size_t>(
+        std::upper_bound(blocks.regionStart.begin(), blocks.regionStart.end(), block) - blocks.regionStart.begin() - 1);
+    if (region >= t.regionForm.size() || t.regionForm[region] != level) continue;
+    const glm::vec3 at = origin + direction * entry;
+    float nearestHit = INFINITY, nearestDistance = INFINITY;
+    std::optional<std::uint32_t> chosen;
+    bool chosenByRay = false;
+    for (std::uint32_t m = blocks.memberStart[block]; m < blocks.memberStart[block + 1]; ++m) {
+      const std::uint32_t b = tile.tree.order()[blocks.members[m]];
+      const TileBuilding& tb = tile.data.buildings[b];
+      if (hiddenByLod(tb.attributes.lod)) continue;
+      for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
+        const TilePart& part = tile.data.parts[p];
+        PrismView prism;
+        prism.xy = &tile.data.vertices[part.firstVertex].x;
+        prism.ringCounts = &tile.data.ringVertexCounts[part.firstRing];
+        prism.ringCount = part.ringCount;
+        prism.offsetX = tile.origin.x;
+        prism.offsetY = tile.origin.y;
+        prism.minZ = part.minHeightM;
+        prism.maxZ = part.heightM;
+        if (const auto tHit = rayPrism(o, dir, prism); tHit && *tHit < nearestHit) {
+          nearestHit = *tHit;
+          chosen = b;
+          chosenByRay = true;
+        }
+      }
+      if (chosenByRay) continue;
+      const Box box = buildingBox(tile, b);
+      const float dx = std::max({box.minX - at.x, 0.0f, at.x - box.maxX});
+      const float dy = std::max({box.minY - at.y, 0.0f, at.y - box.maxY});
+      const float dz = std::max({box.minZ - at.z, 0.0f, at.z - box.maxZ});
+      const float distance = dx * dx + dy * dy + dz * dz;
+      if (distance < nearestDistance) {
+        nearestDistance = distance;
+        chosen = b;
+      }
+    }
+    if (chosen) {
+      best = entry;
+      return chosen;
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::vec3& direction) const {
   float best = INFINITY;
   std::optional<BuildingRef> hit;
@@ -199,6 +260,15 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
     const TileRuntime& t = *tiles_[node];
     if (!t.loaded) continue;
     const LoadedTile& tile = *t.loaded;
+    // Regions drawn as blocks: the first block the ray enters answers with one of its buildings.
+    bool levelDrawn[kBlockLevels] = {};
+    for (const std::int8_t form : t.regionForm) {
+      if (form >= 0) levelDrawn[form] = true;
+    }
+    for (int level = 0; level < kBlockLevels; ++level) {
+      if (!levelDrawn[level] || !tile.blocks[level]) continue;
+      if (const auto b = pickInBlocks(t, level, origin, direction, best)) hit = BuildingRef{node, *b};
+    }
     candidates.clear();
     tile.tree.raycast(origin, direction, best == INFINITY ? 1.0e7f : best, candidates);
     for (const auto& [entry, position] : candidates) {
@@ -206,6 +276,10 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
       const std::uint32_t b = tile.tree.order()[position];
       const TileBuilding& tb = tile.data.buildings[b];
       if (hiddenByLod(tb.attributes.lod)) continue;  // hidden: not pickable
+      // A far-view tile's building is picked on its prisms only where they are drawn.
+      if (!t.regionForm.empty() && (position >= tile.regions.regionOfPosition.size() ||
+                                    t.regionForm[tile.regions.regionOfPosition[position]] != -1))
+        continue;
       if (const TileMesh* m = showLod2_ ? tile.drawnModelOf(b) : nullptr) {
         // A LOD2 model is picked on its own triangles (in coarse tiles it is drawn, and picked, as
         // its extrusion).

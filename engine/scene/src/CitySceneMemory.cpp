@@ -62,6 +62,11 @@ void CityScene::evict(std::uint32_t node) {
     t.animatedIndex.clear();
     reindexAnimated();
     if (t.loaded->mesh) device_.destroyMesh(t.loaded->mesh);
+    for (const auto& blocks : t.loaded->blocks) {
+      if (!blocks) continue;
+      device_.destroyMesh(blocks->mesh);
+      table_.releaseBuildings(blocks->slotBase, static_cast<std::uint32_t>(blocks->level.boxes.size()));
+    }
     table_.releaseBuildings(t.loaded->slotBase, t.loaded->buildingCount());
     t.loaded.reset();
   }

@@ -7,11 +7,21 @@
 #include <vector>
 
 #include "qv/scene/CityScene.h"
+#include "qv/scene/TileBlocks.h"
 #include "qv/scene/TileMeshBuilder.h"
 
 namespace qv {
 
 inline constexpr std::uint32_t kNotAnimated = UINT32_MAX;
+inline constexpr std::int8_t kRegionHidden = -2;  // a region out of view this frame
+
+// One block level of a far-view tile, made when first drawn (TileBlocks.h).
+struct CityScene::BlockLevelRuntime {
+  TileBlockLevel level;
+  MeshHandle mesh;
+  TileIndexRuns runs;          // where each block's triangles are in the mesh
+  std::uint32_t slotBase = 0;  // block p's row is slotBase + p
+};
 
 struct CityScene::LoadedTile : TileContent {
   explicit LoadedTile(TileContent content) : TileContent(std::move(content)) {}
@@ -20,6 +30,11 @@ struct CityScene::LoadedTile : TileContent {
   std::uint32_t slotBase = 0;
   std::uint64_t cpuBytes = 0;
   std::uint64_t gpuBytes = 0;
+  // Far-view tiles: block levels made so far, by level; levels below minBlockLevel are not worth
+  // it (about as many blocks as buildings): the tile is drawn building by building there.
+  std::unique_ptr<BlockLevelRuntime> blocks[kBlockLevels];
+  int minBlockLevel = 0;
+  TileRegions regions;  // far-view tiles: their regions; runs then follow regions.appendOrder
 };
 
 struct CityScene::TileRuntime {
@@ -31,6 +46,10 @@ struct CityScene::TileRuntime {
   std::vector<IndexRange> inView;   // this frame's culling result (positions in the frustum)
   std::vector<IndexRange> visible;  // ... less those under a pixel on screen: the drawn ones
   std::vector<IndexSpan> spans;     // ... as the index runs drawn (DrawItem::spans points here)
+  // Far-view tiles: each region's form this frame (kRegionHidden, -1 building by building, else
+  // the block level) and the runs drawn of each block level's mesh.
+  std::vector<std::int8_t> regionForm;
+  std::vector<IndexSpan> blockSpans[kBlockLevels];
 
   FileLoad summaryLoad;
   std::unique_ptr<ResponseSummaryTile> summary;

@@ -99,20 +99,23 @@ TileContent indexTile(CityTile data) {
   return tile;
 }
 
-MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs) {
+MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs,
+                       std::span<const std::uint32_t> appendOrder) {
   MeshData mesh;
   const CityTile& d = tile.data;
   const auto& order = tile.tree.order();
+  const auto count = static_cast<std::uint32_t>(appendOrder.empty() ? order.size() : appendOrder.size());
   if (runs != nullptr) {
-    runs->firstIndex.assign(order.size() + 1, 0);
-    runs->modelTriangles.assign(order.size() + 1, 0);
-    runs->fallbackTriangles.assign(order.size() + 1, 0);
+    runs->firstIndex.assign(count + 1, 0);
+    runs->modelTriangles.assign(count + 1, 0);
+    runs->fallbackTriangles.assign(count + 1, 0);
   }
-  for (std::uint32_t p = 0; p < order.size(); ++p) {
+  for (std::uint32_t k = 0; k < count; ++k) {
+    const std::uint32_t p = appendOrder.empty() ? k : appendOrder[k];
     if (runs != nullptr) {
-      runs->firstIndex[p] = static_cast<std::uint32_t>(mesh.indices.size());
-      runs->modelTriangles[p] = static_cast<std::uint32_t>(mesh.modelTriangles);
-      runs->fallbackTriangles[p] = static_cast<std::uint32_t>(mesh.fallbackTriangles);
+      runs->firstIndex[k] = static_cast<std::uint32_t>(mesh.indices.size());
+      runs->modelTriangles[k] = static_cast<std::uint32_t>(mesh.modelTriangles);
+      runs->fallbackTriangles[k] = static_cast<std::uint32_t>(mesh.fallbackTriangles);
     }
     const TileBuilding& tb = d.buildings[order[p]];
     const TileMesh* model = tile.drawnModelOf(order[p]);
@@ -128,9 +131,9 @@ MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileInde
     }
   }
   if (runs != nullptr) {
-    runs->firstIndex[order.size()] = static_cast<std::uint32_t>(mesh.indices.size());
-    runs->modelTriangles[order.size()] = static_cast<std::uint32_t>(mesh.modelTriangles);
-    runs->fallbackTriangles[order.size()] = static_cast<std::uint32_t>(mesh.fallbackTriangles);
+    runs->firstIndex[count] = static_cast<std::uint32_t>(mesh.indices.size());
+    runs->modelTriangles[count] = static_cast<std::uint32_t>(mesh.modelTriangles);
+    runs->fallbackTriangles[count] = static_cast<std::uint32_t>(mesh.fallbackTriangles);
   }
   return mesh;
 }

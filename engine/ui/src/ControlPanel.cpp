@@ -132,18 +132,21 @@ void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset, int govern
   switch (preset) {
     case QualityPreset::High:
       o.maxScreenSpaceError = 12.0f;
+      o.blockPixels = 4.0f;
       o.maxDrawTiles = 240;
       o.animationRadiusM = 1000.0f;
       o.maxAnimatedBuildings = 20000;
       break;
     case QualityPreset::Balanced:
       o.maxScreenSpaceError = 24.0f;
+      o.blockPixels = 6.0f;
       o.maxDrawTiles = 120;
       o.animationRadiusM = 600.0f;
       o.maxAnimatedBuildings = 6000;
       break;
     case QualityPreset::Low:
       o.maxScreenSpaceError = 48.0f;
+      o.blockPixels = 8.0f;
       o.maxDrawTiles = 48;
       o.animationRadiusM = 300.0f;
       o.maxAnimatedBuildings = 1500;
@@ -151,6 +154,7 @@ void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset, int govern
   }
   const DetailScale scale = detailScaleForStep(governorStep);
   o.maxScreenSpaceError *= scale.screenSpaceError;
+  o.blockPixels *= scale.screenSpaceError;
   o.maxDrawTiles = std::max<std::uint32_t>(
       8u, static_cast<std::uint32_t>(std::lround(static_cast<float>(o.maxDrawTiles) * scale.drawTiles)));
   o.animationRadiusM *= scale.animationRadius;

@@ -21,7 +21,8 @@ namespace qv::prep {
 namespace {
 
 constexpr int kMaxDepth = 16;
-constexpr double kMinCellSize = 20.0;  // metres: never split finer than a building
+constexpr double kMinCellSize = 20.0;          // metres: never split finer than a building
+constexpr std::uint16_t kMaxCoarseParts = 32;  // parts of one building in a coarse tile
 
 struct BuildingInfo {
   double minX, minY, maxX, maxY;                  // footprint bounds
@@ -263,52 +264,58 @@ CityTile coarseTile(const CityModel& model, const std::vector<BuildingInfo>& inf
   tile.ringVertexCounts.reserve(node.coarse.size());
   tile.vertices.reserve(node.coarse.size() * 6);
   tile.roofTriangles.reserve(node.coarse.size() * 12);
+  std::vector<std::pair<double, std::size_t>> byArea;
+  std::vector<std::uint32_t> triangles;
   for (std::uint32_t bi : node.coarse) {
     const Building& b = model.buildings[bi];
-    // The largest part's outer ring stands for the building; the prism spans all parts' heights.
-    std::size_t largest = 0;
-    double largestArea = -1.0;
-    float base = 1e30f, top = 0.0f;
+    // Far away a building is the prisms of its parts, each part's outer ring simplified, at its
+    // own heights: vertical walls and flat roofs, setbacks kept. Parts smaller than the tolerance
+    // are left out, except the largest and the highest (the building keeps its size and height).
+    byArea.clear();
+    std::size_t highest = b.parts.size();
     for (std::size_t pi = 0; pi < b.parts.size(); ++pi) {
       const BuildingPart& p = b.parts[pi];
-      if (info[bi].roofs[pi].empty()) continue;
-      const std::uint32_t outerEnd = p.ringEnds.empty() ? 0 : p.ringEnds[0];
-      const double area = std::abs(signedArea(std::span(p.points).first(outerEnd)));
-      if (area > largestArea) {
-        largestArea = area;
-        largest = pi;
+      if (info[bi].roofs[pi].empty() || p.ringEnds.empty()) continue;
+      const double area = std::abs(signedArea(std::span(p.points).first(p.ringEnds[0])));
+      byArea.emplace_back(area, pi);
+      if (highest == b.parts.size() || p.heightM > b.parts[highest].heightM) highest = pi;
+    }
+    if (byArea.empty()) continue;
+    std::sort(byArea.begin(), byArea.end(), [](const auto& x, const auto& y) { return x.first > y.first; });
+    std::uint16_t written = 0;
+    for (std::size_t k = 0; k < byArea.size() && written < kMaxCoarseParts; ++k) {
+      const std::size_t pi = byArea[k].second;
+      if (k > 0 && pi != highest && byArea[k].first < tolerance * tolerance) continue;
+      const BuildingPart& p = b.parts[pi];
+      double error = 0.0;
+      const std::span<const glm::dvec2> outer = std::span(p.points).first(p.ringEnds[0]);
+      std::vector<glm::dvec2> ring = coarseOutline(outer, tolerance, error);
+      if (ring.size() < 3) continue;
+      triangles.clear();
+      if (p.ringEnds.size() == 1 && std::equal(ring.begin(), ring.end(), outer.begin(), outer.end())) {
+        triangles = info[bi].roofs[pi];  // nothing simplified away: the roof's triangulation holds
+      } else if (!cache.find(bi, ring, triangles)) {
+        const std::uint32_t end = static_cast<std::uint32_t>(ring.size());
+        bool constrained = false;
+        if (!triangulatePolygon(ring, std::span(&end, 1), triangles, &constrained)) continue;
+        if (constrained) cache.add(bi, ring, triangles);
       }
-      base = std::min(base, p.minHeightM);
-      top = std::max(top, p.heightM);
+      worst = std::max(worst, error);
+      TilePart tp;
+      tp.ringCount = 1;
+      tp.triangleCount = static_cast<std::uint32_t>(triangles.size() / 3);
+      tp.minHeightM = p.minHeightM;
+      tp.heightM = p.heightM;
+      tile.ringVertexCounts.push_back(static_cast<std::uint16_t>(ring.size()));
+      for (const glm::dvec2& q : ring) {
+        tile.vertices.emplace_back(static_cast<float>(q.x - tile.originX), static_cast<float>(q.y - tile.originY));
+      }
+      for (std::uint32_t i : triangles) tile.roofTriangles.push_back(static_cast<std::uint16_t>(i));
+      tile.parts.push_back(tp);
+      ++written;
     }
-    if (largestArea < 0.0) continue;
-    const BuildingPart& p = b.parts[largest];
-    double error = 0.0;
-    const std::span<const glm::dvec2> outer = std::span(p.points).first(p.ringEnds[0]);
-    std::vector<glm::dvec2> ring = coarseOutline(outer, tolerance, error);
-    if (ring.size() < 3) continue;
-    std::vector<std::uint32_t> triangles;
-    if (p.ringEnds.size() == 1 && std::equal(ring.begin(), ring.end(), outer.begin(), outer.end())) {
-      triangles = info[bi].roofs[largest];  // nothing simplified away: the roof's triangulation holds
-    } else if (!cache.find(bi, ring, triangles)) {
-      const std::uint32_t end = static_cast<std::uint32_t>(ring.size());
-      bool constrained = false;
-      if (!triangulatePolygon(ring, std::span(&end, 1), triangles, &constrained)) continue;
-      if (constrained) cache.add(bi, ring, triangles);
-    }
-    worst = std::max(worst, error);
-    TilePart tp;
-    tp.ringCount = 1;
-    tp.triangleCount = static_cast<std::uint32_t>(triangles.size() / 3);
-    tp.minHeightM = base;
-    tp.heightM = top;
-    tile.ringVertexCounts.push_back(static_cast<std::uint16_t>(ring.size()));
-    for (const glm::dvec2& q : ring) {
-      tile.vertices.emplace_back(static_cast<float>(q.x - tile.originX), static_cast<float>(q.y - tile.originY));
-    }
-    for (std::uint32_t i : triangles) tile.roofTriangles.push_back(static_cast<std::uint16_t>(i));
-    tile.parts.push_back(tp);
-    addAttributes(tile, b, 1, true);
+    if (written == 0) continue;
+    addAttributes(tile, b, written, true);
     addMesh(tile, b, true);
   }
   geometricError = static_cast<float>(std::max(std::min(worst, node.cellSize / 8.0), node.omittedErrorM));

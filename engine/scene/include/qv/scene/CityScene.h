@@ -41,6 +41,11 @@ struct CitySceneOptions {
   std::uint32_t maxDrawTiles = 240;   ///< draw-call budget for city tiles
   /// Buildings whose box diagonal spans fewer device pixels than this are not drawn (0: all are).
   float minBuildingPixels = 1.0f;
+  /// Far-view tiles are drawn, region by region, as merged blocks (qv/scene/TileBlocks.h) on the
+  /// grid whose cells span about this many device pixels (0.71 to 1.41 times) where the region is
+  /// nearest the eye, or building by building where cells that small would merge next to nothing
+  /// (0: always building by building): far away the triangles follow the screen, not the city.
+  float blockPixels = 4.0f;
   /// Tile, summary and history requests issued and not yet answered (the browser queues them
   /// over its own connections; more than its six lets a tile arrive while others are queued).
   std::uint32_t maxRequestsInFlight = 16;
@@ -177,6 +182,7 @@ class CityScene {
  private:
   struct LoadedTile;
   struct TileRuntime;
+  struct BlockLevelRuntime;
   struct Animated;
 
   void onManifest(FetchResponse response);
@@ -196,6 +202,14 @@ class CityScene {
   void enforceMemoryBudget();           // evicts what this frame did not use, least recently used first
   void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
   void applyFlagsEverywhere();
+  void refreshBlockRows(std::uint32_t node);  // block rows from the tile's building rows
+  /// The block level a far-view tile's part in `box` is drawn at from `view` (made now if
+  /// needed), or -1: building by building.
+  int blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view);
+  void cullRegions(std::uint32_t node, const CameraView& view, std::vector<DrawItem>& items);
+  /// The building a ray picks in a tile drawn as `blocks` (nearer than `best`, which it lowers).
+  std::optional<std::uint32_t> pickInBlocks(const TileRuntime& t, int level, const glm::vec3& origin,
+                                            const glm::vec3& direction, float& best) const;
   // The steps of a frame (update), in order.
   void decodeArrived(double frameStart);                                     // decode and mesh within the work budget
   void selectAndRequest(const CameraView& view);                             // choose tiles; request, retry

@@ -67,8 +67,10 @@ struct TileIndexRuns {
 /// followed by its LOD1 extrusion (kKindFallback), or the extrusion alone. Leaves get a vertex ring at every floor
 /// level inside each part (the floors bend with their displacements); coarse tiles plain prisms.
 /// Vertex slots are slotBase + position. `runs`, when given, receives where each position's
-/// triangles are.
-MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs = nullptr);
+/// triangles are. `appendOrder`, when not empty, lists the positions in the order their buildings
+/// are appended (a permutation); `runs` then describes its entries, not positions.
+MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs = nullptr,
+                       std::span<const std::uint32_t> appendOrder = {});
 
 /// The index spans that draw the visible ranges of positions `visible` (sorted, disjoint, as
 /// BoxTree::query gives them): one span per range, neighbours merged when the indices between
