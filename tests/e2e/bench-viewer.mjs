@@ -68,7 +68,6 @@ const pixelsText = (s) => `${s.canvas.width}×${s.canvas.height} (${s.pixels}${s
 // {median, atP95FrameTime}, frameMs: {median, p95}, triangles: {median, p95}, drawCalls: {median}}.
 async function measureFrames(page, ms, minFrames = 6, until = null) {
   return page.evaluate(({ ms, minFrames, until }) => new Promise((resolve) => {
-    // eslint-disable-next-line no-new-func
     const done = until ? new Function(`return (${until})();`) : null;
     const times = [], triangles = [], drawCalls = [];
     const start = performance.now();
