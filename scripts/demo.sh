@@ -11,6 +11,8 @@ cd "$root"
 export NODE_PATH=/usr/share/nodejs
 port=${PORT:-8080}
 jobs=${QUAKEVIEW_JOBS:-$(nproc)}
+# shellcheck source=SCRIPTDIR/lib/demo-recipe.sh
+source "$root/scripts/lib/demo-recipe.sh"
 
 bash scripts/setup.sh
 echo "[demo] building the viewer (WebAssembly) and quakeview-prep (native)"
@@ -28,18 +30,7 @@ if [ -n "${QUAKEVIEW_DATA:-}" ]; then
 else
   # The default scenario, prepared once (the stamp records the parameters it was made with).
   data="$root/build/demo-data/default"
-  city_recipe="synth-city --buildings 100000 --seed 1 --detailed-towers 300"
-  quake_recipe="response --synthetic 1 2 3 --epicentre -74.02,40.69,10 --magnitude 6.8"
-  recipe="$city_recipe; $quake_recipe"
-  if [ "$(cat "$data/.recipe" 2>/dev/null)" != "$recipe" ]; then
-    echo "[demo] preparing the default city: $city_recipe"
-    # shellcheck disable=SC2086 # the recipes are word lists
-    "$prep" $city_recipe --out "$data"
-    echo "[demo] simulating the default earthquake for every building (two to three minutes on 2 cores): $quake_recipe"
-    # shellcheck disable=SC2086
-    "$prep" $quake_recipe --city "$data"
-    echo "$recipe" >"$data/.recipe"
-  fi
+  qv_demo_prepare "$prep" "$data"
 fi
 
 echo "[demo] open http://127.0.0.1:${port}/ in a browser (Ctrl-C stops)"

@@ -14,6 +14,8 @@ root=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$root"
 export NODE_PATH=/usr/share/nodejs
 jobs=${QUAKEVIEW_JOBS:-$(nproc)}
+# shellcheck source=SCRIPTDIR/lib/demo-recipe.sh
+source "$root/scripts/lib/demo-recipe.sh"
 
 bash scripts/setup.sh || { echo "QuakeView tests: FAILED (set-up failed)"; exit 1; }
 
@@ -59,11 +61,13 @@ else
 fi
 
 # Small cities for the browser tests, made with the tools just built (the optimized clang build:
-# the response step runs a solver per building).
+# the response step runs a solver per building). The demo's city (without its earthquake, to keep
+# this short) is the triangle-budget test's.
 stage "preparing the end-to-end test cities"
 e2e_data="$root/build/e2e-data"
 prep="$root/build/native-clang/preprocess/app/quakeview-prep"
 rm -rf "$e2e_data" && mkdir -p "$e2e_data"
+# shellcheck disable=SC2086 # the demo's recipe is a word list
 if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out "$e2e_data/synth" >/dev/null ||
    ! "$prep" response --city "$e2e_data/synth" --synthetic 7 --epicentre -74.005,40.705,8 --magnitude 6.6 >/dev/null ||
    ! "$prep" info "$e2e_data/synth" --building s1 --json >"$e2e_data/synth-s1.json" ||
@@ -85,7 +89,8 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
        --out "$e2e_data/actual" >/dev/null ||
    ! "$prep" response --city "$e2e_data/actual" --shakemap tests/e2e/data/actual-shakemap.xml --synthetic 7 8 \
        --time-of-day night --districts tests/e2e/data/districts.geojson >/dev/null ||
-   ! "$prep" info "$e2e_data/actual" --json >"$e2e_data/actual-info.json"; then
+   ! "$prep" info "$e2e_data/actual" --json >"$e2e_data/actual-info.json" ||
+   ! "$prep" $QV_DEMO_CITY_RECIPE --out "$e2e_data/demo" >/dev/null; then
   failures+=("e2e data")
 fi
 

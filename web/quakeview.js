@@ -7,7 +7,11 @@
 //              unavailable or the engine cannot start.
 //   stats()    {fps, frameMs: {cull, lod, animate, upload, render, total}, drawCalls, triangles,
 //              buildings: {loaded, visible, animated}, tiles: {loaded, pending, failed}, heapBytes,
-//              heapReservedBytes, uploadBytes, timeSeconds} — medians over recent frames; extension:
+//              heapReservedBytes, uploadBytes, timeSeconds} — medians over recent frames; extensions:
+//              softwareRenderer, renderer, antialias, maxPixelRatio, quality, governor, qualityStep;
+//              pixels (drawing buffer width x height this frame), samples (pixels x the MSAA
+//              samples per pixel, = pixels without antialiasing), lastFrame: {triangles, drawCalls}
+//              of this frame alone;
 //              canvas: {width, height (drawing buffer, device px), cssWidth, cssHeight, pixelRatio
 //              (buffer px per CSS px: the device's, at most 2, 1.5 on screens under 600 CSS px wide,
 //              lower while frames are slow), devicePixelRatio (the device's own)}.

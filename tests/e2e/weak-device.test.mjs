@@ -33,7 +33,13 @@ test('a software renderer starts in the weak-device preset, says so, and the gov
     assert.equal(stats.quality, 'Low (weak devices)');
     assert.equal(stats.governor, true);
     assert.equal(typeof stats.triangles, 'number');
+    // Pixels per frame: the drawing buffer, one sample a pixel without antialiasing.
+    const canvasPixels = stats.canvas.width * stats.canvas.height;
+    assert.ok(canvasPixels > 0, `canvas ${stats.canvas.width}x${stats.canvas.height}`);
+    assert.equal(stats.pixels, canvasPixels, `pixels ${stats.pixels} of a ${stats.canvas.width}x${stats.canvas.height} canvas`);
+    assert.equal(stats.samples, stats.pixels, 'no antialiasing: one sample a pixel');
     const text = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(text, new RegExp(`triangles \\d+ · pixels ${stats.canvas.width}×${stats.canvas.height} \\(no MSAA\\)`));
     assert.match(text, /Software rendering detected \(.+\): weak-device preset\./);
     assert.match(text, /Use full quality/);
     assert.match(text, /antialiasing off, pixel ratio capped at 1\.0/);
@@ -71,6 +77,10 @@ test('?aa=1 keeps full quality on a software renderer; ?quality= fixes a preset 
     assert.equal(full.antialias, true);
     assert.equal(full.maxPixelRatio, 0);
     assert.equal(full.quality, 'High (desktop)');
+    // Antialiased: each pixel filled with several samples (MSAA).
+    assert.equal(full.pixels, full.canvas.width * full.canvas.height);
+    const perPixel = full.samples / full.pixels;
+    assert.ok(Number.isInteger(perPixel) && perPixel >= 2, `samples ${full.samples} for ${full.pixels} pixels`);
     assert.deepEqual(problems, []);
     await page.close();
 
@@ -82,6 +92,15 @@ test('?aa=1 keeps full quality on a software renderer; ?quality= fixes a preset 
     assert.equal(balanced.governor, false);
     assert.equal(balanced.qualityStep, 0, 'no governor step with a fixed preset');
     assert.equal(balanced.antialias, true);
+    await fixed.close();
+
+    // ?aa=0: antialiasing off whatever the preset, one sample a pixel.
+    const { page: plain } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json&quality=high&aa=0`);
+    assert.deepEqual(await waitReady(plain), { ok: true });
+    const noAa = await plain.evaluate(() => window.quakeview.stats());
+    assert.equal(noAa.antialias, false);
+    assert.equal(noAa.pixels, noAa.canvas.width * noAa.canvas.height);
+    assert.equal(noAa.samples, noAa.pixels);
   } finally {
     await close();
   }

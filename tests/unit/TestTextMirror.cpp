@@ -397,3 +397,45 @@ TEST_CASE(
   CHECK(wide.mirror.text().find("[Pause (Space)]") != std::string::npos);
   CHECK(ImGui::FindWindowByName("###inspection")->Pos.x > 600.0f);
 }
+
+TEST_CASE("The Performance panel shows the frame's triangles and pixels, with the MSAA samples, in one line",
+          "[ui][performance]") {
+  HeadlessImGui imgui;
+  NullRenderDevice device;
+  Viewer viewer(device);
+  viewer.showTestScene();
+  viewer.frame(1.0 / 50.0);
+  TextMirror mirror;
+  ControlPanel panel;
+  RecordingHost host;
+  QualityState q;
+  q.softwareRenderer = true;
+  q.weakStart = true;  // the weak-device preset: the Performance section starts open
+  q.antialias = false;
+  q.pixelWidth = 1280;
+  q.pixelHeight = 720;
+  q.msaaSamples = 0;
+  panel.setQualityState(&q);
+  const std::string triangles = ui::format("triangles %.0f · ", viewer.stats().triangles);
+  std::string text = drawPanel(viewer, mirror, panel, host);
+  CHECK(text.find("v Performance") != std::string::npos);
+  CHECK(text.find(triangles + "pixels 1280×720 (no MSAA)\n") != std::string::npos);
+  CHECK(q.pixels() == 1280u * 720u);
+  CHECK(q.samples() == q.pixels());  // one sample a pixel without antialiasing
+
+  // An antialiased context at a pixel ratio of 2 on a 640 x 360 canvas: four samples a pixel.
+  q.antialias = true;
+  q.pixelWidth = 1280;
+  q.pixelHeight = 720;
+  q.msaaSamples = 4;
+  text = drawPanel(viewer, mirror, panel, host);
+  CHECK(text.find(triangles + "pixels 1280×720 (×4 MSAA)\n") != std::string::npos);
+  CHECK(q.samples() == 4u * 1280u * 720u);
+
+  // Before the first frame has sized the canvas nothing is known: no made-up numbers.
+  q.pixelWidth = 0;
+  CHECK(q.pixels() == 0u);
+  CHECK(q.samples() == 0u);
+  text = drawPanel(viewer, mirror, panel, host);
+  CHECK(text.find(triangles + "pixels unknown\n") != std::string::npos);
+}

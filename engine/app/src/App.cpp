@@ -52,6 +52,7 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
     browser::notifyFatal(error);
     return false;
   }
+  quality_.msaaSamples = browser::drawingBufferSamples();
   device_ = std::make_unique<GlRenderDevice>();
   if (!device_->ok()) {
     browser::notifyFatal("The graphics shaders could not be built on this device: " + device_->error());
@@ -308,6 +309,13 @@ std::string App::statsJson(const MemoryInfo& memory) const {
   w.field("antialias", quality_.antialias).field("maxPixelRatio", quality_.maxPixelRatio);
   w.field("quality", ControlPanel::qualityName(panel_.quality())).field("governor", quality_.governorOn);
   w.field("qualityStep", quality_.governorStep);
+  // This frame's drawing buffer (pixels: width x height; samples: x the MSAA samples, = pixels
+  // without antialiasing) and this frame's triangles and draw calls (the fields above are medians).
+  w.field("pixels", quality_.pixels()).field("samples", quality_.samples());
+  const FrameCounts latest = viewer_->stats().latest;
+  w.key("lastFrame").beginObject();
+  w.field("triangles", latest.triangles).field("drawCalls", latest.drawCalls);
+  w.endObject();
   w.endObject();
   const std::string extra = w.take();
   // Both are JSON objects: the extra fields go before the viewer's closing brace.
@@ -327,6 +335,8 @@ void App::frame() {
 
   const browser::CanvasSize canvas = browser::syncCanvasSize(kCanvas, pixelRatio_, dt, quality_.maxPixelRatio);
   viewer_->setViewport(canvas.pixelWidth, canvas.pixelHeight, canvas.cssWidth, canvas.cssHeight);
+  quality_.pixelWidth = canvas.pixelWidth;
+  quality_.pixelHeight = canvas.pixelHeight;
   ui::imguiBrowserNewFrame(canvas.cssWidth, canvas.cssHeight, canvas.devicePixelRatio, dt);
   ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();

@@ -49,7 +49,9 @@ class App {
   [[nodiscard]] ControlPanel& panel() { return panel_; }
   [[nodiscard]] UiHost& host() { return host_; }
   /// The viewer's stats() JSON with the device's quality state added: softwareRenderer, renderer,
-  /// antialias, maxPixelRatio, quality (the preset's name), governor (on/off) and qualityStep.
+  /// antialias, maxPixelRatio, quality (the preset's name), governor (on/off) and qualityStep;
+  /// pixels and samples of this frame's drawing buffer (QualityState::pixels, ::samples); and
+  /// lastFrame {triangles, drawCalls} of this frame (the viewer's fields are medians).
   [[nodiscard]] std::string statsJson(const MemoryInfo& memory) const;
 
  private:

@@ -1,5 +1,6 @@
 #include "qv/platform/Browser.h"
 
+#include <GLES3/gl3.h>
 #include <emscripten.h>
 #include <emscripten/heap.h>
 #include <emscripten/html5.h>
@@ -81,6 +82,12 @@ bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& opt
     return false;
   }
   return true;
+}
+
+int drawingBufferSamples() {
+  GLint samples = 0;
+  glGetIntegerv(GL_SAMPLES, &samples);
+  return samples;
 }
 
 CanvasSize syncCanvasSize(const char* canvasSelector, PixelRatioGovernor& governor, double frameSeconds,

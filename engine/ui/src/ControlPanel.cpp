@@ -682,7 +682,14 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     }
     w.text(ui::format("cull %.2f  lod %.2f  animate %.2f ms", s.frameMs.cull, s.frameMs.lod, s.frameMs.animate));
     w.text(ui::format("upload %.2f  render %.2f  total %.2f ms", s.frameMs.upload, s.frameMs.render, s.frameMs.total));
-    w.text(ui::format("triangles %.0f", s.triangles));
+    // What a software renderer's frame time is made of, in one line: triangles and pixels.
+    std::string pixels = "pixels unknown";
+    if (qualityState_ != nullptr && qualityState_->pixels() > 0) {
+      const QualityState& q = *qualityState_;
+      const std::string msaa = q.msaaSamples > 1 ? ui::format("×%d MSAA", q.msaaSamples) : std::string("no MSAA");
+      pixels = ui::format("pixels %d×%d (%s)", q.pixelWidth, q.pixelHeight, msaa.c_str());
+    }
+    w.text(ui::format("triangles %.0f · ", s.triangles) + pixels);
     w.text(ui::format("buildings: %u loaded, %u visible, %u animated", s.latest.buildingsLoaded,
                       s.latest.buildingsVisible, s.latest.buildingsAnimated));
     w.text(ui::format("upload %.1f KB/frame", s.uploadBytes / 1024.0));

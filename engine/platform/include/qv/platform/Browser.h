@@ -19,6 +19,10 @@ struct GlContextOptions {
 /// user in `error`) when the browser has no WebGL2.
 bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& options, std::string& error);
 
+/// Samples per pixel of the current context's drawing buffer (GL_SAMPLES of the default
+/// framebuffer: 4 in browsers that antialias with MSAA), 0 without multisampling.
+int drawingBufferSamples();
+
 struct CanvasSize {
   double cssWidth = 1.0, cssHeight = 1.0;
   int pixelWidth = 1, pixelHeight = 1;

@@ -3,6 +3,7 @@
 // Everything it shows is also written to the TextMirror behind `quakeview.uiText()`.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -41,6 +42,19 @@ struct QualityState {
   double governorChangeMedianMs = 0.0;  ///< the median frame time behind the last change
   double governorMedianMs = 0.0;        ///< the median frame time of the current window
   double slowFrameMs = 50.0, fastFrameMs = 25.0;
+  // The drawing buffer of the current frame, set by the app every frame: on a software renderer
+  // the frame time is the triangles and these samples.
+  int pixelWidth = 0, pixelHeight = 0;  ///< device pixels
+  int msaaSamples = 0;                  ///< samples per pixel (GL_SAMPLES); 0 or 1: no multisampling
+  /// Pixels of the drawing buffer: pixelWidth x pixelHeight (0 while either is not positive).
+  [[nodiscard]] std::uint64_t pixels() const {
+    if (pixelWidth <= 0 || pixelHeight <= 0) return 0;
+    return static_cast<std::uint64_t>(pixelWidth) * static_cast<std::uint64_t>(pixelHeight);
+  }
+  /// Samples filled per frame: pixels() x msaaSamples with multisampling, else pixels().
+  [[nodiscard]] std::uint64_t samples() const {
+    return msaaSamples > 1 ? pixels() * static_cast<std::uint64_t>(msaaSamples) : pixels();
+  }
   // Requests from the panel, cleared by the app once handled.
   bool fullQualityRequested = false;  ///< "Use full quality": High preset, no pixel ratio cap, governor off
   bool presetChosen = false;          ///< the user picked a preset: the governor starts again from step 0
