@@ -679,6 +679,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       int tiles = static_cast<int>(o.maxDrawTiles);
       if (w.sliderInt("Max tiles drawn", &tiles, 1, 250)) o.maxDrawTiles = static_cast<std::uint32_t>(tiles);
       w.sliderFloat("Detail (pixels of error)", &o.maxScreenSpaceError, 2.0f, 100.0f, "%.0f");
+      w.sliderFloat("Far blocks (pixels, 0 off)", &o.blockPixels, 0.0f, 32.0f, "%.0f");
     }
     w.text(ui::format("cull %.2f  lod %.2f  animate %.2f ms", s.frameMs.cull, s.frameMs.lod, s.frameMs.animate));
     w.text(ui::format("upload %.2f  render %.2f  total %.2f ms", s.frameMs.upload, s.frameMs.render, s.frameMs.total));
