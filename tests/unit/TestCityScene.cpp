@@ -249,6 +249,9 @@ TEST_CASE("Far away a far-view tile is drawn as blocks: a box per cell, its wors
   const auto picked = viewer.pick(screen->x, screen->y);
   REQUIRE(picked.has_value());
   CHECK(picked->attributes.id == MiniCity::idOf(2, 5));
+  // Its far-view copy has no name; the city index gives it while its leaf is on its way.
+  CHECK_FALSE(picked->detailed);
+  CHECK(picked->attributes.name == "Building 2-5");
   // Selecting it marks its block, and a filter that only it passes keeps its block undimmed.
   viewer.city()->select(MiniCity::idOf(2, 5));
   runFrames(viewer, 2);

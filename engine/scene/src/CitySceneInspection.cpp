@@ -74,6 +74,14 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
   info.attributes.centroidX += d.originX;
   info.attributes.centroidY += d.originY;
   info.detailed = !d.coarse;
+  // Far-view tiles carry no descriptive strings: the city index has the name and address while
+  // the building's leaf is on its way.
+  if (d.coarse) {
+    if (const SearchEntry* e = index_.entry(info.attributes.id)) {
+      if (info.attributes.name.empty()) info.attributes.name = e->name;
+      if (info.attributes.address.empty()) info.attributes.address = e->address;
+    }
+  }
   info.tile = tileset_->nodes[ref.node].key();
   if (const TileMesh* m = t.loaded->meshOf(ref.index)) {
     info.modelSource = meshSourceName(m->source);
