@@ -203,9 +203,13 @@ TEST_CASE("A block's mesh is a box per block in its own row; its colour is its w
   for (std::uint32_t m = level.memberStart[0]; m < level.memberStart[1]; ++m)
     rows[level.members[m]].damageState = kDamageNoResult;
   rows[first].damageState = kDamagePending;
+  REQUIRE(level.memberStart[1] - level.memberStart[0] > 1);
+  rows[level.members[level.memberStart[1] - 1]].damageState = 4.0f;  // dimmed: left out of the colour
   aggregateBlockRows(level, rows, out);
   CHECK((static_cast<unsigned>(out[0].flags) & kFlagDimmed) == 0);
-  CHECK(out[0].damageState == kDamagePending);
+  CHECK(out[0].damageState == kDamagePending);  // the kept member's, not the dimmed ones' results
+  CHECK(out[0].peakValue == rows[first].peakValue);
+  for (std::uint32_t m = level.memberStart[0]; m < level.memberStart[1]; ++m) rows[level.members[m]].flags = 0.0f;
   rows[level.members[level.memberStart[1] - 1]].damageState = 1.0f;
   aggregateBlockRows(level, rows, out);
   CHECK(out[0].damageState == 1.0f);

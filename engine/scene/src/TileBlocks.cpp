@@ -303,23 +303,28 @@ void aggregateBlockRows(const TileBlockLevel& level, std::span<const BuildingGpu
                         std::span<BuildingGpuRecord> out) {
   const std::size_t n = std::min(level.boxes.size(), out.size());
   for (std::size_t p = 0; p < n; ++p) {
-    BuildingGpuRecord row;
-    row.floorBase = -1.0f;
-    row.peakValue = 0.0f;
-    row.damageState = kDamageNoResult;
-    row.lossCode = -1.0f;
-    row.baseZ = level.boxes[p].minZ;
-    bool anySelected = false, allDimmed = true, allHidden = true, anyPending = false, anyResult = false;
-    float tallest = -INFINITY;
-    float damage = -INFINITY;
-    for (std::uint32_t m = level.memberStart[p]; m < level.memberStart[p + 1]; ++m) {
-      const std::uint32_t position = level.members[m];
-      if (position >= buildingRows.size()) continue;
-      const BuildingGpuRecord& r = buildingRows[position];
-      const auto flags = static_cast<unsigned>(r.flags);
+    const std::uint32_t* first = level.members.data() + level.memberStart[p];
+    const std::uint32_t* last = level.members.data() + level.memberStart[p + 1];
+    // Flags over every member; the colour over the members a filter keeps, when it keeps any.
+    bool anySelected = false, allDimmed = true, allHidden = true;
+    for (const std::uint32_t* m = first; m != last; ++m) {
+      if (*m >= buildingRows.size()) continue;
+      const auto flags = static_cast<unsigned>(buildingRows[*m].flags);
       anySelected = anySelected || (flags & kFlagSelected) != 0;
       allDimmed = allDimmed && (flags & kFlagDimmed) != 0;
       allHidden = allHidden && (flags & kFlagHidden) != 0;
+    }
+    BuildingGpuRecord row;
+    row.floorBase = -1.0f;
+    row.peakValue = 0.0f;
+    row.lossCode = -1.0f;
+    row.baseZ = level.boxes[p].minZ;
+    bool anyPending = false, anyResult = false;
+    float tallest = -INFINITY, damage = -INFINITY;
+    for (const std::uint32_t* m = first; m != last; ++m) {
+      if (*m >= buildingRows.size()) continue;
+      const BuildingGpuRecord& r = buildingRows[*m];
+      if (!allDimmed && (static_cast<unsigned>(r.flags) & kFlagDimmed) != 0) continue;
       if (r.damageState >= 0.0f) {
         anyResult = true;
         damage = std::max(damage, r.damageState);
