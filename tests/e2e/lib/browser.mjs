@@ -26,9 +26,10 @@
 //   the viewport anyway); hasTouch asks for emulation.setTouchOverride, which Firefox ESR 153
 //   does not implement (puppeteer tolerates that), so the preferences
 //   dom.w3c_touch_events.enabled = 1 (the TouchEvent API) and dom.maxtouchpoints.testing.value = 1
-//   (navigator.maxTouchPoints) make the page see a touch screen. Taps and swipes are BiDi
-//   input.performActions with pointerType "touch", which Firefox delivers as touch events (and
-//   pointer events), as a touch screen would.
+//   (navigator.maxTouchPoints) make the page see a touch screen (the media query
+//   `(pointer: coarse)` still does not match in headless Firefox; the viewer does not use it).
+//   Taps and swipes are BiDi input.performActions with pointerType "touch", which Firefox
+//   delivers as touch events (and pointer events), as a touch screen would.
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
