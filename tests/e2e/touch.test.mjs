@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { launchBrowser, openPage, settle, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, settle, swipe, waitReady } from './lib/browser.mjs';
 import { ESB, URL_PATH, serveMidtown } from './lib/midtown.mjs';
 import { ARTIFACTS } from './lib/server.mjs';
 
@@ -29,21 +29,9 @@ async function tapPanelHeader(page, wantOpen) {
   }, wantOpen, { timeout: 20000, polling: 100 });
 }
 
-// A one-finger swipe through the DevTools protocol (page.touchscreen only taps).
-async function swipe(page, cdp, from, to, steps = 8) {
-  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: [{ x: from.x, y: from.y }] });
-  for (let i = 1; i <= steps; ++i) {
-    const x = from.x + (to.x - from.x) * i / steps;
-    const y = from.y + (to.y - from.y) * i / steps;
-    await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: [{ x, y }] });
-    await page.waitForTimeout(30);
-  }
-  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
-}
-
 // The "Pause (Space)" button's rectangle, scrolled into the panel's visible part by swiping the
 // panel up when it is below it.
-async function pauseButton(page, cdp) {
+async function pauseButton(page) {
   for (let attempt = 0; attempt < 8; ++attempt) {
     const l = await layout(page);
     const panel = panelOf(l);
@@ -54,7 +42,7 @@ async function pauseButton(page, cdp) {
     const up = button.y + button.height > panel.y + panel.height ? -1 : 1;
     const x = panel.x + panel.width / 2;
     const y = panel.y + panel.height / 2;
-    await swipe(page, cdp, { x, y }, { x, y: y + up * Math.min(200, panel.height / 3) });
+    await swipe(page, { x, y }, { x, y: y + up * Math.min(200, panel.height / 3) });
     await page.waitForTimeout(300);
   }
   assert.fail('the Pause button could not be scrolled into view');
@@ -86,7 +74,6 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
     const { page, problems } = await openPage(context, `${midtown.server.url}${URL_PATH}`);
     assert.deepEqual(await waitReady(page), { ok: true });
     await settle(page);
-    const cdp = await context.newCDPSession(page);
 
     // The canvas: a 390 x 844 CSS screen at 3 would be 1170 x 2532; at most 1.5x is drawn.
     const stats = await page.evaluate(() => window.quakeview.stats());
@@ -113,7 +100,7 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
 
     // A tap on "Pause (Space)" stops the time.
     assert.ok(await page.evaluate(() => window.quakeview.playing()), 'the animation plays at the start');
-    const pause = await pauseButton(page, cdp);
+    const pause = await pauseButton(page);
     await page.touchscreen.tap(centre(pause).x, centre(pause).y);
     await page.waitForFunction(() => !window.quakeview.playing(), null, { timeout: 20000, polling: 100 });
     assert.ok(await timeStops(page), 'the time stops advancing');
@@ -145,7 +132,7 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
 
     // A one-finger swipe on the city pans it and selects nothing else.
     const before = await page.evaluate(() => window.quakeview.getCamera());
-    await swipe(page, cdp, { x: 200, y: 250 }, { x: 120, y: 330 });
+    await swipe(page, { x: 200, y: 250 }, { x: 120, y: 330 });
     await page.waitForTimeout(300);
     const panned = await page.evaluate(() => window.quakeview.getCamera());
     assert.ok(Math.hypot(panned.x - before.x, panned.y - before.y) > 10, `the swipe panned: ${JSON.stringify([before, panned])}`);
@@ -176,7 +163,6 @@ test('on a tablet, a tap presses Pause in the open panel and a tap selects a bui
     const { page, problems } = await openPage(context, `${midtown.server.url}${URL_PATH}`);
     assert.deepEqual(await waitReady(page), { ok: true });
     await settle(page);
-    const cdp = await context.newCDPSession(page);
 
     const stats = await page.evaluate(() => window.quakeview.stats());
     assert.ok(stats.canvas.pixelRatio <= 2 && stats.canvas.width <= 1536, JSON.stringify(stats.canvas));
@@ -188,7 +174,7 @@ test('on a tablet, a tap presses Pause in the open panel and a tap selects a bui
     assert.ok(panel.x >= 0 && panel.x + panel.width <= 768, JSON.stringify(panel));
     await page.screenshot({ path: path.join(ARTIFACTS, 'touch-tablet-open.png') });
 
-    const pause = await pauseButton(page, cdp);
+    const pause = await pauseButton(page);
     await page.touchscreen.tap(centre(pause).x, centre(pause).y);
     await page.waitForFunction(() => !window.quakeview.playing(), null, { timeout: 20000, polling: 100 });
     assert.ok(await timeStops(page), 'the time stops advancing');

@@ -10,7 +10,26 @@
 //   wheel(dx, dy)}, page.keyboard.{press, down, up, type}, page.focus(selector),
 //   page.locator(selector).{innerText(), isVisible()}, page.waitForEvent('download', {timeout}) ->
 //   {suggestedFilename(), path()}, page.on('console' | 'pageerror'), page.setDefaultTimeout(ms),
-//   page.goto(url, {waitUntil: 'load'}), page.close(); context.newPage().
+//   page.goto(url, {waitUntil: 'load'}), page.close(), page.touchscreen.tap(x, y) (with
+//   options.touch); context.newPage().
+// One-finger swipes, which Playwright's API lacks, go through swipe(page, from, to) below in
+// either engine.
+//
+// Touch emulation (launchBrowser({viewport, deviceScaleFactor, touch: true})):
+// - Chromium: Playwright's viewport, deviceScaleFactor, hasTouch and isMobile; swipes are the
+//   DevTools protocol's Input.dispatchTouchEvent.
+// - Firefox: puppeteer's page.setViewport({width, height, deviceScaleFactor, isMobile, hasTouch})
+//   as the default viewport. Over WebDriver BiDi it becomes browsingContext.setViewport with
+//   devicePixelRatio, which Firefox ESR honours (window.devicePixelRatio, the canvas and the
+//   screenshots are at that ratio: no `layout.css.devPixelsPerPx` needed); isMobile has no BiDi
+//   equivalent and is ignored (Firefox has no mobile viewport mode, and the page sizes itself to
+//   the viewport anyway); hasTouch asks for emulation.setTouchOverride, which Firefox ESR 153
+//   does not implement (puppeteer tolerates that), so the preferences
+//   dom.w3c_touch_events.enabled = 1 (the TouchEvent API) and dom.maxtouchpoints.testing.value = 1
+//   (navigator.maxTouchPoints) make the page see a touch screen (the media query
+//   `(pointer: coarse)` still does not match in headless Firefox; the viewer does not use it).
+//   Taps and swipes are BiDi input.performActions with pointerType "touch", which Firefox
+//   delivers as touch events (and pointer events), as a touch screen would.
 import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -41,7 +60,8 @@ const BASE_FLAGS = [
 /// options.webgl === false launches with WebGL disabled (to test the fallback message).
 /// options.viewport {width, height} (CSS px, default 1280 x 720) and options.deviceScaleFactor
 /// (default 1) size the page; options.touch === true emulates a touch device (hasTouch and
-/// isMobile: touch events, page.touchscreen, a mobile viewport; Chromium only).
+/// isMobile: touch events, page.touchscreen, swipe(); in Firefox without a mobile viewport, see
+/// the top of this file).
 /// Resolves to {context, close, browser} where browser is 'chromium' or 'firefox'.
 export async function launchBrowser(options = {}) {
   return BROWSER === 'firefox' ? launchFirefox(options) : launchChromium(options);
@@ -91,12 +111,24 @@ async function launchFirefox(options) {
   };
   if (options.webgl === false) prefs['webgl.disabled'] = true;
   else prefs['webgl.force-enabled'] = true;
+  const touch = options.touch === true;
+  if (touch) {
+    // BiDi's emulation.setTouchOverride is not in Firefox ESR 153: these give the page a touch screen.
+    prefs['dom.w3c_touch_events.enabled'] = 1;
+    prefs['dom.maxtouchpoints.testing.value'] = 1;
+  }
   const viewport = options.viewport || { width: 1280, height: 720 };
   const browser = await puppeteer.launch({
     browser: 'firefox',
     executablePath: FIREFOX,
     headless: true,
-    defaultViewport: { width: viewport.width, height: viewport.height, deviceScaleFactor: 1 },
+    defaultViewport: {
+      width: viewport.width,
+      height: viewport.height,
+      deviceScaleFactor: options.deviceScaleFactor || 1,
+      isMobile: touch,
+      hasTouch: touch,
+    },
     extraPrefsFirefox: prefs,
     env: { ...process.env, MOZ_WEBGL_FORCE_EGL: '1' },
     // Firefox says "RenderCompositorSWGL failed mapping default framebuffer" on stderr, harmlessly.
@@ -142,10 +174,25 @@ function wrapPuppeteerPage(page, downloads) {
     up: async (key) => settled(await page.keyboard.up(keyName(key))),
     type: async (text, opts) => settled(await page.keyboard.type(text, opts)),
   };
+  // Playwright: touchscreen.tap(x, y); puppeteer's is the same, a BiDi touch press and release.
+  const touchscreen = {
+    tap: async (x, y) => settled(await page.touchscreen.tap(x, y)),
+  };
   const wrapped = {
     raw: page,
     mouse,
     keyboard,
+    touchscreen,
+    // One finger down at `from`, through `points`, up: see swipe() below.
+    swipe: async (from, points, stepMs) => {
+      const finger = await page.touchscreen.touchStart(from.x, from.y);
+      for (const p of points) {
+        await finger.move(p.x, p.y);
+        await sleep(stepMs);
+      }
+      await finger.end();
+      return settled();
+    },
     evaluate: (fn, arg) => (arg === undefined ? page.evaluate(fn) : page.evaluate(fn, arg)),
     // Playwright: (fn, arg, options); puppeteer: (fn, options, ...args). Playwright polls on
     // animation frames by default; puppeteer's 'raf' is the same.
@@ -194,6 +241,29 @@ function wrapPuppeteerPage(page, downloads) {
     },
   };
   return wrapped;
+}
+
+const cdpSessions = new WeakMap();
+
+/// A one-finger swipe on a page of a touch context (launchBrowser({touch: true})): the finger goes
+/// down at `from` {x, y} (CSS px), moves in `steps` equal steps `stepMs` apart to `to`, and comes
+/// up there. Chromium: the DevTools protocol's Input.dispatchTouchEvent (Playwright's touchscreen
+/// only taps); Firefox: puppeteer's touchscreen.touchStart, then move and end (WebDriver BiDi
+/// touch actions). Resolves once the page has received the finger's release.
+export async function swipe(page, from, to, { steps = 8, stepMs = 30 } = {}) {
+  const points = [];
+  for (let i = 1; i <= steps; ++i) {
+    points.push({ x: from.x + (to.x - from.x) * i / steps, y: from.y + (to.y - from.y) * i / steps });
+  }
+  if (typeof page.swipe === 'function') return page.swipe(from, points, stepMs);  // Firefox
+  if (!cdpSessions.has(page)) cdpSessions.set(page, await page.context().newCDPSession(page));
+  const cdp = cdpSessions.get(page);
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchStart', touchPoints: [{ x: from.x, y: from.y }] });
+  for (const p of points) {
+    await cdp.send('Input.dispatchTouchEvent', { type: 'touchMove', touchPoints: [{ x: p.x, y: p.y }] });
+    await page.waitForTimeout(stepMs);
+  }
+  await cdp.send('Input.dispatchTouchEvent', { type: 'touchEnd', touchPoints: [] });
 }
 
 /// Opens a page and records console errors, page errors and failed requests.
