@@ -74,6 +74,7 @@ struct SystemRef {
   const double* padded = nullptr;  // 0, samples 1..N, 0, 0
   double lastPosition = 0.0;       // N + 1: the trailing zero
   bool squareRootUpdate = false;   // some storey has n = 2 (the n = 1 update needs no square root)
+  bool curvedUnloading = false;    // some storey has γ̂ < β̂: no exact update, backward Euler
   int refinementClass = 0;         // a priori levels of accuracy splitting (batching key, see solve())
 };
 
@@ -100,6 +101,12 @@ struct Simd<float> {
   // peak, same steps) at ~1.2 solves per step; 3e-4 costs 11 % more for 2e-4.
   static constexpr float kResidual = 1e-3f;
   static constexpr float kCorrection = 2e-6f;
+  // oneMinusExpNegative: 1.5·2^23 rounds to an integer in the low mantissa bits; IEEE exponent
+  // field; Taylor terms of e^r - 1 for float (truncation below 2e-9 relative on |r| <= ln2/2).
+  static constexpr float kRoundMagic = 12582912.0f;
+  static constexpr std::int32_t kExponentBias = 127;
+  static constexpr int kMantissaBits = 23;
+  static constexpr int kExpTerms = 8;
 };
 template <>
 struct Simd<double> {
@@ -109,6 +116,10 @@ struct Simd<double> {
   static constexpr std::int64_t kAbsMask = 0x7fffffffffffffff;
   static constexpr double kResidual = 1e-10;
   static constexpr double kCorrection = 1e-14;
+  static constexpr double kRoundMagic = 6755399441055744.0;  // 1.5·2^52
+  static constexpr std::int64_t kExponentBias = 1023;
+  static constexpr int kMantissaBits = 52;
+  static constexpr int kExpTerms = 14;
 };
 
 template <typename T>
@@ -145,7 +156,59 @@ struct VectorMath {
     const V power = absZ * (nIsTwo * absZ + oneMinusN);
     slope = (one - c * power) / s;
   }
-  /// The same update when every lane has n = 1: S = B, so one division and no square root.
+  /// oneMinusExpNegative of BoucWenUpdate.h on all lanes (y >= 0): 1 - e^(-y) from + - * / and an
+  /// exact power of two, so every target gives the same bits. k = round(y / ln2) by the magic-number
+  /// addition (round to nearest), 2^(-k) built in the exponent field (k <= 116: a normal number).
+  static V oneMinusExpNegative(V y) {
+    const V one = splat(T(1));
+    const V limit = splat(T(80));
+    y = y < limit ? y : limit;
+    const V magic = splat(Simd<T>::kRoundMagic);
+    const V rounded = y * T(1.4426950408889634074) + magic;
+    const V k = rounded - magic;
+    const M kInteger = __builtin_bit_cast(M, rounded) - __builtin_bit_cast(M, magic);
+    const V r = (k * T(6.93147180369123816490e-01) - y) + k * T(1.90821492927058770002e-10);
+    V p = one;
+    for (int j = Simd<T>::kExpTerms; j >= 2; --j) p = one + r * (T(1) / static_cast<T>(j)) * p;
+    const V m = r * p;
+    const V scale = __builtin_bit_cast(V, (Simd<T>::kExponentBias - kInteger) << Simd<T>::kMantissaBits);
+    return (one - scale) - scale * m;
+  }
+  /// The exact update of BoucWenUpdate.h (boucWenExact: n in {1, 2}, γ̂ = β̂) on all lanes.
+  static void boucWenExact(V zPrevious, V x, V nIsTwo, V oneMinusN, V& z, V& slope) {
+    const V one = splat(T(1));
+    const V zero = splat(T(0));
+    const V sign = signOf(x);
+    const V w0 = zPrevious * sign;
+    const V s = x * sign;
+    const V minusW0 = zero - w0;
+    const V room = minusW0 > zero ? minusW0 : zero;
+    const V unload = s < room ? s : room;
+    const V w = w0 + unload;
+    const V e = oneMinusExpNegative((s - unload) * (one + nIsTwo));
+    const V numerator = e * (one - w) * (one + nIsTwo * w);
+    const V denominator = one + nIsTwo * ((one - e) + w * e);
+    const V end = w + numerator / denominator;
+    z = end * sign;
+    const V loading = end > zero ? end : zero;
+    slope = one - loading * (nIsTwo * loading + oneMinusN);
+  }
+  /// The same when every lane has n = 1: no division.
+  static void boucWenExactLinearExponent(V zPrevious, V x, V& z, V& slope) {
+    const V one = splat(T(1));
+    const V zero = splat(T(0));
+    const V sign = signOf(x);
+    const V w0 = zPrevious * sign;
+    const V s = x * sign;
+    const V minusW0 = zero - w0;
+    const V room = minusW0 > zero ? minusW0 : zero;
+    const V unload = s < room ? s : room;
+    const V w = w0 + unload;
+    const V end = w + (one - w) * oneMinusExpNegative(s - unload);
+    z = end * sign;
+    slope = one - (end > zero ? end : zero);
+  }
+  /// The backward-Euler update when every lane has n = 1: S = B, so one division and no square root.
   static void boucWenLinearExponent(V zPrevious, V x, V cUnload, V& z, V& slope) {
     const V one = splat(T(1));
     const V total = zPrevious + x;
@@ -206,6 +269,7 @@ class BatchKernel {
     int maxIterations = 10;
     int maxSplits = 4;                // levels of halving a step (Newton failure or accuracy)
     double maxHystereticError = 1.0;  // >= 1: off (see ResponseOptions)
+    bool exactUpdate = false;         // boucWenExact in every lane (n in {1, 2}, γ̂ = β̂), else backward Euler
   };
 
   void run(const std::array<Lane, W>& lanes, std::size_t storeys, const Settings& settings, SolverStats& stats) {
@@ -213,6 +277,7 @@ class BatchKernel {
     if (rows_.size() < (n + 1) * K) rows_.resize((n + 1) * K);
     setUp(lanes, n, settings);
     squareRoot_ = false;
+    exact_ = settings.exactUpdate;
     for (std::size_t l = 0; l < W; ++l)
       squareRoot_ = squareRoot_ || (lanes[l].system != nullptr && lanes[l].system->squareRootUpdate);
 
@@ -545,7 +610,13 @@ class BatchKernel {
       const V dDrift = du - duBelow;
       V z;
       V slope;
-      if (squareRoot_) {
+      if (exact_) {
+        if (squareRoot_) {
+          Math::boucWenExact(r.z, dDrift * r.inverseYield, r.nIsTwo, r.oneMinusN, z, slope);
+        } else {
+          Math::boucWenExactLinearExponent(r.z, dDrift * r.inverseYield, z, slope);
+        }
+      } else if (squareRoot_) {
         Math::boucWen(r.z, dDrift * r.inverseYield, r.nIsTwo, r.oneMinusN, r.fourN, r.cUnload, z, slope);
       } else {
         Math::boucWenLinearExponent(r.z, dDrift * r.inverseYield, r.cUnload, z, slope);
@@ -720,6 +791,7 @@ class BatchKernel {
   std::size_t roofIndex_[W] = {};
   bool sharedRoof_ = true;
   bool squareRoot_ = true;              // some lane has n = 2 storeys
+  bool exact_ = false;                  // Settings::exactUpdate
   double preparedStep_ = 0.0;           // the step prepareMatrix last used
   int startLevel_ = 0;                  // levels of splitting a sub-step starts at (hysteretic bound)
   int deepestCommitted_ = 0;            // of the current sub-step: the deepest level committed
@@ -760,6 +832,7 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
     std::size_t slots = 0;
     std::size_t storeys = 0;
     int substeps = 1;
+    bool curvedUnloading = false;
     for (std::size_t k = start; k < end; ++k) {
       const SystemRef& sys = systems[k];
       // X and Y of a building are adjacent: reuse the slot of the previous lane for the Y direction.
@@ -786,6 +859,7 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
       lane.worstResidual = &worstResidual[slot];
       storeys = std::max(storeys, sys.storeys);
       substeps = std::max(substeps, sys.substeps);
+      curvedUnloading = curvedUnloading || sys.curvedUnloading;
     }
     typename Kernel::Settings settings;
     settings.dt = dt;
@@ -795,7 +869,10 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
     settings.keepDrifts = options.driftRatios;
     settings.maxIterations = options.maxNewtonIterations;
     settings.maxSplits = options.maxSplits;
-    settings.maxHystereticError = options.fixedSubsteps > 0 ? 1.0 : options.maxHystereticError;
+    // Automatic sub-steps: the exact update where every lane allows it (then the update has no error
+    // to bound), else backward Euler under the hysteretic bound; fixed sub-steps: backward Euler, equal steps.
+    settings.exactUpdate = options.fixedSubsteps == 0 && options.exactHystereticUpdate && !curvedUnloading;
+    settings.maxHystereticError = options.fixedSubsteps > 0 || settings.exactUpdate ? 1.0 : options.maxHystereticError;
     kernel.run(lanes, storeys, settings, stats);
     for (std::size_t slot = 0; slot < slots; ++slot) {
       BuildingResponse& r = responses[slot];
@@ -928,7 +1005,10 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       sys.padded = impl_->padded[static_cast<std::size_t>(direction)].data();
       sys.lastPosition = static_cast<double>(sys.motion->size() + 1);
       sys.storeys = model.storeys();
-      for (const BoucWenStorey& h : model.hysteresis) sys.squareRootUpdate = sys.squareRootUpdate || h.exponent == 2.0;
+      for (const BoucWenStorey& h : model.hysteresis) {
+        sys.squareRootUpdate = sys.squareRootUpdate || h.exponent == 2.0;
+        sys.curvedUnloading = sys.curvedUnloading || h.gammaShare != 0.5;
+      }
       if (o.fixedSubsteps > 0) {
         sys.substeps = o.fixedSubsteps;
       } else {
@@ -940,13 +1020,26 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       systems.push_back(sys);
     }
   }
+  // X and Y of a building share their kind of update, so the sort below keeps them adjacent.
+  for (std::size_t k = 1; k < systems.size(); ++k) {
+    if (systems[k].building != systems[k - 1].building) continue;
+    systems[k].squareRootUpdate = systems[k - 1].squareRootUpdate =
+        systems[k].squareRootUpdate || systems[k - 1].squareRootUpdate;
+    systems[k].curvedUnloading = systems[k - 1].curvedUnloading =
+        systems[k].curvedUnloading || systems[k - 1].curvedUnloading;
+  }
   // A priori need of accuracy splitting, only to batch systems of similar need together (the batch
   // takes the step of its most demanding lane; the bound itself is checked step by step). A storey's
   // drift increment per step is estimated from the first mode: scale · Sv(T1) · Γ1 (φ_i − φ_(i−1)) · h
   // with Sv the record's relative-velocity spectrum at 5 % damping, so the error estimate's ½ x becomes
   // that over 2 dy_i; the class is log2 of its ratio to the bound in half levels. X and Y of a building
   // share the larger class, so they stay adjacent.
-  const bool bounded = o.fixedSubsteps == 0 && o.maxHystereticError < 1.0;
+  // Only systems on the backward-Euler update are bounded (the exact update has no error to bound).
+  const auto boundedSystem = [&](const SystemRef& sys) {
+    return !sys.model->hysteresis.empty() && (!o.exactHystereticUpdate || sys.curvedUnloading);
+  };
+  const bool bounded =
+      o.fixedSubsteps == 0 && o.maxHystereticError < 1.0 && std::any_of(systems.begin(), systems.end(), boundedSystem);
   if (bounded) {
     for (int direction = 0; direction < (motionY != nullptr ? 2 : 1); ++direction) {
       velocitySpectrum(impl_->padded[static_cast<std::size_t>(direction)],
@@ -955,7 +1048,7 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
     }
     for (SystemRef& sys : systems) {
       const ShearBuilding& model = *sys.model;
-      if (model.hysteresis.empty()) continue;
+      if (!boundedSystem(sys)) continue;
       auto modes = computeModes(model, true);
       if (!modes) return fail("building " + std::to_string(sys.building) + ": " + modes.error());
       const std::size_t n = model.storeys();
@@ -980,13 +1073,14 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       systems[k].refinementClass = systems[k - 1].refinementClass = shared;
     }
   }
-  // Similar systems share a batch: by storeys (padding), then the kind of Bouc–Wen update, then the
-  // a priori need of accuracy splitting (with the hysteretic bound), then delay (arrival skipping), keeping a
-  // building's X and Y adjacent so they land in the same batch (the lane count is even; X and Y models share their
-  // storey laws' exponents).
+  // Similar systems share a batch: by storeys (padding), then the kind of Bouc–Wen update (n = 2
+  // anywhere, then γ̂ < β̂ anywhere: backward Euler), then the a priori need of accuracy splitting (with the
+  // hysteretic bound), then delay (arrival skipping), keeping a building's X and Y adjacent so they land in
+  // the same batch (the lane count is even; X and Y models share their storey laws' exponents).
   std::stable_sort(systems.begin(), systems.end(), [](const SystemRef& a, const SystemRef& b) {
     if (a.storeys != b.storeys) return a.storeys < b.storeys;
     if (a.squareRootUpdate != b.squareRootUpdate) return b.squareRootUpdate;
+    if (a.curvedUnloading != b.curvedUnloading) return b.curvedUnloading;
     if (a.refinementClass != b.refinementClass) return a.refinementClass < b.refinementClass;
     if (a.delay != b.delay) return a.delay < b.delay;
     if (a.building != b.building) return a.building < b.building;
