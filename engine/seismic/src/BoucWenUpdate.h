@@ -34,8 +34,13 @@
 
 namespace qv::seismic::detail {
 
+/// j! for j = 0 .. 14 (exact in double).
+inline constexpr double kFactorials[15] = {1.0,       1.0,        2.0,         6.0,          24.0,
+                                           120.0,     720.0,      5040.0,      40320.0,      362880.0,
+                                           3628800.0, 39916800.0, 479001600.0, 6227020800.0, 87178291200.0};
+
 /// 1 - e^(-y) for y >= 0 (y above 80 counts as 80). y = k ln2 - r with |r| <= ln2/2: e^(-y) =
-/// 2^(-k) (1 + m), m = e^r - 1 by its Taylor series (14 terms: below 1e-17 relative), so for k = 0
+/// 2^(-k) (1 + m), m = e^r - 1 by its Taylor series in Horner form (14 terms: below 1e-17 relative), so for k = 0
 /// the result is -m with no cancellation. The batched solver mirrors it on SIMD lanes.
 inline double oneMinusExpNegative(double y) {
   constexpr double kInverseLn2 = 1.4426950408889634074;
@@ -44,8 +49,8 @@ inline double oneMinusExpNegative(double y) {
   y = std::min(y, 80.0);
   const double k = std::floor(y * kInverseLn2 + 0.5);
   const double r = (k * kLn2High - y) + k * kLn2Low;
-  double p = 1.0;
-  for (int j = 14; j >= 2; --j) p = 1.0 + r * (1.0 / static_cast<double>(j)) * p;
+  double p = 1.0 / kFactorials[14];
+  for (int j = 13; j >= 1; --j) p = 1.0 / kFactorials[j] + r * p;
   const double m = r * p;
   const double scale = std::ldexp(1.0, -static_cast<int>(k));
   return (1.0 - scale) - scale * m;

@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "BoucWenUpdate.h"
 #include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
@@ -74,7 +75,7 @@ struct SystemRef {
   const double* padded = nullptr;  // 0, samples 1..N, 0, 0
   double lastPosition = 0.0;       // N + 1: the trailing zero
   bool squareRootUpdate = false;   // some storey has n = 2 (the n = 1 update needs no square root)
-  bool curvedUnloading = false;    // some storey has γ̂ < β̂: no exact update, backward Euler
+  bool curvedUnloading = false;    // some storey has γ̂ < β̂: backward Euler there (batching key)
   int refinementClass = 0;         // a priori levels of accuracy splitting (batching key, see solve())
 };
 
@@ -102,11 +103,11 @@ struct Simd<float> {
   static constexpr float kResidual = 1e-3f;
   static constexpr float kCorrection = 2e-6f;
   // oneMinusExpNegative: 1.5·2^23 rounds to an integer in the low mantissa bits; IEEE exponent
-  // field; Taylor terms of e^r - 1 for float (truncation below 2e-9 relative on |r| <= ln2/2).
+  // field; Taylor terms of e^r - 1 for float (truncation below 2e-8 relative on |r| <= ln2/2).
   static constexpr float kRoundMagic = 12582912.0f;
   static constexpr std::int32_t kExponentBias = 127;
   static constexpr int kMantissaBits = 23;
-  static constexpr int kExpTerms = 8;
+  static constexpr int kExpTerms = 7;
 };
 template <>
 struct Simd<double> {
@@ -168,8 +169,8 @@ struct VectorMath {
     const V k = rounded - magic;
     const M kInteger = __builtin_bit_cast(M, rounded) - __builtin_bit_cast(M, magic);
     const V r = (k * T(6.93147180369123816490e-01) - y) + k * T(1.90821492927058770002e-10);
-    V p = one;
-    for (int j = Simd<T>::kExpTerms; j >= 2; --j) p = one + r * (T(1) / static_cast<T>(j)) * p;
+    V p = splat(static_cast<T>(1.0 / detail::kFactorials[Simd<T>::kExpTerms]));
+    for (int j = Simd<T>::kExpTerms - 1; j >= 1; --j) p = static_cast<T>(1.0 / detail::kFactorials[j]) + r * p;
     const V m = r * p;
     const V scale = __builtin_bit_cast(V, (Simd<T>::kExponentBias - kInteger) << Simd<T>::kMantissaBits);
     return (one - scale) - scale * m;
@@ -229,7 +230,8 @@ struct alignas(kVectorBytes) Row {
   // Model (per batch).
   V mass, load, elastic, hysteretic, hystereticStiffness, inverseYield, nIsTwo, oneMinusN, fourN, cUnload;
   V inverseHeight, massDamping, stiffnessDamping, diagonalBase, offBase;
-  V isFloor;  // 1 for a floor of the lane's building, 0 for padding
+  V isFloor;        // 1 for a floor of the lane's building, 0 for padding
+  V backwardEuler;  // 1 for a Bouc–Wen storey on the backward-Euler update, 0 for the exact one (and others)
   // State at the start of the step.
   V u, v, a, z, drift;
   // Newton trial values.
@@ -269,17 +271,19 @@ class BatchKernel {
     int maxIterations = 10;
     int maxSplits = 4;                // levels of halving a step (Newton failure or accuracy)
     double maxHystereticError = 1.0;  // >= 1: off (see ResponseOptions)
-    bool exactUpdate = false;         // boucWenExact in every lane (n in {1, 2}, γ̂ = β̂), else backward Euler
+    bool exactUpdate = false;         // boucWenExact for storeys with γ̂ = β̂ (n in {1, 2}), else backward Euler
   };
 
-  void run(const std::array<Lane, W>& lanes, std::size_t storeys, const Settings& settings, SolverStats& stats) {
+  void run(const std::array<Lane, W>& lanes, std::size_t storeys, const Settings& requested, SolverStats& stats) {
     const std::size_t n = storeys;
     if (rows_.size() < (n + 1) * K) rows_.resize((n + 1) * K);
-    setUp(lanes, n, settings);
+    setUp(lanes, n, requested);
     squareRoot_ = false;
-    exact_ = settings.exactUpdate;
     for (std::size_t l = 0; l < W; ++l)
       squareRoot_ = squareRoot_ || (lanes[l].system != nullptr && lanes[l].system->squareRootUpdate);
+    // The hysteretic bound concerns backward-Euler storeys only: off for a batch without any.
+    Settings settings = requested;
+    if (!anyBackwardEuler_) settings.maxHystereticError = 1.0;
 
     const double h = settings.dt / settings.substeps;
     preparedStep_ = 0.0;
@@ -399,7 +403,7 @@ class BatchKernel {
     for (std::size_t k = 0; k < K; ++k) {
       for (std::size_t i = 0; i < n; ++i) {
         const Row<T>& r = row(i, k);
-        const V x = r.dDrift * r.inverseYield;
+        const V x = r.dDrift * r.inverseYield * r.backwardEuler;  // exact storeys: no error to estimate
         const V psi = x * r.zTrial >= T(0) ? one : Math::abs(r.cUnload);
         const V power = r.oneMinusN + r.nIsTwo * (T(2) * Math::abs(r.zTrial));
         worst = Math::max(worst, Math::abs(x) * psi * power);
@@ -449,13 +453,14 @@ class BatchKernel {
       // Padding: a unit mass without load, springs or dampers, which stays at rest.
       r.mass = r.oneMinusN = Math::splat(T(1));
       r.load = r.elastic = r.hysteretic = r.hystereticStiffness = r.inverseYield = r.nIsTwo = r.fourN = zero;
-      r.cUnload = r.inverseHeight = r.massDamping = r.stiffnessDamping = r.isFloor = zero;
+      r.cUnload = r.inverseHeight = r.massDamping = r.stiffnessDamping = r.isFloor = r.backwardEuler = zero;
       r.u = r.v = r.a = r.z = r.drift = zero;
       r.aNew = r.vNew = r.du = r.dDrift = r.zTrial = r.force = r.tangent = r.storeyForce = zero;
       r.rhs = r.inversePivot = r.offDiagonal = r.peakDrift = r.peakAcceleration = zero;
     }
     for (std::size_t k = 0; k < K; ++k) peakRoof_[k] = peakAcceleration_[k] = peakBase_[k] = ground_[k] = zero;
     sharedRoof_ = true;
+    anyExact_ = anyBackwardEuler_ = false;
     for (std::size_t l = 0; l < W; ++l) {
       roofIndex_[l] = 0;
       const Lane& lane = lanes[l];
@@ -489,6 +494,10 @@ class BatchKernel {
           r.oneMinusN[v] = T(1) - r.nIsTwo[v];
           r.fourN[v] = T(4) * r.nIsTwo[v];
           r.cUnload[v] = static_cast<T>(2.0 * hw.gammaShare - 1.0);
+          const bool exact = settings.exactUpdate && hw.gammaShare == 0.5;
+          r.backwardEuler[v] = exact ? T(0) : T(1);
+          anyExact_ = anyExact_ || exact;
+          anyBackwardEuler_ = anyBackwardEuler_ || !exact;
         }
         if (!b.storeyHeightM.empty()) r.inverseHeight[v] = static_cast<T>(1.0 / b.storeyHeightM[i]);
       }
@@ -610,16 +619,26 @@ class BatchKernel {
       const V dDrift = du - duBelow;
       V z;
       V slope;
-      if (exact_) {
+      const V x = dDrift * r.inverseYield;
+      if (anyExact_ || !anyBackwardEuler_) {
+        // (A batch without Bouc–Wen storeys has x = 0 everywhere: ẑ stays 0, dẑ/dx = 1.)
         if (squareRoot_) {
-          Math::boucWenExact(r.z, dDrift * r.inverseYield, r.nIsTwo, r.oneMinusN, z, slope);
+          Math::boucWenExact(r.z, x, r.nIsTwo, r.oneMinusN, z, slope);
         } else {
-          Math::boucWenExactLinearExponent(r.z, dDrift * r.inverseYield, z, slope);
+          Math::boucWenExactLinearExponent(r.z, x, z, slope);
         }
-      } else if (squareRoot_) {
-        Math::boucWen(r.z, dDrift * r.inverseYield, r.nIsTwo, r.oneMinusN, r.fourN, r.cUnload, z, slope);
-      } else {
-        Math::boucWenLinearExponent(r.z, dDrift * r.inverseYield, r.cUnload, z, slope);
+      }
+      if (anyBackwardEuler_) {
+        V zImplicit;
+        V slopeImplicit;
+        if (squareRoot_) {
+          Math::boucWen(r.z, x, r.nIsTwo, r.oneMinusN, r.fourN, r.cUnload, zImplicit, slopeImplicit);
+        } else {
+          Math::boucWenLinearExponent(r.z, x, r.cUnload, zImplicit, slopeImplicit);
+        }
+        // A batch mixing both kinds of storey: each storey its own update.
+        z = anyExact_ ? (r.backwardEuler > T(0) ? zImplicit : z) : zImplicit;
+        slope = anyExact_ ? (r.backwardEuler > T(0) ? slopeImplicit : slope) : slopeImplicit;
       }
       const V force = r.elastic * (r.drift + dDrift) + r.hysteretic * z;
       r.vNew = vNew;
@@ -791,7 +810,8 @@ class BatchKernel {
   std::size_t roofIndex_[W] = {};
   bool sharedRoof_ = true;
   bool squareRoot_ = true;              // some lane has n = 2 storeys
-  bool exact_ = false;                  // Settings::exactUpdate
+  bool anyExact_ = false;               // some storey of the batch on the exact update
+  bool anyBackwardEuler_ = false;       // some storey of the batch on the backward-Euler update
   double preparedStep_ = 0.0;           // the step prepareMatrix last used
   int startLevel_ = 0;                  // levels of splitting a sub-step starts at (hysteretic bound)
   int deepestCommitted_ = 0;            // of the current sub-step: the deepest level committed
@@ -832,7 +852,6 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
     std::size_t slots = 0;
     std::size_t storeys = 0;
     int substeps = 1;
-    bool curvedUnloading = false;
     for (std::size_t k = start; k < end; ++k) {
       const SystemRef& sys = systems[k];
       // X and Y of a building are adjacent: reuse the slot of the previous lane for the Y direction.
@@ -859,7 +878,6 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
       lane.worstResidual = &worstResidual[slot];
       storeys = std::max(storeys, sys.storeys);
       substeps = std::max(substeps, sys.substeps);
-      curvedUnloading = curvedUnloading || sys.curvedUnloading;
     }
     typename Kernel::Settings settings;
     settings.dt = dt;
@@ -869,10 +887,10 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
     settings.keepDrifts = options.driftRatios;
     settings.maxIterations = options.maxNewtonIterations;
     settings.maxSplits = options.maxSplits;
-    // Automatic sub-steps: the exact update where every lane allows it (then the update has no error
-    // to bound), else backward Euler under the hysteretic bound; fixed sub-steps: backward Euler, equal steps.
-    settings.exactUpdate = options.fixedSubsteps == 0 && options.exactHystereticUpdate && !curvedUnloading;
-    settings.maxHystereticError = options.fixedSubsteps > 0 || settings.exactUpdate ? 1.0 : options.maxHystereticError;
+    // Automatic sub-steps: the exact update for storeys with γ̂ = β̂ (no error to bound), backward Euler
+    // under the hysteretic bound for the others; fixed sub-steps: backward Euler, equal steps.
+    settings.exactUpdate = options.fixedSubsteps == 0 && options.exactHystereticUpdate;
+    settings.maxHystereticError = options.fixedSubsteps > 0 ? 1.0 : options.maxHystereticError;
     kernel.run(lanes, storeys, settings, stats);
     for (std::size_t slot = 0; slot < slots; ++slot) {
       BuildingResponse& r = responses[slot];
