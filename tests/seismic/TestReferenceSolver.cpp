@@ -296,3 +296,46 @@ TEST_CASE("The exact update covers n = 2, and gamma below beta keeps the bounded
     }
   }
 }
+
+TEST_CASE("With the exact update the yielding frame's peak base shear converges with the square of the step",
+          "[seismic][reference]") {
+  // The same record resampled at dt/4 (the piecewise-linear record is unchanged, so only the step
+  // changes): automatic sub-steps then take h = 5 ms instead of 10 ms. Backward Euler's error halves
+  // with the step (first order); the exact update leaves Newmark's, which falls four-fold.
+  const ShearBuilding b = test::issue21Frame();
+  const GroundMotion motion = elCentro();
+  GroundMotion fine = motion;
+  fine.timeStepS = motion.timeStepS / 4.0;
+  fine.accelerationMps2.clear();
+  for (std::size_t k = 1; k < 4 * (motion.size() + 1); ++k) {
+    fine.accelerationMps2.push_back(motion.accelerationAt(static_cast<double>(k) * fine.timeStepS));
+  }
+  ReferenceOptions options;
+  options.scale = 1.5;
+  options.freeVibrationSeconds = 10.0;
+  options.keepHistory = false;
+  ReferenceOptions convergedOptions = options;
+  convergedOptions.substeps = 256;
+  const auto converged = solveReference(b, motion, convergedOptions);
+  REQUIRE(converged.ok());
+  for (const bool exact : {true, false}) {
+    CAPTURE(exact);
+    ReferenceOptions o = options;
+    o.exactHystereticUpdate = exact;
+    o.maxHystereticError = 1.0;  // backward Euler at the periods' steps alone
+    const auto coarse = solveReference(b, motion, o);
+    const auto refined = solveReference(b, fine, o);
+    REQUIRE(coarse.ok());
+    REQUIRE(refined.ok());
+    CHECK(coarse->stats.substeps == 2);
+    CHECK(refined->stats.substeps == 1);
+    const double coarseError = std::fabs(coarse->peakBaseShearN / converged->peakBaseShearN - 1.0);
+    const double refinedError = std::fabs(refined->peakBaseShearN / converged->peakBaseShearN - 1.0);
+    INFO("base shear error " << 100.0 * coarseError << " % at 10 ms, " << 100.0 * refinedError << " % at 5 ms");
+    if (exact) {
+      CHECK(refinedError < coarseError / 3.0);
+    } else {
+      CHECK(refinedError > coarseError / 2.5);
+    }
+  }
+}
