@@ -1,6 +1,8 @@
 // The single-building reference solver (double precision): Newmark's average acceleration method
 // (γ = 1/2, β = 1/4, unconditionally stable) on the coupled system, Newton iterations with the
-// consistent tangent of the implicitly integrated Bouc–Wen storeys, a tridiagonal (Thomas) solve for
+// consistent tangent of the Bouc–Wen storeys' update (exact along the step's drift increment for
+// n in {1, 2} and γ̂ = β̂ with automatic sub-steps, backward Euler otherwise; see
+// ReferenceOptions::exactHystereticUpdate), a tridiagonal (Thomas) solve for
 // Rayleigh damping and a dense Cholesky solve for classical modal damping. A time step whose Newton
 // iterations do not converge is split in two, recursively. This is the oracle path (the mdof
 // command, Chopra's example) and the yardstick of the batched city solver.
