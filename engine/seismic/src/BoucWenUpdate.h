@@ -25,7 +25,8 @@
 // A step that starts unloading with s > -w unloads to 0 and loads for L = s + w. The tangent is
 // dẑ/dx = 1 - |ẑ|^n at the end when loading, 1 when unloading. The update then has no error of its
 // own, so sub-steps need follow only Newmark's (second-order) error. E is computed from + - * / and
-// exact scaling by powers of two (deterministic on every IEEE-754 target), with relative accuracy of
+// exact scaling by powers of two (no library exp: the same bits on every IEEE-754 target where the
+// compiler does not fuse a·b + c, see SyntheticMotion.cpp), with relative accuracy of
 // a few ulp also for small arguments (no cancellation in 1 - e^(-y)).
 #pragma once
 

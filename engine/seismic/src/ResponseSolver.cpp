@@ -158,7 +158,8 @@ struct VectorMath {
     slope = (one - c * power) / s;
   }
   /// oneMinusExpNegative of BoucWenUpdate.h on all lanes (y >= 0): 1 - e^(-y) from + - * / and an
-  /// exact power of two, so every target gives the same bits. k = round(y / ln2) by the magic-number
+  /// exact power of two, no library exp (the same bits wherever a·b + c is not fused; the AVX2 build
+  /// fuses, as in the rest of the kernel). k = round(y / ln2) by the magic-number
   /// addition (round to nearest), 2^(-k) built in the exponent field (k <= 116: a normal number).
   static V oneMinusExpNegative(V y) {
     const V one = splat(T(1));
