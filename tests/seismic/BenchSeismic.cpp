@@ -4,14 +4,16 @@
 // per-building peaks are kept). Prints a table.
 //
 // usage: bench_seismic [--buildings N[,N...]] [--threads T] [--precision float|double|both]
-//                      [--no-histories] [--tile N] [--compare-bound]
-// --bound E: ResponseOptions::maxHystereticError for the runs with the bound on (default: its default).
-// --accuracy N: first, N buildings spread over the city solved with the bound off and on, their peaks
+//                      [--no-histories] [--tile N] [--compare-bound] [--compare-all]
+// Solver variants ("update" column): exact = the defaults (exact Bouc–Wen update, n in {1, 2}, γ̂ = β̂);
+// be-off = backward-Euler update with sub-steps from the periods alone (`response`'s default before
+// issue 21); be-bound = backward Euler with the hysteretic error bound (the library's default before).
+// --bound E: ResponseOptions::maxHystereticError for be-bound (default: its default).
+// --accuracy N: first, N buildings spread over the city solved with every variant, their peaks
 // (base shear, roof displacement, largest drift ratio, X and Y) against 64 equal sub-steps in double
 // precision (converged to ~0.05 %): relative errors, median / 99th percentile / largest.
-// --compare-bound: each row twice in one run, first with the hysteretic error bound off (sub-steps from
-// the periods alone, the city path's default before issue 21) and then with the default bound, so the
-// CPU times compare under the same load.
+// --compare-bound: each row twice in one run, be-off then exact, so the CPU times of the old and the
+// new default of `response` compare under the same load; --compare-all: be-off, be-bound and exact.
 #include <algorithm>
 #include <array>
 #include <atomic>
@@ -123,9 +125,22 @@ struct RunResult {
   std::size_t historyFloats = 0;  // floor displacement values streamed (and discarded)
 };
 
-// `boundOff`: ResponseOptions::maxHystereticError = 1 (periods alone); else the default.
+enum class Variant { Exact, BackwardEulerOff, BackwardEulerBound };
+
+const char* variantName(Variant v) {
+  return v == Variant::Exact ? "exact" : v == Variant::BackwardEulerOff ? "be-off" : "be-bound";
+}
+
+void applyVariant(ResponseOptions& options, Variant variant, double bound) {
+  if (variant == Variant::Exact) return;
+  options.exactHystereticUpdate = false;
+  options.maxHystereticError = variant == Variant::BackwardEulerOff ? 1.0
+                               : bound > 0.0                        ? bound
+                                                                    : kDefaultMaxHystereticError;
+}
+
 RunResult runCity(const std::vector<CityBuilding>& city, std::size_t count, int threads, Precision precision,
-                  bool histories, std::size_t tile, const GroundMotion& record, bool boundOff, double bound) {
+                  bool histories, std::size_t tile, const GroundMotion& record, Variant variant, double bound) {
   RunResult total;
   std::atomic<std::size_t> nextTile{0};
   std::vector<RunResult> perThread(static_cast<std::size_t>(threads));
@@ -136,8 +151,7 @@ RunResult runCity(const std::vector<CityBuilding>& city, std::size_t count, int 
     ResponseOptions options;
     options.precision = precision;
     options.floorDisplacements = histories;
-    if (bound > 0.0) options.maxHystereticError = bound;
-    if (boundOff) options.maxHystereticError = 1.0;
+    applyVariant(options, variant, bound);
     // One time axis for the whole city: the largest delay plus the record.
     double maxDelay = 0.0;
     for (std::size_t i = 0; i < count; ++i) maxDelay = std::max(maxDelay, city[i].shaking.delaySeconds);
@@ -246,12 +260,11 @@ void reportAccuracy(const std::vector<CityBuilding>& city, std::size_t sample, c
   SolverStats convergedStats;
   const auto reference = solveAll(converged, convergedStats);
   std::printf("accuracy: %zu buildings (X and Y) against 64 equal sub-steps in double precision\n", modelsX.size());
-  std::printf("%6s %9s %8s %8s  %-26s %-26s %-26s\n", "bound", "precision", "Msteps", "Msolves",
+  std::printf("%8s %9s %8s %8s  %-26s %-26s %-26s\n", "update", "precision", "Msteps", "Msolves",
               "base shear % med/p99/max", "roof % med/p99/max", "drift % med/p99/max");
-  for (const bool off : {true, false}) {
+  for (const Variant variant : {Variant::BackwardEulerOff, Variant::BackwardEulerBound, Variant::Exact}) {
     ResponseOptions o = base;
-    if (bound > 0.0) o.maxHystereticError = bound;
-    if (off) o.maxHystereticError = 1.0;
+    applyVariant(o, variant, bound);
     SolverStats stats;
     const auto result = solveAll(o, stats);
     std::array<std::vector<double>, 3> errors;
@@ -269,7 +282,7 @@ void reportAccuracy(const std::vector<CityBuilding>& city, std::size_t sample, c
       add(result[b].x, reference[b].x);
       add(result[b].y, reference[b].y);
     }
-    std::printf("%6s %9s %8.2f %8.2f ", off ? "off" : "on", "float", static_cast<double>(stats.steps) / 1e6,
+    std::printf("%8s %9s %8.2f %8.2f ", variantName(variant), "float", static_cast<double>(stats.steps) / 1e6,
                 static_cast<double>(stats.newtonIterations) / 1e6);
     for (auto& e : errors) {
       std::sort(e.begin(), e.end());
@@ -306,7 +319,7 @@ int main(int argc, char** argv) {
   std::vector<Precision> precisions = {Precision::Float};
   bool histories = true;
   std::size_t tile = 1000;
-  bool compareBound = false;
+  std::vector<Variant> variants = {Variant::Exact};
   double bound = 0.0;  // 0: the default
   std::size_t accuracySample = 0;
   for (int i = 1; i < argc; ++i) {
@@ -328,13 +341,15 @@ int main(int argc, char** argv) {
     } else if (a == "--accuracy" && hasValue) {
       accuracySample = static_cast<std::size_t>(std::atoll(argv[++i]));
     } else if (a == "--compare-bound") {
-      compareBound = true;
+      variants = {Variant::BackwardEulerOff, Variant::Exact};
+    } else if (a == "--compare-all") {
+      variants = {Variant::BackwardEulerOff, Variant::BackwardEulerBound, Variant::Exact};
     } else if (a == "--tile" && hasValue) {
       tile = std::max<std::size_t>(1, static_cast<std::size_t>(std::atoll(argv[++i])));
     } else {
       std::fprintf(stderr,
                    "usage: bench_seismic [--buildings N[,N...]] [--threads T] [--precision float|double|both] "
-                   "[--no-histories] [--tile N] [--compare-bound] [--bound E] [--accuracy N]\n");
+                   "[--no-histories] [--tile N] [--compare-bound] [--compare-all] [--bound E] [--accuracy N]\n");
       return 2;
     }
   }
@@ -358,24 +373,22 @@ int main(int argc, char** argv) {
   std::printf("city: %zu buildings, mean %.2f storeys, tallest %zu, %zu above 30 storeys; %d threads, tiles of %zu\n\n",
               largest, static_cast<double>(storeyTotal) / static_cast<double>(largest), tallest, over30, threads, tile);
   if (accuracySample > 0) reportAccuracy(city, accuracySample, *record, bound);
-  std::printf("%9s %9s %10s %6s %8s %8s %8s %11s %14s %14s %11s %11s %8s %10s %9s  %s\n", "buildings", "precision",
-              "histories", "bound", "wall s", "cpu s", "models s", "buildings/s", "storey-steps/s", "per cpu-second",
+  std::printf("%9s %9s %10s %8s %8s %8s %8s %11s %14s %14s %11s %11s %8s %10s %9s  %s\n", "buildings", "precision",
+              "histories", "update", "wall s", "cpu s", "models s", "buildings/s", "storey-steps/s", "per cpu-second",
               "solves/step", "Msteps", "unconv.", "floats MiB", "VmHWM MiB",
               "damage none/slight/moderate/extensive/complete");
-  std::vector<bool> bounds = {false};
-  if (compareBound) bounds = {true, false};
   for (const Precision precision : precisions) {
     for (const std::size_t count : counts) {
-      for (const bool boundOff : bounds) {
-        const RunResult r = runCity(city, count, threads, precision, histories, tile, *record, boundOff, bound);
+      for (const Variant variant : variants) {
+        const RunResult r = runCity(city, count, threads, precision, histories, tile, *record, variant, bound);
         const double solvesPerStep =
             r.stats.steps > 0 ? static_cast<double>(r.stats.newtonIterations) / static_cast<double>(r.stats.steps)
                               : 0.0;
         std::printf(
-            "%9zu %9s %10s %6s %8.2f %8.2f %8.2f %11.0f %13.1fM %13.1fM %11.2f %11.2f %8zu %10.0f %9.0f  "
+            "%9zu %9s %10s %8s %8.2f %8.2f %8.2f %11.0f %13.1fM %13.1fM %11.2f %11.2f %8zu %10.0f %9.0f  "
             "%zu/%zu/%zu/%zu/%zu\n",
             count, precision == Precision::Float ? "float" : "double", histories ? "streamed" : "off",
-            boundOff ? "off" : "on", r.wallS, r.cpuS, r.modelS / threads, static_cast<double>(r.solved) / r.wallS,
+            variantName(variant), r.wallS, r.cpuS, r.modelS / threads, static_cast<double>(r.solved) / r.wallS,
             r.storeySteps / r.wallS / 1e6, r.storeySteps / r.cpuS / 1e6, solvesPerStep,
             static_cast<double>(r.stats.steps) / 1e6, r.stats.nonConvergedSteps,
             static_cast<double>(r.historyFloats) * 4.0 / (1024.0 * 1024.0), peakMemoryMiB(), r.damage[0], r.damage[1],
@@ -388,7 +401,9 @@ int main(int argc, char** argv) {
       "\nstorey-steps/s = storeys x 4096 record steps x 2 directions / wall time (sub-steps, arrival skipping and\n"
       "the tail after the record not counted); per cpu-second: the same over the CPU time of all threads (wall\n"
       "time above cpu time / threads means other processes shared the cores); floats MiB = floor displacements\n"
-      "streamed to the sink and discarded tile by tile; bound: ResponseOptions::maxHystereticError off (1, sub-steps\n"
-      "from the periods alone) or on (the default); Msteps: system steps taken, millions.\n");
+      "streamed to the sink and discarded tile by tile; update: exact (the defaults), be-off (backward Euler, "
+      "sub-steps\n"
+      "from the periods alone), be-bound (backward Euler, hysteretic error bound); Msteps: system steps taken, "
+      "millions.\n");
   return 0;
 }

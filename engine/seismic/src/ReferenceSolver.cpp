@@ -40,6 +40,7 @@ struct StoreyLaw {
   double nIsTwo = 0.0;
   double cUnload = 0.0;
   bool closedForm = true;
+  bool exact = false;  // integrated exactly (boucWenExact) when the run allows it
   bool linear = true;
 };
 
@@ -56,7 +57,9 @@ inline double hystereticErrorEstimate(const StoreyLaw& law, double x, double z) 
 
 class Integrator {
  public:
-  Integrator(const ShearBuilding& b, const GroundMotion& motion, const ReferenceOptions& o, const Modes& modes)
+  // `exactUpdate`: storeys with n in {1, 2} and γ̂ = β̂ use the exact update, the others backward Euler.
+  Integrator(const ShearBuilding& b, const GroundMotion& motion, const ReferenceOptions& o, const Modes& modes,
+             bool exactUpdate)
       : motion_(motion), options_(o), n_(b.storeys()), mass_(b.floorMassKg), damping_(b.damping) {
     laws_.resize(n_);
     for (std::size_t i = 0; i < n_; ++i) {
@@ -74,6 +77,7 @@ class Integrator {
         law.nIsTwo = h.exponent == 2.0 ? 1.0 : 0.0;
         law.cUnload = 2.0 * h.gammaShare - 1.0;
         law.closedForm = (h.exponent == 1.0 || h.exponent == 2.0) && h.gammaShare <= 0.5;
+        law.exact = exactUpdate && (h.exponent == 1.0 || h.exponent == 2.0) && h.gammaShare == 0.5;
       }
     }
     modal_ = damping_.kind == DampingKind::Modal;
@@ -113,9 +117,9 @@ class Integrator {
 
   double ground(double t) const { return options_.scale * motion_.accelerationAt(t - options_.delaySeconds); }
 
-  // Advances the state from t0 by h. On failure (Newton did not converge, or some storey's Bouc–Wen
-  // update's estimated error exceeds `maxHystereticError`, see hystereticErrorEstimate) the state is
-  // unchanged.
+  // Advances the state from t0 by h. On failure (Newton did not converge, or some backward-Euler
+  // storey's Bouc–Wen update's estimated error exceeds `maxHystereticError`, see
+  // hystereticErrorEstimate; exactly integrated storeys have none) the state is unchanged.
   StepOutcome step(double t0, double h, double maxHystereticError, SolverStats& stats, EnergyBalance* energy) {
     const double c0 = 4.0 / (h * h);
     const double c1 = 2.0 / h;
@@ -156,7 +160,7 @@ class Integrator {
     if (maxHystereticError < 1.0) {
       for (std::size_t i = 0; i < n_; ++i) {
         const StoreyLaw& law = laws_[i];
-        if (law.linear) continue;
+        if (law.linear || law.exact) continue;
         const double x = (du_[i] - (i > 0 ? du_[i - 1] : 0.0)) * law.inverseYield;
         if (hystereticErrorEstimate(law, x, zTrial_[i]) > maxHystereticError) return StepOutcome::TooCoarse;
       }
@@ -215,7 +219,9 @@ class Integrator {
       const double x = dDrift * law.inverseYield;
       double z = 0.0;
       double slope = 0.0;
-      if (law.closedForm) {
+      if (law.exact) {
+        detail::boucWenExact(z_[i], x, law.nIsTwo, z, slope);
+      } else if (law.closedForm) {
         detail::boucWenClosedForm(z_[i], x, law.nIsTwo, law.cUnload, z, slope);
       } else if (!detail::boucWenGeneral(z_[i], x, law.exponent, law.gammaShare, z, slope)) {
         return false;
@@ -417,7 +423,8 @@ Result<ReferenceResponse> solveReference(const ShearBuilding& building, const Gr
     out.groundAccelerationMps2.assign(frames, 0.0);
   }
 
-  Integrator integrator(building, motion, options, *modes);
+  const bool exactUpdate = options.substeps == 0 && options.exactHystereticUpdate;
+  Integrator integrator(building, motion, options, *modes, exactUpdate);
   EnergyBalance* energy = options.computeEnergy ? &out.energy : nullptr;
   const double h = dt / substeps;
   // Peaks at every accepted step.
@@ -438,8 +445,8 @@ Result<ReferenceResponse> solveReference(const ShearBuilding& building, const Gr
     }
     out.peakBaseMomentNm = std::fmax(out.peakBaseMomentNm, std::fabs(moment));
   };
-  // Equal steps when the caller fixes the sub-steps; automatic sub-steps also bound the hysteretic
-  // update's change per step.
+  // Equal steps when the caller fixes the sub-steps; automatic sub-steps also bound the error of the
+  // backward-Euler updates (storeys not integrated exactly).
   const double maxHystereticError = options.substeps > 0 ? 2.0 : options.maxHystereticError;
   for (std::size_t f = 1; f < frames; ++f) {
     for (int s = 0; s < substeps; ++s) {

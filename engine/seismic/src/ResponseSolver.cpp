@@ -7,6 +7,7 @@
 #include <limits>
 #include <string>
 
+#include "BoucWenUpdate.h"
 #include "qv/core/NumberFormat.h"
 
 namespace qv::seismic {
@@ -74,6 +75,7 @@ struct SystemRef {
   const double* padded = nullptr;  // 0, samples 1..N, 0, 0
   double lastPosition = 0.0;       // N + 1: the trailing zero
   bool squareRootUpdate = false;   // some storey has n = 2 (the n = 1 update needs no square root)
+  bool curvedUnloading = false;    // some storey has γ̂ < β̂: backward Euler there (batching key)
   int refinementClass = 0;         // a priori levels of accuracy splitting (batching key, see solve())
 };
 
@@ -100,6 +102,12 @@ struct Simd<float> {
   // peak, same steps) at ~1.2 solves per step; 3e-4 costs 11 % more for 2e-4.
   static constexpr float kResidual = 1e-3f;
   static constexpr float kCorrection = 2e-6f;
+  // oneMinusExpNegative: 1.5·2^23 rounds to an integer in the low mantissa bits; IEEE exponent
+  // field; Taylor terms of e^r - 1 for float (truncation below 2e-8 relative on |r| <= ln2/2).
+  static constexpr float kRoundMagic = 12582912.0f;
+  static constexpr std::int32_t kExponentBias = 127;
+  static constexpr int kMantissaBits = 23;
+  static constexpr int kExpTerms = 7;
 };
 template <>
 struct Simd<double> {
@@ -109,6 +117,10 @@ struct Simd<double> {
   static constexpr std::int64_t kAbsMask = 0x7fffffffffffffff;
   static constexpr double kResidual = 1e-10;
   static constexpr double kCorrection = 1e-14;
+  static constexpr double kRoundMagic = 6755399441055744.0;  // 1.5·2^52
+  static constexpr std::int64_t kExponentBias = 1023;
+  static constexpr int kMantissaBits = 52;
+  static constexpr int kExpTerms = 14;
 };
 
 template <typename T>
@@ -145,7 +157,60 @@ struct VectorMath {
     const V power = absZ * (nIsTwo * absZ + oneMinusN);
     slope = (one - c * power) / s;
   }
-  /// The same update when every lane has n = 1: S = B, so one division and no square root.
+  /// oneMinusExpNegative of BoucWenUpdate.h on all lanes (y >= 0): 1 - e^(-y) from + - * / and an
+  /// exact power of two, no library exp (the same bits wherever a·b + c is not fused; the AVX2 build
+  /// fuses, as in the rest of the kernel). k = round(y / ln2) by the magic-number
+  /// addition (round to nearest), 2^(-k) built in the exponent field (k <= 116: a normal number).
+  static V oneMinusExpNegative(V y) {
+    const V one = splat(T(1));
+    const V limit = splat(T(80));
+    y = y < limit ? y : limit;
+    const V magic = splat(Simd<T>::kRoundMagic);
+    const V rounded = y * T(1.4426950408889634074) + magic;
+    const V k = rounded - magic;
+    const M kInteger = __builtin_bit_cast(M, rounded) - __builtin_bit_cast(M, magic);
+    const V r = (k * T(6.93147180369123816490e-01) - y) + k * T(1.90821492927058770002e-10);
+    V p = splat(static_cast<T>(1.0 / detail::kFactorials[Simd<T>::kExpTerms]));
+    for (int j = Simd<T>::kExpTerms - 1; j >= 1; --j) p = static_cast<T>(1.0 / detail::kFactorials[j]) + r * p;
+    const V m = r * p;
+    const V scale = __builtin_bit_cast(V, (Simd<T>::kExponentBias - kInteger) << Simd<T>::kMantissaBits);
+    return (one - scale) - scale * m;
+  }
+  /// The exact update of BoucWenUpdate.h (boucWenExact: n in {1, 2}, γ̂ = β̂) on all lanes.
+  static void boucWenExact(V zPrevious, V x, V nIsTwo, V oneMinusN, V& z, V& slope) {
+    const V one = splat(T(1));
+    const V zero = splat(T(0));
+    const V sign = signOf(x);
+    const V w0 = zPrevious * sign;
+    const V s = x * sign;
+    const V minusW0 = zero - w0;
+    const V room = minusW0 > zero ? minusW0 : zero;
+    const V unload = s < room ? s : room;
+    const V w = w0 + unload;
+    const V e = oneMinusExpNegative((s - unload) * (one + nIsTwo));
+    const V numerator = e * (one - w) * (one + nIsTwo * w);
+    const V denominator = one + nIsTwo * ((one - e) + w * e);
+    const V end = w + numerator / denominator;
+    z = end * sign;
+    const V loading = end > zero ? end : zero;
+    slope = one - loading * (nIsTwo * loading + oneMinusN);
+  }
+  /// The same when every lane has n = 1: no division.
+  static void boucWenExactLinearExponent(V zPrevious, V x, V& z, V& slope) {
+    const V one = splat(T(1));
+    const V zero = splat(T(0));
+    const V sign = signOf(x);
+    const V w0 = zPrevious * sign;
+    const V s = x * sign;
+    const V minusW0 = zero - w0;
+    const V room = minusW0 > zero ? minusW0 : zero;
+    const V unload = s < room ? s : room;
+    const V w = w0 + unload;
+    const V end = w + (one - w) * oneMinusExpNegative(s - unload);
+    z = end * sign;
+    slope = one - (end > zero ? end : zero);
+  }
+  /// The backward-Euler update when every lane has n = 1: S = B, so one division and no square root.
   static void boucWenLinearExponent(V zPrevious, V x, V cUnload, V& z, V& slope) {
     const V one = splat(T(1));
     const V total = zPrevious + x;
@@ -166,7 +231,8 @@ struct alignas(kVectorBytes) Row {
   // Model (per batch).
   V mass, load, elastic, hysteretic, hystereticStiffness, inverseYield, nIsTwo, oneMinusN, fourN, cUnload;
   V inverseHeight, massDamping, stiffnessDamping, diagonalBase, offBase;
-  V isFloor;  // 1 for a floor of the lane's building, 0 for padding
+  V isFloor;        // 1 for a floor of the lane's building, 0 for padding
+  V backwardEuler;  // 1 for a Bouc–Wen storey on the backward-Euler update, 0 for the exact one (and others)
   // State at the start of the step.
   V u, v, a, z, drift;
   // Newton trial values.
@@ -206,15 +272,19 @@ class BatchKernel {
     int maxIterations = 10;
     int maxSplits = 4;                // levels of halving a step (Newton failure or accuracy)
     double maxHystereticError = 1.0;  // >= 1: off (see ResponseOptions)
+    bool exactUpdate = false;         // boucWenExact for storeys with γ̂ = β̂ (n in {1, 2}), else backward Euler
   };
 
-  void run(const std::array<Lane, W>& lanes, std::size_t storeys, const Settings& settings, SolverStats& stats) {
+  void run(const std::array<Lane, W>& lanes, std::size_t storeys, const Settings& requested, SolverStats& stats) {
     const std::size_t n = storeys;
     if (rows_.size() < (n + 1) * K) rows_.resize((n + 1) * K);
-    setUp(lanes, n, settings);
+    setUp(lanes, n, requested);
     squareRoot_ = false;
     for (std::size_t l = 0; l < W; ++l)
       squareRoot_ = squareRoot_ || (lanes[l].system != nullptr && lanes[l].system->squareRootUpdate);
+    // The hysteretic bound concerns backward-Euler storeys only: off for a batch without any.
+    Settings settings = requested;
+    if (!anyBackwardEuler_) settings.maxHystereticError = 1.0;
 
     const double h = settings.dt / settings.substeps;
     preparedStep_ = 0.0;
@@ -334,7 +404,7 @@ class BatchKernel {
     for (std::size_t k = 0; k < K; ++k) {
       for (std::size_t i = 0; i < n; ++i) {
         const Row<T>& r = row(i, k);
-        const V x = r.dDrift * r.inverseYield;
+        const V x = r.dDrift * r.inverseYield * r.backwardEuler;  // exact storeys: no error to estimate
         const V psi = x * r.zTrial >= T(0) ? one : Math::abs(r.cUnload);
         const V power = r.oneMinusN + r.nIsTwo * (T(2) * Math::abs(r.zTrial));
         worst = Math::max(worst, Math::abs(x) * psi * power);
@@ -384,13 +454,14 @@ class BatchKernel {
       // Padding: a unit mass without load, springs or dampers, which stays at rest.
       r.mass = r.oneMinusN = Math::splat(T(1));
       r.load = r.elastic = r.hysteretic = r.hystereticStiffness = r.inverseYield = r.nIsTwo = r.fourN = zero;
-      r.cUnload = r.inverseHeight = r.massDamping = r.stiffnessDamping = r.isFloor = zero;
+      r.cUnload = r.inverseHeight = r.massDamping = r.stiffnessDamping = r.isFloor = r.backwardEuler = zero;
       r.u = r.v = r.a = r.z = r.drift = zero;
       r.aNew = r.vNew = r.du = r.dDrift = r.zTrial = r.force = r.tangent = r.storeyForce = zero;
       r.rhs = r.inversePivot = r.offDiagonal = r.peakDrift = r.peakAcceleration = zero;
     }
     for (std::size_t k = 0; k < K; ++k) peakRoof_[k] = peakAcceleration_[k] = peakBase_[k] = ground_[k] = zero;
     sharedRoof_ = true;
+    anyExact_ = anyBackwardEuler_ = false;
     for (std::size_t l = 0; l < W; ++l) {
       roofIndex_[l] = 0;
       const Lane& lane = lanes[l];
@@ -424,6 +495,10 @@ class BatchKernel {
           r.oneMinusN[v] = T(1) - r.nIsTwo[v];
           r.fourN[v] = T(4) * r.nIsTwo[v];
           r.cUnload[v] = static_cast<T>(2.0 * hw.gammaShare - 1.0);
+          const bool exact = settings.exactUpdate && hw.gammaShare == 0.5;
+          r.backwardEuler[v] = exact ? T(0) : T(1);
+          anyExact_ = anyExact_ || exact;
+          anyBackwardEuler_ = anyBackwardEuler_ || !exact;
         }
         if (!b.storeyHeightM.empty()) r.inverseHeight[v] = static_cast<T>(1.0 / b.storeyHeightM[i]);
       }
@@ -545,10 +620,26 @@ class BatchKernel {
       const V dDrift = du - duBelow;
       V z;
       V slope;
-      if (squareRoot_) {
-        Math::boucWen(r.z, dDrift * r.inverseYield, r.nIsTwo, r.oneMinusN, r.fourN, r.cUnload, z, slope);
-      } else {
-        Math::boucWenLinearExponent(r.z, dDrift * r.inverseYield, r.cUnload, z, slope);
+      const V x = dDrift * r.inverseYield;
+      if (anyExact_ || !anyBackwardEuler_) {
+        // (A batch without Bouc–Wen storeys has x = 0 everywhere: ẑ stays 0, dẑ/dx = 1.)
+        if (squareRoot_) {
+          Math::boucWenExact(r.z, x, r.nIsTwo, r.oneMinusN, z, slope);
+        } else {
+          Math::boucWenExactLinearExponent(r.z, x, z, slope);
+        }
+      }
+      if (anyBackwardEuler_) {
+        V zImplicit;
+        V slopeImplicit;
+        if (squareRoot_) {
+          Math::boucWen(r.z, x, r.nIsTwo, r.oneMinusN, r.fourN, r.cUnload, zImplicit, slopeImplicit);
+        } else {
+          Math::boucWenLinearExponent(r.z, x, r.cUnload, zImplicit, slopeImplicit);
+        }
+        // A batch mixing both kinds of storey: each storey its own update.
+        z = anyExact_ ? (r.backwardEuler > T(0) ? zImplicit : z) : zImplicit;
+        slope = anyExact_ ? (r.backwardEuler > T(0) ? slopeImplicit : slope) : slopeImplicit;
       }
       const V force = r.elastic * (r.drift + dDrift) + r.hysteretic * z;
       r.vNew = vNew;
@@ -720,6 +811,8 @@ class BatchKernel {
   std::size_t roofIndex_[W] = {};
   bool sharedRoof_ = true;
   bool squareRoot_ = true;              // some lane has n = 2 storeys
+  bool anyExact_ = false;               // some storey of the batch on the exact update
+  bool anyBackwardEuler_ = false;       // some storey of the batch on the backward-Euler update
   double preparedStep_ = 0.0;           // the step prepareMatrix last used
   int startLevel_ = 0;                  // levels of splitting a sub-step starts at (hysteretic bound)
   int deepestCommitted_ = 0;            // of the current sub-step: the deepest level committed
@@ -795,6 +888,9 @@ void ResponseSolver::Impl::runBatches(Kernel& kernel, std::size_t frames, double
     settings.keepDrifts = options.driftRatios;
     settings.maxIterations = options.maxNewtonIterations;
     settings.maxSplits = options.maxSplits;
+    // Automatic sub-steps: the exact update for storeys with γ̂ = β̂ (no error to bound), backward Euler
+    // under the hysteretic bound for the others; fixed sub-steps: backward Euler, equal steps.
+    settings.exactUpdate = options.fixedSubsteps == 0 && options.exactHystereticUpdate;
     settings.maxHystereticError = options.fixedSubsteps > 0 ? 1.0 : options.maxHystereticError;
     kernel.run(lanes, storeys, settings, stats);
     for (std::size_t slot = 0; slot < slots; ++slot) {
@@ -928,7 +1024,10 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       sys.padded = impl_->padded[static_cast<std::size_t>(direction)].data();
       sys.lastPosition = static_cast<double>(sys.motion->size() + 1);
       sys.storeys = model.storeys();
-      for (const BoucWenStorey& h : model.hysteresis) sys.squareRootUpdate = sys.squareRootUpdate || h.exponent == 2.0;
+      for (const BoucWenStorey& h : model.hysteresis) {
+        sys.squareRootUpdate = sys.squareRootUpdate || h.exponent == 2.0;
+        sys.curvedUnloading = sys.curvedUnloading || h.gammaShare != 0.5;
+      }
       if (o.fixedSubsteps > 0) {
         sys.substeps = o.fixedSubsteps;
       } else {
@@ -940,13 +1039,26 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       systems.push_back(sys);
     }
   }
+  // X and Y of a building share their kind of update, so the sort below keeps them adjacent.
+  for (std::size_t k = 1; k < systems.size(); ++k) {
+    if (systems[k].building != systems[k - 1].building) continue;
+    systems[k].squareRootUpdate = systems[k - 1].squareRootUpdate =
+        systems[k].squareRootUpdate || systems[k - 1].squareRootUpdate;
+    systems[k].curvedUnloading = systems[k - 1].curvedUnloading =
+        systems[k].curvedUnloading || systems[k - 1].curvedUnloading;
+  }
   // A priori need of accuracy splitting, only to batch systems of similar need together (the batch
   // takes the step of its most demanding lane; the bound itself is checked step by step). A storey's
   // drift increment per step is estimated from the first mode: scale · Sv(T1) · Γ1 (φ_i − φ_(i−1)) · h
   // with Sv the record's relative-velocity spectrum at 5 % damping, so the error estimate's ½ x becomes
   // that over 2 dy_i; the class is log2 of its ratio to the bound in half levels. X and Y of a building
   // share the larger class, so they stay adjacent.
-  const bool bounded = o.fixedSubsteps == 0 && o.maxHystereticError < 1.0;
+  // Only systems on the backward-Euler update are bounded (the exact update has no error to bound).
+  const auto boundedSystem = [&](const SystemRef& sys) {
+    return !sys.model->hysteresis.empty() && (!o.exactHystereticUpdate || sys.curvedUnloading);
+  };
+  const bool bounded =
+      o.fixedSubsteps == 0 && o.maxHystereticError < 1.0 && std::any_of(systems.begin(), systems.end(), boundedSystem);
   if (bounded) {
     for (int direction = 0; direction < (motionY != nullptr ? 2 : 1); ++direction) {
       velocitySpectrum(impl_->padded[static_cast<std::size_t>(direction)],
@@ -955,7 +1067,7 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
     }
     for (SystemRef& sys : systems) {
       const ShearBuilding& model = *sys.model;
-      if (model.hysteresis.empty()) continue;
+      if (!boundedSystem(sys)) continue;
       auto modes = computeModes(model, true);
       if (!modes) return fail("building " + std::to_string(sys.building) + ": " + modes.error());
       const std::size_t n = model.storeys();
@@ -980,13 +1092,14 @@ Status ResponseSolver::solve(std::span<const ShearBuilding> buildings, std::span
       systems[k].refinementClass = systems[k - 1].refinementClass = shared;
     }
   }
-  // Similar systems share a batch: by storeys (padding), then the kind of Bouc–Wen update, then the
-  // a priori need of accuracy splitting (with the hysteretic bound), then delay (arrival skipping), keeping a
-  // building's X and Y adjacent so they land in the same batch (the lane count is even; X and Y models share their
-  // storey laws' exponents).
+  // Similar systems share a batch: by storeys (padding), then the kind of Bouc–Wen update (n = 2
+  // anywhere, then γ̂ < β̂ anywhere: backward Euler), then the a priori need of accuracy splitting (with the
+  // hysteretic bound), then delay (arrival skipping), keeping a building's X and Y adjacent so they land in
+  // the same batch (the lane count is even; X and Y models share their storey laws' exponents).
   std::stable_sort(systems.begin(), systems.end(), [](const SystemRef& a, const SystemRef& b) {
     if (a.storeys != b.storeys) return a.storeys < b.storeys;
     if (a.squareRootUpdate != b.squareRootUpdate) return b.squareRootUpdate;
+    if (a.curvedUnloading != b.curvedUnloading) return b.curvedUnloading;
     if (a.refinementClass != b.refinementClass) return a.refinementClass < b.refinementClass;
     if (a.delay != b.delay) return a.delay < b.delay;
     if (a.building != b.building) return a.building < b.building;

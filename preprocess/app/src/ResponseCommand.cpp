@@ -37,8 +37,9 @@ const char* const kUsage =
     "                     to the target PGA (pga)\n"
     "  --time-of-day T    occupants present for the consequences (HAZUS; default day)\n"
     "  --districts FILE   GeoJSON polygons with a \"name\": consequence totals per district\n"
-    "  --accurate-steps   split solver steps by the hysteretic error estimate: yielding buildings' peaks\n"
-    "                     within 0.5 % of converged, about 3 times the solve time\n";
+    "  --accurate-steps   accepted for compatibility; no effect: the default solver steps are the\n"
+    "                     accurate ones (exact Bouc-Wen update; yielding buildings' peaks within\n"
+    "                     about 0.5 % of converged)\n";
 
 }  // namespace
 

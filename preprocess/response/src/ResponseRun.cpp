@@ -470,7 +470,6 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     historyOptions.outputStepS = dt;
     historyOptions.frameCount = frames;
     historyOptions.floorDisplacements = true;
-    historyOptions.maxHystereticError = options.accurateSubsteps ? seismic::kDefaultMaxHystereticError : 1.0;
     seismic::ResponseSolver historySolver(historyOptions);
     seismic::ResponseOptions peakOptions = historyOptions;
     peakOptions.floorDisplacements = false;

@@ -6,12 +6,13 @@
 // building's X and Y share a batch); lanes with fewer storeys are padded with decoupled floors that
 // stay at rest. Per time step: Newmark average acceleration solved for the floor accelerations by
 // Newton iterations (the first linearised about the previous step, then the consistent tangent of the
-// closed-form implicit Bouc–Wen update, n in {1, 2}), each a Thomas solve of the tridiagonal
-// effective matrix across all lanes. Sub-steps per output step follow automaticSubsteps() (the
-// largest need of the batch); a step is halved, recursively, when a lane does not converge, and cut
-// into the pieces its error estimate asks for when the hysteretic update's error estimate exceeds
-// ResponseOptions::maxHystereticError in some lane. Float batches converge to a
-// residual of 1e-3 of the force terms (histories within ~1e-3 of the double reference), double batches to 1e-10.
+// closed-form Bouc–Wen update, n in {1, 2}), each a Thomas solve of the tridiagonal effective matrix
+// across all lanes. Sub-steps per output step follow automaticSubsteps() (the largest need of the
+// batch), with the exact Bouc–Wen update where every lane has γ̂ = β̂ (else the implicit backward-Euler
+// update, a step cut into the pieces its error estimate asks for when it exceeds
+// ResponseOptions::maxHystereticError in some lane); a step is halved, recursively, when a lane does
+// not converge. Float batches converge to a residual of 1e-3 of the force terms (histories within
+// ~1e-3 of the double reference), double batches to 1e-10.
 //
 // Contract: single-threaded; one ResponseSolver per thread (it owns its workspaces, which grow to the
 // largest batch and are reused, so memory is bounded by one batch of histories). Results stream to a
@@ -58,17 +59,23 @@ struct ResponseOptions {
   Precision precision = Precision::Float;
   int maxNewtonIterations = 10;  ///< per attempt of a step
   int maxSubsteps = 16;
-  int fixedSubsteps = 0;  ///< 0: automaticSubsteps() and the hysteretic bound; else equal steps
+  int fixedSubsteps = 0;  ///< 0: automaticSubsteps() and the exact update (or the bound); else equal steps
   /// A step some lane does not converge in is split in two, recursively, this many levels (0 .. 10);
   /// a step still unconverged at the last level is accepted, counted and its residual recorded.
   int maxSplits = 4;
-  /// With automatic sub-steps: a step whose Bouc–Wen update's estimated local error per unit change
+  /// With automatic sub-steps: batches whose storeys all have n in {1, 2} and γ̂ = β̂ (every city
+  /// model) integrate the Bouc–Wen variable exactly along each step's drift increment
+  /// (ReferenceOptions::exactHystereticUpdate), so the update adds no error and the periods' sub-steps
+  /// keep yielding frames within 0.5 % of converged peaks at no extra steps (docs/seismic.md,
+  /// "Sub-stepping"). false, or fixed sub-steps: backward Euler in every lane.
+  bool exactHystereticUpdate = true;
+  /// With automatic sub-steps, for batches on the backward-Euler update (some storey with γ̂ < β̂, or
+  /// exactHystereticUpdate false): a step whose update's estimated local error per unit change
   /// of ẑ exceeds this in some storey of the batch is taken again as the 2^L equal pieces the estimate
   /// asks for (it is proportional to the step), at most maxSplits levels in all (ReferenceOptions::
-  /// maxHystereticError; >= 1: off, sub-steps from the periods alone). Systems are batched by their a
-  /// priori need of such splitting (scaled peak ground velocity × step / yield drift), so a batch of
-  /// buildings that stay nearly elastic is not split for one that yields. The default keeps yielding
-  /// frames within 0.5 % of converged peaks (docs/seismic.md, "Sub-stepping").
+  /// maxHystereticError; >= 1: off, sub-steps from the periods alone). Such systems are batched by their
+  /// a priori need of splitting (scaled relative-velocity spectrum × step / yield drift), so a batch of
+  /// buildings that stay nearly elastic is not split for one that yields.
   double maxHystereticError = kDefaultMaxHystereticError;
 };
 
