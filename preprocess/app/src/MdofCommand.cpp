@@ -45,7 +45,9 @@ constexpr const char* kUsage =
     "  --units g|m/s2|cm/s2     units for files that do not state them\n"
     "  --scale S                multiplies the record (default 1)\n"
     "  --free-vibration S       seconds simulated after the record (default 0)\n"
-    "  --substeps N             sub-steps per record step (default: automatic, dt <= T1/20 and T2/10)\n"
+    "  --substeps N             N equal sub-steps per record step with OpenSees' backward-Euler Bouc-Wen\n"
+    "                           update (default: automatic, dt <= T1/20 and T2/10, the update integrated\n"
+    "                           exactly along each step for n = 1 and 2)\n"
     "  --json                   print one JSON object instead of the table\n";
 
 int usageError(const std::string& message) {
