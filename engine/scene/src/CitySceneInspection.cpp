@@ -198,6 +198,28 @@ std::vector<Box> CityScene::buildingBoxesNear(double x, double y, double radiusM
   return out;
 }
 
+namespace {
+
+// Where a ray (origin o, direction dir) first meets a building's prisms, if it does.
+std::optional<float> rayPrisms(const TileContent& tile, const TileBuilding& tb, const float o[3], const float dir[3]) {
+  std::optional<float> nearest;
+  for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
+    const TilePart& part = tile.data.parts[p];
+    PrismView prism;
+    prism.xy = &tile.data.vertices[part.firstVertex].x;
+    prism.ringCounts = &tile.data.ringVertexCounts[part.firstRing];
+    prism.ringCount = part.ringCount;
+    prism.offsetX = tile.origin.x;
+    prism.offsetY = tile.origin.y;
+    prism.minZ = part.minHeightM;
+    prism.maxZ = part.heightM;
+    if (const auto tHit = rayPrism(o, dir, prism); tHit && (!nearest || *tHit < *nearest)) nearest = tHit;
+  }
+  return nearest;
+}
+
+}  // namespace
+
 std::optional<std::uint32_t> CityScene::pickInBlocks(const TileRuntime& t, int level, const glm::vec3& origin,
                                                      const glm::vec3& direction, float& best) const {
   // The block's box is what is drawn, so the ray's entry into it is where it meets the picture.
@@ -223,21 +245,10 @@ std::optional<std::uint32_t> CityScene::pickInBlocks(const TileRuntime& t, int l
       const std::uint32_t b = tile.tree.order()[blocks.members[m]];
       const TileBuilding& tb = tile.data.buildings[b];
       if (hiddenByLod(tb.attributes.lod)) continue;
-      for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
-        const TilePart& part = tile.data.parts[p];
-        PrismView prism;
-        prism.xy = &tile.data.vertices[part.firstVertex].x;
-        prism.ringCounts = &tile.data.ringVertexCounts[part.firstRing];
-        prism.ringCount = part.ringCount;
-        prism.offsetX = tile.origin.x;
-        prism.offsetY = tile.origin.y;
-        prism.minZ = part.minHeightM;
-        prism.maxZ = part.heightM;
-        if (const auto tHit = rayPrism(o, dir, prism); tHit && *tHit < nearestHit) {
-          nearestHit = *tHit;
-          chosen = b;
-          chosenByRay = true;
-        }
+      if (const auto tHit = rayPrisms(tile, tb, o, dir); tHit && *tHit < nearestHit) {
+        nearestHit = *tHit;
+        chosen = b;
+        chosenByRay = true;
       }
       if (chosenByRay) continue;
       const Box box = buildingBox(tile, b);
@@ -299,20 +310,9 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
         }
         continue;
       }
-      for (std::uint32_t p = tb.firstPart; p < tb.firstPart + tb.partCount; ++p) {
-        const TilePart& part = tile.data.parts[p];
-        PrismView prism;
-        prism.xy = &tile.data.vertices[part.firstVertex].x;
-        prism.ringCounts = &tile.data.ringVertexCounts[part.firstRing];
-        prism.ringCount = part.ringCount;
-        prism.offsetX = tile.origin.x;
-        prism.offsetY = tile.origin.y;
-        prism.minZ = part.minHeightM;
-        prism.maxZ = part.heightM;
-        if (const auto tHit = rayPrism(o, dir, prism); tHit && *tHit < best) {
-          best = *tHit;
-          hit = BuildingRef{node, b};
-        }
+      if (const auto tHit = rayPrisms(tile, tb, o, dir); tHit && *tHit < best) {
+        best = *tHit;
+        hit = BuildingRef{node, b};
       }
     }
   }
