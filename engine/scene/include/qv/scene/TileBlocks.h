@@ -85,10 +85,10 @@ MeshData buildBlockMesh(const TileBlockLevel& level, const glm::vec3& origin, st
                         TileIndexRuns* runs = nullptr);
 
 /// Block rows from the tile's building rows (`buildingRows[p]` is the row of position p): the
-/// worst of the members (of those a filter keeps, when it keeps any): highest damage state (a result beats pending, pending beats none),
-/// highest peak drift, highest loss code (packLossCode: tag first, then expected state); selected when any member
-/// is, dimmed and hidden only when every member is; storeys and storey height of the tallest
-/// member, base at the block's base; never animated. `out.size()` == level.boxes.size().
+/// worst of the members (of those a filter keeps, when it keeps any): highest damage state (a result beats pending,
+/// pending beats none), highest peak drift, highest loss code (packLossCode: tag first, then expected state); selected
+/// when any member is, dimmed and hidden only when every member is; storeys and storey height of the tallest member,
+/// base at the block's base; never animated. `out.size()` == level.boxes.size().
 void aggregateBlockRows(const TileBlockLevel& level, std::span<const BuildingGpuRecord> buildingRows,
                         std::span<BuildingGpuRecord> out);
 
