@@ -147,7 +147,7 @@ TEST_CASE("A block rises to its tallest member within its cell, and a long build
   CHECK(level.boxes.size() == 6);
 }
 
-TEST_CASE("A block's mesh is a box per block in its own row; its colour is its worst member's", "[scene][blocks]") {
+TEST_CASE("A block's mesh is a box per block in its own row, its colour its worst member's", "[scene][blocks]") {
   const TileContent tile = gridTile(8);
   const TileBlockLevel level = buildBlockLevel(tile, 64.0f, buildTileRegions(tile));
   const std::uint32_t slotBase = 500;
