@@ -69,8 +69,8 @@ std::int32_t cellIndex(float v, float inverseSide) {
 std::uint32_t TileRegions::regionOf(float x, float y) const {
   const float inverse = 1.0f / blockCellM(kBlockRegionLevel);
   const std::uint64_t code = mortonOf(cellIndex(x, inverse), cellIndex(y, inverse));
-  const auto it = std::lower_bound(codes.begin(), codes.end(), std::make_pair(code, 0u));
-  return it != codes.end() && it->first == code ? it->second : UINT32_MAX;
+  const auto it = std::lower_bound(codes.begin(), codes.end(), code);
+  return it != codes.end() && *it == code ? static_cast<std::uint32_t>(it - codes.begin()) : UINT32_MAX;
 }
 
 TileRegions buildTileRegions(const TileContent& tile) {
@@ -79,38 +79,31 @@ TileRegions buildTileRegions(const TileContent& tile) {
   const float inverse = 1.0f / side;
   const auto& order = tile.tree.order();
   const Box& all = tile.tree.bounds();
-  // Every region a building's box reaches into (a block of its parts may lie there).
-  std::vector<std::uint64_t> codes;
+  // Every region a building's box reaches into (a block of its parts may lie there), with its
+  // grid cell; each building's home region (its box's centre).
+  std::vector<std::pair<std::uint64_t, glm::ivec2>> cells;
   std::vector<std::uint64_t> home(order.size());
   for (std::uint32_t p = 0; p < order.size(); ++p) {
     const Box box = buildingBox(tile, order[p]);
     for (std::int32_t y = cellIndex(box.minY, inverse); y <= cellIndex(box.maxY, inverse); ++y) {
       for (std::int32_t x = cellIndex(box.minX, inverse); x <= cellIndex(box.maxX, inverse); ++x)
-        codes.push_back(mortonOf(x, y));
+        cells.emplace_back(mortonOf(x, y), glm::ivec2(x, y));
     }
     home[p] =
         mortonOf(cellIndex(0.5f * (box.minX + box.maxX), inverse), cellIndex(0.5f * (box.minY + box.maxY), inverse));
   }
-  std::sort(codes.begin(), codes.end());
-  codes.erase(std::unique(codes.begin(), codes.end()), codes.end());
-  regions.codes.reserve(codes.size());
-  regions.boxes.reserve(codes.size());
-  for (std::uint32_t r = 0; r < codes.size(); ++r) regions.codes.emplace_back(codes[r], r);
-  // Regions' squares: back from their codes through one building's cells would be roundabout;
-  // collect them from the same loop's cells instead.
-  regions.boxes.assign(codes.size(), Box{});
-  for (std::uint32_t p = 0; p < order.size(); ++p) {
-    const Box box = buildingBox(tile, order[p]);
-    for (std::int32_t y = cellIndex(box.minY, inverse); y <= cellIndex(box.maxY, inverse); ++y) {
-      for (std::int32_t x = cellIndex(box.minX, inverse); x <= cellIndex(box.maxX, inverse); ++x) {
-        const std::uint64_t code = mortonOf(x, y);
-        const auto r = static_cast<std::size_t>(std::lower_bound(codes.begin(), codes.end(), code) - codes.begin());
-        Box& b = regions.boxes[r];
-        if (!b.empty()) continue;
-        b.expand(static_cast<float>(x) * side, static_cast<float>(y) * side, all.empty() ? 0.0f : all.minZ);
-        b.expand(static_cast<float>(x + 1) * side, static_cast<float>(y + 1) * side, all.empty() ? 0.0f : all.maxZ);
-      }
-    }
+  std::sort(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  cells.erase(std::unique(cells.begin(), cells.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+              cells.end());
+  std::vector<std::uint64_t>& codes = regions.codes;
+  codes.reserve(cells.size());
+  regions.boxes.resize(cells.size());
+  for (std::size_t r = 0; r < cells.size(); ++r) {
+    codes.push_back(cells[r].first);
+    const glm::ivec2 c = cells[r].second;
+    Box& b = regions.boxes[r];
+    b.expand(static_cast<float>(c.x) * side, static_cast<float>(c.y) * side, all.empty() ? 0.0f : all.minZ);
+    b.expand(static_cast<float>(c.x + 1) * side, static_cast<float>(c.y + 1) * side, all.empty() ? 0.0f : all.maxZ);
   }
   // Buildings region by region.
   std::vector<std::pair<std::uint32_t, std::uint32_t>> byRegion(order.size());

@@ -49,8 +49,7 @@ struct TileRegions {
   std::vector<std::uint32_t> appendOrder;
   std::vector<std::uint32_t> positionStart;
   std::vector<std::uint32_t> regionOfPosition;  ///< the region each position's building is drawn in
-  /// (Morton code, region index) sorted by code, for regionOf.
-  std::vector<std::pair<std::uint64_t, std::uint32_t>> codes;
+  std::vector<std::uint64_t> codes;             ///< each region's Morton code on the grid, ascending (regionOf)
   /// The region holding city-frame point (x, y), or UINT32_MAX when the tile has none there.
   [[nodiscard]] std::uint32_t regionOf(float x, float y) const;
 };
