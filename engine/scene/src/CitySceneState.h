@@ -1,5 +1,6 @@
 // The per-node state of a CityScene, shared by its source files (CityScene.cpp: loading, the
-// frame and memory; CitySceneAnimation.cpp; CitySceneInspection.cpp: flags, picking, selection).
+// frame and memory; CitySceneAnimation.cpp; CitySceneBlocks.cpp: the far view; CitySceneInspection.cpp:
+// flags, picking, selection).
 #pragma once
 
 #include <cstdint>
