@@ -41,6 +41,9 @@ test('clicking the Empire State Building selects it and the inspection window sh
     await page.mouse.click(at.x, at.y);
     await page.waitForFunction(() => window.quakeview.selection() !== null, null, { timeout: 10000 });
     assert.equal(await page.evaluate(() => window.quakeview.selection()), ESB);
+    // Selecting loads the building's full-detail tile; what follows reads that copy (until it is
+    // here, building() answers from a far-view copy, and a second read could differ from the first).
+    await page.waitForFunction((id) => window.quakeview.building(id)?.detailed === true, ESB, { timeout: 30000, polling: 100 });
 
     const building = await page.evaluate((id) => window.quakeview.building(id), ESB);
     assert.equal(building.id, ESB);
