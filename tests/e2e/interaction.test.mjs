@@ -178,8 +178,12 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     assert.ok(await page.evaluate(() => window.quakeview.setTime(7.5)));
     assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
     assert.ok(await page.evaluate(() => window.quakeview.setFilters({ minDamage: 'slight', criticalOnly: false })));
-    // The hash follows the view (kept every half second).
-    await page.waitForFunction((id) => window.location.hash.includes('sel=' + id) && window.location.hash.includes('t=7.5'), ESB, { timeout: 5000 });
+    // The hash follows the view (kept every half second, so it may be written between two of the
+    // calls above: wait until it holds all of them).
+    await page.waitForFunction((id) => {
+      const h = window.location.hash;
+      return h.includes('sel=' + id) && h.includes('t=7.5') && /(^#|&)f=1(,|&|$)/.test(h);
+    }, ESB, { timeout: 5000 });
     const shared = await page.evaluate(() => window.location.href);
     assert.match(shared, /#cam=/);
 
