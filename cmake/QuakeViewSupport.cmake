@@ -112,13 +112,8 @@ macro(quakeview_find_dependencies)
   target_include_directories(quakeview_imgui SYSTEM PUBLIC "${imgui_dir}")
   target_compile_definitions(quakeview_imgui PUBLIC IMGUI_DISABLE_OBSOLETE_FUNCTIONS)
   add_library(imgui::imgui ALIAS quakeview_imgui)
-  if(EMSCRIPTEN)
-    add_library(quakeview_imgui_gles3 STATIC "${imgui_dir}/backends/imgui_impl_opengl3.cpp")
-    target_include_directories(quakeview_imgui_gles3 SYSTEM PUBLIC "${imgui_dir}/backends")
-    target_compile_definitions(quakeview_imgui_gles3 PUBLIC IMGUI_IMPL_OPENGL_ES3)
-    target_link_libraries(quakeview_imgui_gles3 PUBLIC quakeview_imgui)
-    add_library(imgui::gles3 ALIAS quakeview_imgui_gles3)
-  endif()
+  # The panels are drawn by engine::render's GlImGuiRenderer, not by ImGui's OpenGL3 backend (which
+  # re-specifies its buffers every frame: see GlImGuiRenderer.h).
 
   # Catch2 v2 (header-only): Debian's package natively, its header through a link folder in WASM.
   if(QUAKEVIEW_TESTS OR QUAKEVIEW_BENCHMARKS)

@@ -1,7 +1,6 @@
 #include "App.h"
 
 #include <imgui.h>
-#include <imgui_impl_opengl3.h>
 
 #include <algorithm>
 #include <iterator>
@@ -72,7 +71,11 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   // of about 7:1 to the light panel, where the light theme's own pale blue has about 2.5:1.
   style.Colors[ImGuiCol_NavHighlight] = ImVec4(0.0f, 0.25f, 0.70f, 1.0f);
   ui::imguiBrowserInit();
-  ImGui_ImplOpenGL3_Init("#version 300 es");
+  uiRenderer_ = std::make_unique<GlImGuiRenderer>();
+  if (!uiRenderer_->ok()) {
+    browser::notifyFatal("The panels' shaders could not be built on this device: " + uiRenderer_->error());
+    return false;
+  }
 
   viewer_ = std::make_unique<Viewer>(*device_);
   for (const std::string& e : startupErrors) viewer_->reportError(e);
@@ -315,6 +318,12 @@ std::string App::statsJson(const MemoryInfo& memory) const {
   const FrameCounts latest = viewer_->stats().latest;
   w.key("lastFrame").beginObject();
   w.field("triangles", latest.triangles).field("drawCalls", latest.drawCalls);
+  // The panels' share of the frame (drawn after the city; not in the counts above).
+  const GlImGuiRenderer::FrameStats ui = uiRenderer_ ? uiRenderer_->lastFrame() : GlImGuiRenderer::FrameStats{};
+  w.key("ui").beginObject();
+  w.field("vertices", ui.vertices).field("triangles", ui.indices / 3).field("drawCalls", ui.drawCalls);
+  w.field("uploadBytes", ui.uploadBytes);
+  w.endObject();
   w.endObject();
   w.endObject();
   const std::string extra = w.take();
@@ -338,7 +347,6 @@ void App::frame() {
   quality_.pixelWidth = canvas.pixelWidth;
   quality_.pixelHeight = canvas.pixelHeight;
   ui::imguiBrowserNewFrame(canvas.cssWidth, canvas.cssHeight, canvas.devicePixelRatio, dt);
-  ImGui_ImplOpenGL3_NewFrame();
   ImGui::NewFrame();
   dispatchInput();
   input_->setUiWantsKeyboard(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
@@ -375,7 +383,7 @@ void App::frame() {
   panel_.setCursor(cursor_);
   panel_.draw(*viewer_, widgets, memory, host_);
   ImGui::Render();
-  ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  uiRenderer_->render(*ImGui::GetDrawData());
   mirror_.endFrame();
   focusedControl_ = ui::imguiBrowserFocusedControl();
 

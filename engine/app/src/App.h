@@ -14,6 +14,7 @@
 #include "qv/platform/BrowserFetcher.h"
 #include "qv/platform/BrowserInput.h"
 #include "qv/quality/FrameGovernor.h"
+#include "qv/render/GlImGuiRenderer.h"
 #include "qv/render/GlRenderDevice.h"
 #include "qv/scene/PixelRatio.h"
 #include "qv/scene/TouchGesture.h"
@@ -69,6 +70,7 @@ class App {
   void adaptQuality(double frameMs);
 
   std::unique_ptr<GlRenderDevice> device_;
+  std::unique_ptr<GlImGuiRenderer> uiRenderer_;
   BrowserFetcher fetcher_;
   bool benchSent_ = false;
   std::unique_ptr<Viewer> viewer_;

@@ -1,5 +1,7 @@
 #include "Shaders.h"
 
+#include <GLES3/gl3.h>
+
 namespace qv::shaders {
 
 // Buildings. Each vertex is a footprint corner at a floor level (or a roof point) with its slot in
@@ -169,5 +171,79 @@ void main() {
   o_color = vec4(mix(color, vec3(0.80, 0.85, 0.90), fog * 0.7), 1.0);
 }
 )";
+
+// The panels (Dear ImGui's draw lists, drawn by GlImGuiRenderer): 2-D positions in framebuffer-
+// independent display units, the font atlas's coordinates and an 8-bit RGBA colour per vertex.
+const char* const kUiVertex = R"(#version 300 es
+precision highp float;
+layout(location = 0) in vec2 a_position;
+layout(location = 1) in vec2 a_uv;
+layout(location = 2) in vec4 a_color;
+uniform vec4 u_display;  // x, y of the top-left corner, 2 / width, -2 / height
+out vec2 v_uv;
+out vec4 v_color;
+void main() {
+  v_uv = a_uv;
+  v_color = a_color;
+  gl_Position = vec4((a_position - u_display.xy) * u_display.zw + vec2(-1.0, 1.0), 0.0, 1.0);
+}
+)";
+
+const char* const kUiFragment = R"(#version 300 es
+precision mediump float;
+uniform sampler2D u_texture;
+in vec2 v_uv;
+in vec4 v_color;
+out vec4 o_color;
+void main() {
+  o_color = v_color * texture(u_texture, v_uv);
+}
+)";
+
+namespace {
+
+unsigned compileShader(GLenum kind, const char* source, std::string& error) {
+  const GLuint shader = glCreateShader(kind);
+  glShaderSource(shader, 1, &source, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    error = std::string(kind == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader: " + log;
+    glDeleteShader(shader);
+    return 0;
+  }
+  return shader;
+}
+
+}  // namespace
+
+unsigned linkProgram(const char* vertex, const char* fragment, std::string& error) {
+  const unsigned vs = compileShader(GL_VERTEX_SHADER, vertex, error);
+  if (vs == 0) return 0;
+  const unsigned fs = compileShader(GL_FRAGMENT_SHADER, fragment, error);
+  if (fs == 0) {
+    glDeleteShader(vs);
+    return 0;
+  }
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  glLinkProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetProgramInfoLog(program, sizeof log, nullptr, log);
+    error = std::string("program link: ") + log;
+    glDeleteProgram(program);
+    return 0;
+  }
+  return program;
+}
 
 }  // namespace qv::shaders

@@ -1,5 +1,7 @@
-// GLSL ES 3.00 sources of the render layer's programs.
+// GLSL ES 3.00 sources of the render layer's programs, and the one function that builds them.
 #pragma once
+
+#include <string>
 
 namespace qv::shaders {
 
@@ -7,5 +9,11 @@ extern const char* const kBuildingVertex;
 extern const char* const kBuildingFragment;
 extern const char* const kGroundVertex;
 extern const char* const kGroundFragment;
+extern const char* const kUiVertex;
+extern const char* const kUiFragment;
+
+/// Compiles and links a program from a vertex and a fragment shader. Returns 0 and sets `error`
+/// (which shader, and the driver's log) on failure. Needs a current context.
+unsigned linkProgram(const char* vertex, const char* fragment, std::string& error);
 
 }  // namespace qv::shaders
