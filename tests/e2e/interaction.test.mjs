@@ -281,6 +281,30 @@ test('the panel and the inspection window are readable and leave the city centre
     const centre = colourAt(image, 780, 380, 3);
     const panelBackground = colourAt(image, 20, 300, 0);
     assert.ok(colourDistance(centre, panelBackground) > 30 || at.x > 0, 'city centre visible');
+    // The panel is drawn on the canvas, not only in its text mirror: inside its window, most
+    // pixels share one light colour (the light theme's window background) and some are dark text;
+    // and the renderer reports what it drew.
+    const layout = await page.evaluate(() => window.quakeview.uiLayout());
+    const panel = layout.windows.find((w) => w.title === 'QuakeView');
+    assert.ok(panel, JSON.stringify(layout.windows.map((w) => w.title)));
+    const counts = new Map();
+    let dark = 0, n = 0;
+    for (let y = Math.round(panel.y) + 30; y < Math.min(image.height, Math.round(panel.y + panel.height) - 4); ++y) {
+      for (let x = Math.round(panel.x) + 4; x < Math.min(image.width, Math.round(panel.x + panel.width) - 16); ++x) {
+        const i = (y * image.width + x) * 4;
+        const key = (image.data[i] >> 2) * 4096 + (image.data[i + 1] >> 2) * 64 + (image.data[i + 2] >> 2);
+        counts.set(key, (counts.get(key) || 0) + 1);
+        if (image.data[i] + image.data[i + 1] + image.data[i + 2] < 3 * 100) ++dark;
+        ++n;
+      }
+    }
+    const [commonKey, common] = [...counts.entries()].reduce((a, b) => (b[1] > a[1] ? b : a));
+    const commonColour = [(commonKey >> 12) * 4, ((commonKey >> 6) & 63) * 4, (commonKey & 63) * 4];
+    const neutral = Math.max(...commonColour) - Math.min(...commonColour) <= 8;  // not the bluish sky
+    assert.ok(n > 10000 && common / n > 0.4 && neutral && commonColour[0] > 200 && dark / n > 0.01,
+      `panel pixels: ${common}/${n} of [${commonColour}], ${dark} dark`);
+    const ui = (await page.evaluate(() => window.quakeview.stats())).lastFrame.ui;
+    assert.ok(ui.vertices > 1000 && ui.triangles > 500 && ui.drawCalls >= 1 && ui.uploadBytes > 0, JSON.stringify(ui));
     const text = await page.evaluate(() => window.quakeview.uiText());
     // The legend with its thresholds, the scenario, the model note and attribution are reachable.
     assert.match(text, /HAZUS drift thresholds/);
