@@ -311,11 +311,33 @@ TEST_CASE("Each animated building moves by its own history", "[scene][city][anim
   for (std::size_t k = 0; k < before.size(); ++k) CHECK(rig.device.floors[k].dxMeters == before[k].dxMeters);
 
   // Outside the radius nothing animates, and rows are released.
+  auto drawnSlotSet = [&rig] {
+    std::set<std::uint32_t> slots;
+    for (const auto& [slot, centre] : rig.device.drawnSlots()) slots.insert(slot);
+    return slots;
+  };
+  const auto animatedSlots = drawnSlotSet();
+  const std::uint64_t animatedTriangles = viewer.stats().latest.triangles;
   CitySceneOptions& live = viewer.city()->mutableOptions();
   live.animationRadiusM = 0.0f;
   viewer.frame(1.0 / 60.0);
   CHECK(viewer.stats().latest.buildingsAnimated == 0);
   for (const auto& [slot, centre] : rig.device.drawnSlots()) CHECK(rig.device.buildings.at(slot).floorBase == -1.0f);
+  // Still, the same buildings are drawn with plain walls (no ring per floor): far fewer triangles.
+  viewer.frame(1.0 / 60.0);
+  CHECK(drawnSlotSet() == animatedSlots);
+  CHECK(viewer.stats().latest.triangles * 2 < animatedTriangles);
+  // Moving again, with their storeys.
+  live.animationRadiusM = 1000.0f;
+  runFrames(viewer, 3);
+  CHECK(viewer.stats().latest.buildingsAnimated == 64);
+  CHECK(drawnSlotSet() == animatedSlots);
+  CHECK(viewer.stats().latest.triangles == animatedTriangles);
+  // Unless told to keep the storeys (CitySceneOptions::stillPrisms).
+  live.animationRadiusM = 0.0f;
+  live.stillPrisms = false;
+  runFrames(viewer, 2);
+  CHECK(viewer.stats().latest.triangles == animatedTriangles);
 }
 
 TEST_CASE("A corrupt tile and a missing tile are reported while the rest renders", "[scene][city][errors]") {

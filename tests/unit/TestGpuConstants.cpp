@@ -141,7 +141,7 @@ TEST_CASE("The shader sources take the table layout from the generated block onl
     for (unsigned flag : {unsigned{kFlagSelected}, unsigned{kFlagDimmed}, unsigned{kFlagHidden}}) {
       CHECK_FALSE(std::regex_search(source, std::regex("& *" + std::to_string(flag) + "u")));
     }
-    CHECK_FALSE(std::regex_search(source, std::regex("u_colorMode *[=<>!]+ *[0-9]")));
+    CHECK_FALSE(std::regex_search(source, std::regex("\\bcolorMode *[=<>!]+ *[0-9]")));
     CHECK_FALSE(contains(source, std::to_string(kLossCodeTagFactor)));
     CHECK_FALSE(contains(source, std::to_string(kLossCodeExpectedFactor) + ".0"));
     CHECK_FALSE(contains(source, std::to_string(kLossCodeLevels) + ".0"));

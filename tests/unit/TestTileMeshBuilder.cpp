@@ -92,6 +92,36 @@ TEST_CASE("A tile's mesh draws each building at its place, in its own row, with 
   std::set<float> levels;
   for (int k = 0; k <= MiniCity::kStoreys; ++k) levels.insert(static_cast<float>(k) * MiniCity::kStoreyHeight);
   CHECK(heights == levels);
+
+  // As plain prisms (a still leaf): the same buildings in the same rows and places, walls from base
+  // to roof without rings, and far fewer triangles.
+  TileIndexRuns storeyRuns, prismRuns;
+  const MeshData storeys = buildTileMesh(leaf, 0, &storeyRuns);
+  const MeshData prisms = buildTileMesh(leaf, 0, &prismRuns, {}, TileWalls::Prisms);
+  const auto plain = bySlot(prisms);
+  REQUIRE(plain.size() == detailed.size());
+  for (const auto& [slot, g] : plain) {
+    const SlotGeometry& withRings = detailed.at(slot);
+    CHECK(g.plain < withRings.plain);
+    const glm::vec2 a = g.sum / static_cast<float>(g.plain);
+    const glm::vec2 b = withRings.sum / static_cast<float>(withRings.plain);
+    CHECK(a.x == Approx(b.x).margin(0.01));
+    CHECK(a.y == Approx(b.y).margin(0.01));
+  }
+  std::set<float> prismHeights;
+  for (const BuildingVertex& v : prisms.vertices) {
+    if (v.slot == leaf.positionOf[0]) prismHeights.insert(v.z);
+  }
+  CHECK(prismHeights == std::set<float>{0.0f, MiniCity::kStoreys * MiniCity::kStoreyHeight});
+  CHECK(prisms.triangleCount() * 2 < storeys.triangleCount());
+  // Its runs cover each position's triangles as the storeys' runs do theirs.
+  REQUIRE(prismRuns.firstIndex.size() == storeyRuns.firstIndex.size());
+  CHECK(prismRuns.firstIndex.back() == prisms.indices.size());
+  for (std::size_t p = 0; p + 1 < prismRuns.firstIndex.size(); ++p) {
+    CHECK(prismRuns.firstIndex[p] < prismRuns.firstIndex[p + 1]);
+    for (std::uint32_t k = prismRuns.firstIndex[p]; k < prismRuns.firstIndex[p + 1]; ++k)
+      CHECK(prisms.vertices[prisms.indices[k]].slot == p);
+  }
 }
 
 TEST_CASE("A LOD2 model is meshed with its LOD1 fallback in the same row", "[scene][tilemesh][lod2]") {

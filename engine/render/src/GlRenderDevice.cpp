@@ -32,25 +32,39 @@ std::string withGeneratedGlsl(const char* source) {
 
 }  // namespace
 
+const GlRenderDevice::BuildingProgram* GlRenderDevice::buildingProgram(ColorMode mode) {
+  const auto index = static_cast<std::size_t>(mode);
+  if (index >= building_.size()) return nullptr;
+  BuildingProgram& b = building_[index];
+  if (b.program != 0) return &b;
+  if (!ok()) return nullptr;
+  // The mode is a constant of the program (QV_COLOR_MODE after the #version line).
+  std::string vertex = withGeneratedGlsl(shaders::kBuildingVertex);
+  const auto line = vertex.find('\n');
+  if (line == std::string::npos) return nullptr;
+  vertex.insert(line + 1, "#define QV_COLOR_MODE " + std::to_string(static_cast<int>(mode)) + "\n");
+  b.program = shaders::linkProgram(vertex.c_str(), shaders::kBuildingFragment, error_);
+  if (b.program == 0) return nullptr;
+  const auto p = b.program;
+  b.viewProjection = glGetUniformLocation(p, "u_viewProjection");
+  b.origin = glGetUniformLocation(p, "u_origin");
+  b.buildings = glGetUniformLocation(p, "u_buildings");
+  b.floors = glGetUniformLocation(p, "u_floors");
+  b.driftFullScale = glGetUniformLocation(p, "u_driftFullScale");
+  b.amplitude = glGetUniformLocation(p, "u_amplitude");
+  b.sunDirection = glGetUniformLocation(p, "u_sunDirection");
+  b.eye = glGetUniformLocation(p, "u_eye");
+  b.showModels = glGetUniformLocation(p, "u_showModels");
+  return &b;
+}
+
 GlRenderDevice::GlRenderDevice() {
-  const std::string vertex = withGeneratedGlsl(shaders::kBuildingVertex);
-  buildingProgram_ = shaders::linkProgram(vertex.c_str(), shaders::kBuildingFragment, error_);
-  if (buildingProgram_ != 0) {
+  // The default mode's program now (an error shows at start); the others when first drawn.
+  if (buildingProgram(ColorMode::CurrentDrift) != nullptr) {
     groundProgram_ = shaders::linkProgram(shaders::kGroundVertex, shaders::kGroundFragment, error_);
   }
   if (!ok()) return;
 
-  const auto p = buildingProgram_;
-  u_.viewProjection = glGetUniformLocation(p, "u_viewProjection");
-  u_.origin = glGetUniformLocation(p, "u_origin");
-  u_.buildings = glGetUniformLocation(p, "u_buildings");
-  u_.floors = glGetUniformLocation(p, "u_floors");
-  u_.colorMode = glGetUniformLocation(p, "u_colorMode");
-  u_.driftFullScale = glGetUniformLocation(p, "u_driftFullScale");
-  u_.amplitude = glGetUniformLocation(p, "u_amplitude");
-  u_.sunDirection = glGetUniformLocation(p, "u_sunDirection");
-  u_.eye = glGetUniformLocation(p, "u_eye");
-  u_.showModels = glGetUniformLocation(p, "u_showModels");
   g_.viewProjection = glGetUniformLocation(groundProgram_, "u_viewProjection");
   g_.rect = glGetUniformLocation(groundProgram_, "u_rect");
   g_.eye = glGetUniformLocation(groundProgram_, "u_eye");
@@ -89,7 +103,9 @@ GlRenderDevice::~GlRenderDevice() {
   glDeleteTextures(1, &floors_.texture);
   glDeleteVertexArrays(1, &groundVao_);
   glDeleteBuffers(1, &groundBuffer_);
-  glDeleteProgram(buildingProgram_);
+  for (const BuildingProgram& b : building_) {
+    if (b.program != 0) glDeleteProgram(b.program);
+  }
   glDeleteProgram(groundProgram_);
 }
 
@@ -217,20 +233,21 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
     stats.triangles += 2;
   }
 
-  if (ok() && !items.empty() && buildings_.rows > 0) {
+  const BuildingProgram* program = ok() && !items.empty() ? buildingProgram(f.colorMode) : nullptr;
+  if (program != nullptr && buildings_.rows > 0) {
+    const BuildingProgram& u = *program;
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
-    glUseProgram(buildingProgram_);
-    glUniformMatrix4fv(u_.viewProjection, 1, GL_FALSE, &f.viewProjection[0][0]);
-    glUniform1i(u_.colorMode, static_cast<int>(f.colorMode));
-    glUniform1f(u_.driftFullScale, f.driftFullScale);
-    glUniform1f(u_.amplitude, f.amplitude);
-    glUniform3f(u_.sunDirection, f.sunDirection.x, f.sunDirection.y, f.sunDirection.z);
-    glUniform3f(u_.eye, f.eye.x, f.eye.y, f.eye.z);
-    glUniform1i(u_.showModels, f.showModels ? 1 : 0);
+    glUseProgram(u.program);
+    glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, &f.viewProjection[0][0]);
+    glUniform1f(u.driftFullScale, f.driftFullScale);
+    glUniform1f(u.amplitude, f.amplitude);
+    glUniform3f(u.sunDirection, f.sunDirection.x, f.sunDirection.y, f.sunDirection.z);
+    glUniform3f(u.eye, f.eye.x, f.eye.y, f.eye.z);
+    glUniform1i(u.showModels, f.showModels ? 1 : 0);
     glActiveTexture(GL_TEXTURE0);
     glBindTexture(GL_TEXTURE_2D, buildings_.texture);
-    glUniform1i(u_.buildings, 0);
+    glUniform1i(u.buildings, 0);
     glActiveTexture(GL_TEXTURE1);
     // An empty floor table still needs storage for texelFetch to be defined.
     if (floors_.rows == 0) {
@@ -239,11 +256,11 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
       flush(floors_);
     }
     glBindTexture(GL_TEXTURE_2D, floors_.texture);
-    glUniform1i(u_.floors, 1);
+    glUniform1i(u.floors, 1);
     for (const DrawItem& item : items) {
       const auto it = meshes_.find(item.mesh.id);
       if (it == meshes_.end()) continue;
-      glUniform3f(u_.origin, item.origin.x, item.origin.y, item.origin.z);
+      glUniform3f(u.origin, item.origin.x, item.origin.y, item.origin.z);
       glBindVertexArray(it->second.vao);
       if (item.spans.empty()) {
         glDrawElements(GL_TRIANGLES, it->second.indexCount, GL_UNSIGNED_INT, nullptr);

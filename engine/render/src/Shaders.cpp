@@ -1,7 +1,5 @@
 #include "Shaders.h"
 
-#include <GLES3/gl3.h>
-
 namespace qv::shaders {
 
 // Buildings. Each vertex is a footprint corner at a floor level (or a roof point) with its slot in
@@ -21,7 +19,9 @@ uniform mat4 u_viewProjection;
 uniform vec3 u_origin;
 uniform sampler2D u_buildings;
 uniform sampler2D u_floors;
-uniform int u_colorMode;
+// The colour mode (qv::ColorMode) is a constant of each program: GlRenderDevice defines
+// QV_COLOR_MODE after the #version line.
+const int colorMode = QV_COLOR_MODE;
 uniform float u_driftFullScale;
 uniform float u_amplitude;
 uniform bool u_showModels;  // LOD2 models (kind bit kKindModel) or, instead, their extrusions (kKindFallback)
@@ -70,18 +70,18 @@ void main() {
   vec3 color;
   // Current drift: the warm ramp only for a drift at this moment (animated buildings); the others
   // show their peak over the whole record in grey levels, never in colours of damage (Palette.h).
-  if (u_colorMode == kModeCurrentDrift) color = floorBase >= 0 ? ramp(drift / u_driftFullScale) : notAnimatedGrey(peakValue / u_driftFullScale);
-  else if (u_colorMode == kModePeakDrift) color = ramp(peakStorey / u_driftFullScale);
-  else if (u_colorMode == kModeDamageState) color = damage < kDamageNoResult + 0.5 ? kNoResult : ramp(damage / kDamageComplete);
-  else if (u_colorMode >= kModeModerateOrWorse) {
+  if (colorMode == kModeCurrentDrift) color = floorBase >= 0 ? ramp(drift / u_driftFullScale) : notAnimatedGrey(peakValue / u_driftFullScale);
+  else if (colorMode == kModePeakDrift) color = ramp(peakStorey / u_driftFullScale);
+  else if (colorMode == kModeDamageState) color = damage < kDamageNoResult + 0.5 ? kNoResult : ramp(damage / kDamageComplete);
+  else if (colorMode >= kModeModerateOrWorse) {
     // Probabilistic modes: P(>= moderate), expected damage state / 4, the most likely inspection tag.
     float code = max(lossCode, 0.0);
     float tag = floor(code / kLossCodeTagFactor);
     float rest = code - tag * kLossCodeTagFactor;
     float expected = floor(rest / kLossCodeExpectedFactor);
     float moderate = rest - expected * kLossCodeExpectedFactor;
-    if (u_colorMode == kModeModerateOrWorse) color = ramp(moderate / kLossCodeLevels);
-    else if (u_colorMode == kModeExpectedDamage) color = ramp(expected / kLossCodeLevels);
+    if (colorMode == kModeModerateOrWorse) color = ramp(moderate / kLossCodeLevels);
+    else if (colorMode == kModeExpectedDamage) color = ramp(expected / kLossCodeLevels);
     else color = tag < 0.5 ? kTagGreen : (tag < 1.5 ? kTagYellow : kTagRed);
   }
   else color = vec3(0.82, 0.80, 0.76);
@@ -90,9 +90,9 @@ void main() {
   if (pending) color = vec3(0.82, 0.80, 0.76);
   // No response for this building: its own colour, whatever the mode (hatched in the fragment stage).
   // (The probabilistic modes also mark results without probabilities, e.g. imported ones.)
-  bool probabilistic = u_colorMode >= kModeModerateOrWorse;
+  bool probabilistic = colorMode >= kModeModerateOrWorse;
   bool missing = damage < kDamageNoResult + 0.5 || (probabilistic && lossCode < -0.5);
-  float noResult = (u_colorMode != kModeNeutral && missing && !pending) ? 1.0 : 0.0;
+  float noResult = (colorMode != kModeNeutral && missing && !pending) ? 1.0 : 0.0;
   if (noResult > 0.5) color = kNoResult;
 
   int kind = a_normalKind.w & kKindMask;
@@ -199,51 +199,5 @@ void main() {
   o_color = v_color * texture(u_texture, v_uv);
 }
 )";
-
-namespace {
-
-unsigned compileShader(GLenum kind, const char* source, std::string& error) {
-  const GLuint shader = glCreateShader(kind);
-  glShaderSource(shader, 1, &source, nullptr);
-  glCompileShader(shader);
-  GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    error = std::string(kind == GL_VERTEX_SHADER ? "vertex" : "fragment") + " shader: " + log;
-    glDeleteShader(shader);
-    return 0;
-  }
-  return shader;
-}
-
-}  // namespace
-
-unsigned linkProgram(const char* vertex, const char* fragment, std::string& error) {
-  const unsigned vs = compileShader(GL_VERTEX_SHADER, vertex, error);
-  if (vs == 0) return 0;
-  const unsigned fs = compileShader(GL_FRAGMENT_SHADER, fragment, error);
-  if (fs == 0) {
-    glDeleteShader(vs);
-    return 0;
-  }
-  const GLuint program = glCreateProgram();
-  glAttachShader(program, vs);
-  glAttachShader(program, fs);
-  glLinkProgram(program);
-  glDeleteShader(vs);
-  glDeleteShader(fs);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    char log[2048] = {};
-    glGetProgramInfoLog(program, sizeof log, nullptr, log);
-    error = std::string("program link: ") + log;
-    glDeleteProgram(program);
-    return 0;
-  }
-  return program;
-}
 
 }  // namespace qv::shaders

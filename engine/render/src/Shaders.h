@@ -12,7 +12,7 @@ extern const char* const kGroundFragment;
 extern const char* const kUiVertex;
 extern const char* const kUiFragment;
 
-/// Compiles and links a program from a vertex and a fragment shader. Returns 0 and sets `error`
+/// Compiles and links a program from a vertex and a fragment shader (GlProgram.cpp). Returns 0 and sets `error`
 /// (which shader, and the driver's log) on failure. Needs a current context.
 unsigned linkProgram(const char* vertex, const char* fragment, std::string& error);
 

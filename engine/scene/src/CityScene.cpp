@@ -55,12 +55,7 @@ CityScene::CityScene(RenderDevice& device, Fetcher& fetcher, std::string manifes
 CityScene::~CityScene() {
   if (manifestRequest_ != 0) fetcher_.cancel(manifestRequest_);
   for (const auto& t : tiles_) {
-    if (t && t->loaded && t->loaded->mesh) device_.destroyMesh(t->loaded->mesh);
-    if (t && t->loaded) {
-      for (const auto& blocks : t->loaded->blocks) {
-        if (blocks) device_.destroyMesh(blocks->mesh);
-      }
-    }
+    if (t && t->loaded) destroyMeshes(*t->loaded);
     if (!t) continue;
     for (FileLoad* load : {&t->tile, &t->summaryLoad, &t->historyLoad}) loader_.cancel(*load);
   }
@@ -414,6 +409,10 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
   const Frustum& frustum = view.frustum();
   // Tile boxes first, then the buildings of partly visible tiles.
   std::uint32_t visibleBuildings = 0;
+  // Leaves' plain-prism meshes are made within a time budget (at least one a frame); until then a
+  // leaf is drawn with its storeys.
+  const double prismStart = clock_.nowSeconds();
+  bool mayBuildPrisms = true;
   for (std::uint32_t i : selection_.draw) {
     TileRuntime& t = *tiles_[i];
     t.inView.clear();
@@ -435,17 +434,45 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
       t.loaded->tree.query(frustum, t.visible, size);
     else
       t.visible = t.inView;
+    // A leaf none of whose buildings moves: walls as plain prisms (the same picture).
+    bool prisms = false;
+    if (options_.stillPrisms && t.animatedCount == 0) {
+      const bool built = static_cast<bool>(t.loaded->prismMesh);
+      prisms = preparePrisms(i, mayBuildPrisms);
+      if (prisms && !built) mayBuildPrisms = msSince(clock_, prismStart) < 0.5 * options_.workBudgetMs;
+    }
+    const MeshHandle mesh = prisms ? t.loaded->prismMesh : t.loaded->mesh;
     // Only the visible buildings' triangles are drawn (in few runs): the triangles a frame draws
     // follow the view, not the tile. A tile seen whole is drawn whole.
     if (t.visible.size() == 1 && t.visible[0].begin == 0 && t.visible[0].end == n) {
-      items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin, {}});
+      items.push_back(DrawItem{mesh, t.loaded->origin, {}});
       continue;
     }
-    visibleIndexSpans(t.loaded->runs, t.visible, kMergeGapIndices, kMaxSpansPerTile, t.spans);
+    visibleIndexSpans(prisms ? t.loaded->prismRuns : t.loaded->runs, t.visible, kMergeGapIndices, kMaxSpansPerTile,
+                      t.spans);
     if (t.spans.empty()) continue;
-    items.push_back(DrawItem{t.loaded->mesh, t.loaded->origin, t.spans});
+    items.push_back(DrawItem{mesh, t.loaded->origin, t.spans});
   }
   return visibleBuildings;
+}
+
+bool CityScene::preparePrisms(std::uint32_t node, bool mayBuild) {
+  LoadedTile& tile = *tiles_[node]->loaded;
+  if (tile.prismMesh) return true;
+  if (tile.prismsTried || !mayBuild || tile.data.coarse) return false;
+  tile.prismsTried = true;
+  TileIndexRuns runs;
+  const MeshData mesh = buildTileMesh(tile, tile.slotBase, &runs, {}, TileWalls::Prisms);
+  // Worth a second mesh only where it saves a quarter of the triangles or more (a tile of
+  // one-storey buildings has no rings to drop).
+  const std::uint64_t storeyIndices = tile.runs.firstIndex.empty() ? 0 : tile.runs.firstIndex.back();
+  if (mesh.indices.size() * 4 > storeyIndices * 3) return false;
+  tile.prismMesh = device_.createMesh(mesh);
+  if (!tile.prismMesh) return false;
+  tile.prismRuns = std::move(runs);
+  tile.gpuBytes += meshGpuBytes(mesh);
+  tile.cpuBytes += tile.prismRuns.firstIndex.size() * 3 * sizeof(std::uint32_t);
+  return true;
 }
 
 void CityScene::countDamageInView() {

@@ -11,8 +11,10 @@
 namespace qv {
 
 void CityScene::reindexAnimated() {
+  for (const auto& t : tiles_) t->animatedCount = 0;
   for (std::size_t k = 0; k < animated_.size(); ++k) {
     TileRuntime& t = *tiles_[animated_[k]->ref.node];
+    ++t.animatedCount;
     if (animated_[k]->ref.index < t.animatedIndex.size()) {
       t.animatedIndex[animated_[k]->ref.index] = static_cast<std::uint32_t>(k);
     }
@@ -200,10 +202,8 @@ void CityScene::keepAnimated(const std::vector<AnimationCandidate>& candidates) 
     a.reset();
     released = true;
   }
-  if (released) {
-    animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
-    reindexAnimated();
-  }
+  if (released) animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
+  reindexAnimated();  // also each tile's count, which decides its walls (CityScene::cull)
 }
 
 void CityScene::packSamplers() {

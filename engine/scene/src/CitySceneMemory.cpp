@@ -47,6 +47,14 @@ void CityScene::updateNodeBytes() {
   }
 }
 
+void CityScene::destroyMeshes(LoadedTile& tile) {
+  if (tile.mesh) device_.destroyMesh(tile.mesh);
+  if (tile.prismMesh) device_.destroyMesh(tile.prismMesh);
+  for (const auto& blocks : tile.blocks) {
+    if (blocks) device_.destroyMesh(blocks->mesh);
+  }
+}
+
 void CityScene::evict(std::uint32_t node) {
   TileRuntime& t = *tiles_[node];
   ++residencyGeneration_;
@@ -61,11 +69,9 @@ void CityScene::evict(std::uint32_t node) {
     animated_.erase(std::remove(animated_.begin(), animated_.end(), nullptr), animated_.end());
     t.animatedIndex.clear();
     reindexAnimated();
-    if (t.loaded->mesh) device_.destroyMesh(t.loaded->mesh);
+    destroyMeshes(*t.loaded);
     for (const auto& blocks : t.loaded->blocks) {
-      if (!blocks) continue;
-      device_.destroyMesh(blocks->mesh);
-      table_.releaseBuildings(blocks->slotBase, static_cast<std::uint32_t>(blocks->level.boxes.size()));
+      if (blocks) table_.releaseBuildings(blocks->slotBase, static_cast<std::uint32_t>(blocks->level.boxes.size()));
     }
     table_.releaseBuildings(t.loaded->slotBase, t.loaded->buildingCount());
     t.loaded.reset();

@@ -36,6 +36,11 @@ struct CityScene::LoadedTile : TileContent {
   std::unique_ptr<BlockLevelRuntime> blocks[kBlockLevels];
   int minBlockLevel = 0;
   TileRegions regions;  // far-view tiles: their regions; runs then follow regions.appendOrder
+  // Leaves: the same buildings with plain-prism walls (TileWalls::Prisms), drawn while none of the
+  // tile's buildings is animated; made when first wanted, not at all where it saves little.
+  MeshHandle prismMesh;
+  TileIndexRuns prismRuns;
+  bool prismsTried = false;
 };
 
 struct CityScene::TileRuntime {
@@ -60,6 +65,7 @@ struct CityScene::TileRuntime {
   std::uint64_t historyUsed = 0;
   /// Per building of the loaded tile: its index in animated_, or kNotAnimated.
   std::vector<std::uint32_t> animatedIndex;
+  std::uint32_t animatedCount = 0;  // of its buildings in animated_
 };
 
 struct CityScene::Animated {

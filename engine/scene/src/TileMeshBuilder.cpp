@@ -26,8 +26,8 @@ void appendModel(MeshData& mesh, const TileMesh& model, float groundZ, std::uint
 }
 
 // The LOD1 extrusion of one building: its parts as prisms, with a vertex ring at every floor
-// level inside each part in leaves.
-void appendExtrusions(MeshData& mesh, const CityTile& d, const TileBuilding& tb, std::uint32_t slot) {
+// level inside each part when `floorRings`.
+void appendExtrusions(MeshData& mesh, const CityTile& d, const TileBuilding& tb, std::uint32_t slot, bool floorRings) {
   const BuildingAttributes& a = tb.attributes;
   const FloorGrid floors{a.minHeightM, std::max(a.storeyHeightM(), 0.5f), a.storeys};
   std::vector<float> levels;
@@ -35,7 +35,7 @@ void appendExtrusions(MeshData& mesh, const CityTile& d, const TileBuilding& tb,
   for (std::uint32_t pi = tb.firstPart; pi < tb.firstPart + tb.partCount; ++pi) {
     const TilePart& part = d.parts[pi];
     levels.clear();
-    if (!d.coarse) floorLevelsBetween(floors, part.minHeightM, part.heightM, 0.01f, levels);
+    if (floorRings) floorLevelsBetween(floors, part.minHeightM, part.heightM, 0.01f, levels);
     ringEnds.clear();
     std::uint32_t end = 0;
     for (std::uint32_t r = part.firstRing; r < part.firstRing + part.ringCount; ++r) {
@@ -100,7 +100,8 @@ TileContent indexTile(CityTile data) {
 }
 
 MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs,
-                       std::span<const std::uint32_t> appendOrder) {
+                       std::span<const std::uint32_t> appendOrder, TileWalls walls) {
+  const bool floorRings = walls == TileWalls::Storeys && !tile.data.coarse;
   MeshData mesh;
   const CityTile& d = tile.data;
   const auto& order = tile.tree.order();
@@ -124,7 +125,7 @@ MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileInde
     // is switched off.
     const std::size_t firstExtruded = mesh.vertices.size();
     const std::size_t firstExtrudedTriangle = mesh.triangleCount();
-    appendExtrusions(mesh, d, tb, slotBase + p);
+    appendExtrusions(mesh, d, tb, slotBase + p, floorRings);
     if (model != nullptr) {
       for (std::size_t v = firstExtruded; v < mesh.vertices.size(); ++v) mesh.vertices[v].kind |= kKindFallback;
       mesh.fallbackTriangles += mesh.triangleCount() - firstExtrudedTriangle;

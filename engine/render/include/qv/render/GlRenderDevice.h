@@ -6,6 +6,7 @@
 // changed rows be re-sent each frame. Must be created and used with a current WebGL2 context.
 #pragma once
 
+#include <array>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -53,8 +54,21 @@ class GlRenderDevice final : public RenderDevice {
   void writeTexels(DataTexture& table, std::size_t firstTexel, const float* data, std::size_t texelCount);
   void flush(DataTexture& table);
 
+  // The building program of one colour mode, and its uniforms' locations.
+  struct BuildingProgram {
+    unsigned program = 0;
+    int viewProjection = -1, origin = -1, buildings = -1, floors = -1, driftFullScale = -1, amplitude = -1,
+        sunDirection = -1, eye = -1, showModels = -1;
+  };
+  /// The program for `mode`, built on first use; null when it failed (error() says why). The mode
+  /// is a constant in it, not a uniform: a software renderer runs every branch of an if/else
+  /// chain on a uniform for every vertex, and the colour modes' chain was about a third of the
+  /// vertex work.
+  const BuildingProgram* buildingProgram(ColorMode mode);
+
   std::string error_;
-  unsigned buildingProgram_ = 0, groundProgram_ = 0;
+  std::array<BuildingProgram, kColorModeCount> building_{};
+  unsigned groundProgram_ = 0;
   unsigned groundVao_ = 0, groundBuffer_ = 0;
   DataTexture buildings_, floors_;
   std::unordered_map<std::uint32_t, Mesh> meshes_;
@@ -64,10 +78,6 @@ class GlRenderDevice final : public RenderDevice {
   DeviceFrameStats last_;
   int maxTextureSize_ = kTableWidth;
 
-  struct Uniforms {
-    int viewProjection = -1, origin = -1, buildings = -1, floors = -1, colorMode = -1, driftFullScale = -1,
-        amplitude = -1, sunDirection = -1, eye = -1, showModels = -1;
-  } u_;
   struct GroundUniforms {
     int viewProjection = -1, rect = -1, eye = -1;
   } g_;

@@ -46,6 +46,9 @@ struct CitySceneOptions {
   /// nearest the eye, or building by building where cells that small would merge next to nothing
   /// (0: always building by building): far away the triangles follow the screen, not the city.
   float blockPixels = 4.0f;
+  /// Leaves none of whose buildings is animated are drawn with plain-prism walls (TileWalls) in
+  /// place of a vertex ring per floor: the same picture with a fraction of the triangles.
+  bool stillPrisms = true;
   /// Tile, summary and history requests issued and not yet answered (the browser queues them
   /// over its own connections; more than its six lets a tile arrive while others are queued).
   std::uint32_t maxRequestsInFlight = 16;
@@ -193,6 +196,8 @@ class CityScene {
   void request(std::uint32_t node);     // the tile (when due) and its summary
   void finishTile(std::uint32_t node);  // decode + mesh (time-budgeted)
   void evict(std::uint32_t node);
+  /// Gives back a loaded tile's meshes (its buildings', its plain prisms', its block levels').
+  void destroyMeshes(LoadedTile& tile);
   /// After animated_ changed order: each tile's building -> entry map.
   void reindexAnimated();
   void markNoResult(std::uint32_t node);  // its summary failed: hatch its buildings
@@ -207,6 +212,8 @@ class CityScene {
   /// needed), or -1: building by building.
   int blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view);
   void cullRegions(std::uint32_t node, const CameraView& view, std::vector<DrawItem>& items);
+  /// Whether the leaf's plain-prism mesh is there to draw (made now when `mayBuild` and worth it).
+  bool preparePrisms(std::uint32_t node, bool mayBuild);
   /// The building a ray picks in a tile drawn as `blocks` (nearer than `best`, which it lowers).
   std::optional<std::uint32_t> pickInBlocks(const TileRuntime& t, int level, const glm::vec3& origin,
                                             const glm::vec3& direction, float& best) const;

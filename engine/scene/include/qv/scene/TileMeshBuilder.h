@@ -63,14 +63,20 @@ struct TileIndexRuns {
   std::vector<std::uint32_t> fallbackTriangles;  ///< their LOD1 fallbacks' (kKindFallback) before p
 };
 
+/// How a leaf's LOD1 walls are built: with a vertex ring at every floor level inside each part, so
+/// that the floors bend with their displacements and each storey takes its own colour (needed only
+/// while a building is animated), or as plain prisms, one quad per wall (a still building looks
+/// the same; a 10-storey building takes about a tenth of the wall triangles).
+enum class TileWalls : std::uint8_t { Storeys, Prisms };
+
 /// The merged mesh of every building in position order: a LOD2 model in leaves (kKindModel)
-/// followed by its LOD1 extrusion (kKindFallback), or the extrusion alone. Leaves get a vertex ring at every floor
-/// level inside each part (the floors bend with their displacements); coarse tiles plain prisms.
-/// Vertex slots are slotBase + position. `runs`, when given, receives where each position's
-/// triangles are. `appendOrder`, when not empty, lists the positions in the order their buildings
-/// are appended (a permutation); `runs` then describes its entries, not positions.
+/// followed by its LOD1 extrusion (kKindFallback), or the extrusion alone. Leaves' walls as `walls`
+/// says; coarse tiles always plain prisms. Vertex slots are slotBase + position. `runs`, when
+/// given, receives where each position's triangles are. `appendOrder`, when not empty, lists the
+/// positions in the order their buildings are appended (a permutation); `runs` then describes its
+/// entries, not positions.
 MeshData buildTileMesh(const TileContent& tile, std::uint32_t slotBase, TileIndexRuns* runs = nullptr,
-                       std::span<const std::uint32_t> appendOrder = {});
+                       std::span<const std::uint32_t> appendOrder = {}, TileWalls walls = TileWalls::Storeys);
 
 /// The index spans that draw the visible ranges of positions `visible` (sorted, disjoint, as
 /// BoxTree::query gives them): one span per range, neighbours merged when the indices between
