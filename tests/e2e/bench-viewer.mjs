@@ -9,7 +9,9 @@
 //   FPS from the page's requestAnimationFrame intervals, triangles and draw calls of each frame
 //   (stats().lastFrame).
 // Every table gives the triangles and the pixels per frame beside the FPS, and the browser and
-// WebGL renderer it ran on.
+// WebGL renderer it ran on. Last, the reference (tests/e2e/bench/reference.html): a bare WebGL2 page
+// drawing 30,000 and 100,000 small triangles in the same browser, measured in the same run, so that
+// the viewer's rows can be read against what this machine draws at that moment.
 //
 //   node tests/e2e/bench-viewer.mjs NAME=CITY_DIR [NAME=CITY_DIR ...] [--seconds 20]
 //        [--browser chromium|firefox] [--poses overview [--pose-seconds 5] [--flight]] [--params 'aa=0']
@@ -99,12 +101,13 @@ async function measureFrames(page, ms, minFrames = 6, until = null) {
   }), { ms, minFrames, until: until ? until.toString() : null });
 }
 
-const mounts = {};
+const mounts = { '/reference': path.join(path.dirname(new URL(import.meta.url).pathname), 'bench') };
 cities.forEach((c, i) => { mounts[`/city${i}`] = c.dir; });
 const server = await serveSite(mounts);
 const extra = params ? `&${params}` : '';
 const flightRows = [];
 const poseRows = [];
+const referenceRows = [];
 try {
   for (const [i, city] of cities.entries()) {
     if (flight) {
@@ -148,6 +151,32 @@ try {
       }
     }
   }
+  // The reference: what this browser draws of bare small triangles, now.
+  const { context, close } = await launchBrowser();
+  try {
+    for (const n of [30000, 100000]) {
+      const { page } = await openPage(context, `${server.url}/reference/reference.html?n=${n}`);
+      await page.waitForFunction(() => document.title.startsWith('drawing') || document.title.startsWith('error'), null, { timeout: 60000 });
+      const title = await page.evaluate(() => document.title);
+      if (!title.startsWith('drawing')) throw new Error(`reference page: ${title}`);
+      await page.waitForTimeout(1000);
+      const intervals = await page.evaluate((ms) => new Promise((resolve) => {
+        const times = [];
+        const tick = (t) => {
+          times.push(t);
+          if (t - times[0] < ms || times.length < 8) requestAnimationFrame(tick);
+          else resolve(times.slice(1).map((x, i) => x - times[i]));
+        };
+        requestAnimationFrame(tick);
+      }), poseSeconds * 1000);
+      const sorted = [...intervals].sort((a, b) => a - b);
+      const at = (p) => sorted[Math.min(sorted.length - 1, Math.max(0, Math.ceil(p * sorted.length) - 1))];
+      referenceRows.push({ n, frames: intervals.length, median: at(0.5), p95: at(0.95) });
+      await page.close();
+    }
+  } finally {
+    await close();
+  }
 } finally {
   await server.close();
 }
@@ -187,5 +216,15 @@ if (poseRows.length > 0) {
   for (const [name, fps] of byCity) {
     const s = [...fps].sort((a, b) => a - b);
     console.log(`\n${name}: FPS over the ${s.length} poses: min ${s[0].toFixed(2)}, median ${((s[(s.length - 1) >> 1] + s[s.length >> 1]) / 2).toFixed(2)}, max ${s[s.length - 1].toFixed(2)}`);
+  }
+}
+if (referenceRows.length > 0) {
+  console.log(`\nReference in headless ${BROWSER_NAME}, same run: a bare WebGL2 page (tests/e2e/bench/reference.html), ` +
+    `1280x720, no antialiasing, one draw call of small triangles (about 4 x 7 pixels) a frame\n`);
+  console.log('| browser | triangles | frames | FPS median | FPS at p95 frame time | frame ms median | frame ms p95 |');
+  console.log('| --- | ---: | ---: | ---: | ---: | ---: | ---: |');
+  for (const r of referenceRows) {
+    console.log(`| ${BROWSER_NAME} | ${r.n} | ${r.frames} | ${(1000 / r.median).toFixed(1)} | ${(1000 / r.p95).toFixed(1)} | ` +
+      `${r.median.toFixed(1)} | ${r.p95.toFixed(1)} |`);
   }
 }
