@@ -99,7 +99,9 @@ void Widgets::text(std::string_view raw) {
 void Widgets::textColored(float r, float g, float b, std::string_view raw) {
   const Shown t(raw);
   ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(r, g, b, 1.0f));
+  ImGui::PushTextWrapPos(0.0f);  // statements in colour (SCENARIO, warnings) are read whole
   ImGui::TextUnformatted(t.begin(), t.end());
+  ImGui::PopTextWrapPos();
   ImGui::PopStyleColor();
   mirror_.line(t.view());
 }
@@ -288,6 +290,27 @@ void Widgets::meter(std::string_view rawLabel, float fraction, std::string_view 
   mirror_.line(std::string(label.view()) + ": " + std::string(value.view()));
 }
 
+namespace {
+
+// The width a fixed-fit table of these cells takes: each column its widest text and padding.
+float tableWidth(const std::vector<std::string>& headers, const std::vector<std::vector<std::string>>& rows) {
+  const ImGuiStyle& style = ImGui::GetStyle();
+  float width = 0.0f;
+  for (std::size_t c = 0; c < headers.size(); ++c) {
+    const Shown header(headers[c]);
+    float column = ImGui::CalcTextSize(header.begin(), header.end()).x;
+    for (const auto& row : rows) {
+      if (c >= row.size()) continue;
+      const Shown cell(row[c]);
+      column = std::max(column, ImGui::CalcTextSize(cell.begin(), cell.end()).x);
+    }
+    width += column + style.CellPadding.x * 2.0f + 1.0f;  // and a border
+  }
+  return width;
+}
+
+}  // namespace
+
 void Widgets::table(const char* id, const std::vector<std::string>& headers,
                     const std::vector<std::vector<std::string>>& rows) {
   const int columns = static_cast<int>(headers.size());
@@ -295,6 +318,40 @@ void Widgets::table(const char* id, const std::vector<std::string>& headers,
   std::string line;
   for (std::size_t c = 0; c < headers.size(); ++c) line += (c > 0 ? " | " : "") + std::string(Shown(headers[c]).view());
   mirror_.line(line);
+  // Too wide for the window (a phone): one table of the first column with each other column in
+  // turn, one under the other, so that no column is cut off. The mirror is the same either way.
+  if (columns > 2 && tableWidth(headers, rows) > ImGui::GetContentRegionAvail().x) {
+    for (const auto& row : rows) {
+      line.clear();
+      for (int c = 0; c < columns; ++c) {
+        const std::string cell = static_cast<std::size_t>(c) < row.size() ? row[static_cast<std::size_t>(c)] : "";
+        line += (c > 0 ? " | " : "") + std::string(Shown(cell).view());
+      }
+      mirror_.line(line);
+    }
+    for (int c = 1; c < columns; ++c) {
+      ImGui::PushID(c);
+      if (ImGui::BeginTable(id, 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
+        ImGui::TableSetupColumn(std::string(Shown(headers[0]).view()).c_str());
+        ImGui::TableSetupColumn(std::string(Shown(headers[static_cast<std::size_t>(c)]).view()).c_str());
+        ImGui::TableHeadersRow();
+        for (const auto& row : rows) {
+          ImGui::TableNextRow();
+          for (int k : {0, c}) {
+            static const std::string kEmpty;
+            const std::string& cell =
+                static_cast<std::size_t>(k) < row.size() ? row[static_cast<std::size_t>(k)] : kEmpty;
+            const Shown text(cell);  // holds a view: `cell` must outlive it
+            ImGui::TableSetColumnIndex(k == 0 ? 0 : 1);
+            ImGui::TextUnformatted(text.view().data(), text.view().data() + text.view().size());
+          }
+        }
+        ImGui::EndTable();
+      }
+      ImGui::PopID();
+    }
+    return;
+  }
   const bool shown =
       ImGui::BeginTable(id, columns, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit);
   if (shown) {
