@@ -11,8 +11,9 @@
 //              softwareRenderer, renderer, antialias, maxPixelRatio, quality, governor, qualityStep;
 //              pixels (drawing buffer width x height this frame), samples (pixels x the MSAA
 //              samples per pixel, = pixels without antialiasing), lastFrame: {triangles, drawCalls,
-//              ui: {vertices, triangles, drawCalls, uploadBytes}} of this frame alone (ui: the
-//              panels', drawn after the city and not in its counts);
+//              ui: {vertices, triangles, drawCalls, uploadBytes, cached, redrawn, copiedPixels,
+//              redraws, staleFrames}} of this frame alone (ui: the panels', drawn after the city
+//              and not in its counts, through a kept picture redrawn when they change);
 //              canvas: {width, height (drawing buffer, device px), cssWidth, cssHeight, pixelRatio
 //              (buffer px per CSS px: the device's, at most 2, 1.5 on screens under 600 CSS px wide,
 //              lower while frames are slow), devicePixelRatio (the device's own)}.

@@ -8,6 +8,7 @@
 #include "qv/core/JsonWriter.h"
 #include "qv/quality/SoftwareRenderer.h"
 #include "qv/ui/ImGuiBrowserBackend.h"
+#include "qv/ui/PanelPicture.h"
 
 namespace qv {
 namespace {
@@ -119,6 +120,7 @@ void App::dispatchInput() {
     if (searchPendingFrames_ > 0) break;
     if (e.type == InputEvent::Type::PointerUp && ui::imguiBrowserMustDeferButtonUp(e.button)) break;
     if (e.type == InputEvent::Type::KeyUp && ui::imguiBrowserMustDeferKeyUp(e.code)) break;
+    if (e.type != InputEvent::Type::PointerMove) uiInput_ = true;
     switch (e.type) {
       case InputEvent::Type::PointerDown:
         ui::imguiBrowserPointerDown(e.button, e.x, e.y);
@@ -127,11 +129,16 @@ void App::dispatchInput() {
           cameraOwnsPointer_ = true;
         }
         break;
-      case InputEvent::Type::PointerMove:
+      case InputEvent::Type::PointerMove: {
+        // Hovering changes the panels' highlights, also when the pointer leaves a window.
+        const bool over = ui::imguiBrowserCovers(e.x, e.y);
+        if (over || pointerOverUi_ || (!cameraOwnsPointer_ && ImGui::IsAnyItemActive())) uiInput_ = true;
+        pointerOverUi_ = over;
         ui::imguiBrowserPointerMove(e.x, e.y);
         cursor_ = std::make_pair(e.x, e.y);
         if (cameraOwnsPointer_) viewer_->controller().pointerMove(e.x, e.y);
         break;
+      }
       case InputEvent::Type::PointerUp:
         ui::imguiBrowserPointerUp(e.button);
         if (cameraOwnsPointer_) {
@@ -323,6 +330,10 @@ std::string App::statsJson(const MemoryInfo& memory) const {
   w.key("ui").beginObject();
   w.field("vertices", ui.vertices).field("triangles", ui.indices / 3).field("drawCalls", ui.drawCalls);
   w.field("uploadBytes", ui.uploadBytes);
+  // Drawn through the cached picture: whether this frame redrew it, the pixels copied from it, and
+  // since the page opened, the redraws and the frames that showed it older than their content.
+  w.field("cached", ui.cached).field("redrawn", ui.redrawn).field("copiedPixels", ui.copiedPixels);
+  w.field("redraws", panelRefresh_.redraws()).field("staleFrames", panelRefresh_.staleFrames());
   w.endObject();
   w.endObject();
   w.endObject();
@@ -333,6 +344,23 @@ std::string App::statsJson(const MemoryInfo& memory) const {
   json += ",";
   json += extra.substr(1);
   return json;
+}
+
+void App::drawPanels(double nowSeconds) {
+  const ImDrawData& data = *ImGui::GetDrawData();
+  // Passive changes at 4 Hz where the panels' triangles are dear (the Low preset: software
+  // renderers, weak devices); elsewhere every change is drawn at once.
+  const bool weak = panel_.quality() == QualityPreset::Low;
+  panelRefresh_.setOptions({.passiveSeconds = weak ? 0.25 : 0.0, .inputSeconds = 0.2, .inputFrames = 3});
+  if (!uiRenderer_->cacheFits(data)) panelRefresh_.invalidate();
+  const std::vector<PixelRect> rects = ui::panelRects(data);
+  const bool redraw = panelRefresh_.redraw(ui::drawDataKey(data), rects, uiInput_, nowSeconds);
+  uiInput_ = false;
+  if (redraw) {
+    panelCover_ = disjointCover(rects, static_cast<int>(data.DisplaySize.x * data.FramebufferScale.x),
+                                static_cast<int>(data.DisplaySize.y * data.FramebufferScale.y));
+  }
+  uiRenderer_->renderCached(data, redraw, panelCover_);
 }
 
 void App::frame() {
@@ -383,7 +411,7 @@ void App::frame() {
   panel_.setCursor(cursor_);
   panel_.draw(*viewer_, widgets, memory, host_);
   ImGui::Render();
-  uiRenderer_->render(*ImGui::GetDrawData());
+  drawPanels(now);
   mirror_.endFrame();
   focusedControl_ = ui::imguiBrowserFocusedControl();
 

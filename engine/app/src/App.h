@@ -14,6 +14,7 @@
 #include "qv/platform/BrowserFetcher.h"
 #include "qv/platform/BrowserInput.h"
 #include "qv/quality/FrameGovernor.h"
+#include "qv/quality/PanelCache.h"
 #include "qv/render/GlImGuiRenderer.h"
 #include "qv/render/GlRenderDevice.h"
 #include "qv/scene/PixelRatio.h"
@@ -52,7 +53,8 @@ class App {
   /// The viewer's stats() JSON with the device's quality state added: softwareRenderer, renderer,
   /// antialias, maxPixelRatio, quality (the preset's name), governor (on/off) and qualityStep;
   /// pixels and samples of this frame's drawing buffer (QualityState::pixels, ::samples); and
-  /// lastFrame {triangles, drawCalls} of this frame (the viewer's fields are medians).
+  /// lastFrame {triangles, drawCalls} of this frame (the viewer's fields are medians), and
+  /// lastFrame.ui, the panels' share (GlImGuiRenderer::FrameStats, PanelRefresh's counts).
   [[nodiscard]] std::string statsJson(const MemoryInfo& memory) const;
 
  private:
@@ -66,6 +68,8 @@ class App {
   /// On a narrow screen, a newly selected building hidden by the bottom sheet (or off screen) is
   /// brought into the part of the view above it.
   void keepSelectionAboveSheet(double cssWidth, double cssHeight);
+  /// Draws the panels through their cached picture (redrawn when PanelRefresh says so).
+  void drawPanels(double nowSeconds);
   /// Feeds the frame time to the governor and applies the panel's quality requests.
   void adaptQuality(double frameMs);
 
@@ -96,6 +100,13 @@ class App {
   PixelRatioGovernor pixelRatio_;
   std::string revealedSelection_;  ///< the selection keepSelectionAboveSheet last looked at
   QualityState quality_;
+  // The panels' cached picture (qv/quality/PanelCache.h): when it is redrawn, and the disjoint
+  // rectangles of the windows it was drawn with. uiInput_: this frame's input acted on the panels
+  // (any click, wheel, key or touch, and pointer moves over a window or off one).
+  PanelRefresh panelRefresh_;
+  std::vector<PixelRect> panelCover_;
+  bool uiInput_ = false;
+  bool pointerOverUi_ = false;
   FrameGovernor governor_;
   int appliedStep_ = 0;
 };

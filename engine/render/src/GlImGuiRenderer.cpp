@@ -5,6 +5,8 @@
 
 #include <cstddef>
 #include <cstring>
+#include <string>
+#include <utility>
 
 #include "Shaders.h"
 
@@ -75,6 +77,11 @@ GlImGuiRenderer::~GlImGuiRenderer() {
   }
   if (fontTexture_ != 0) glDeleteTextures(1, &fontTexture_);
   if (program_ != 0) glDeleteProgram(program_);
+  if (cacheFramebuffer_ != 0) glDeleteFramebuffers(1, &cacheFramebuffer_);
+  if (cacheTexture_ != 0) glDeleteTextures(1, &cacheTexture_);
+  if (copyVao_ != 0) glDeleteVertexArrays(1, &copyVao_);
+  if (copyBuffer_ != 0) glDeleteBuffers(1, &copyBuffer_);
+  if (copyProgram_ != 0) glDeleteProgram(copyProgram_);
 }
 
 void GlImGuiRenderer::setUpState(const ImDrawData& data, int framebufferWidth, int framebufferHeight,
@@ -95,12 +102,7 @@ void GlImGuiRenderer::setUpState(const ImDrawData& data, int framebufferWidth, i
   glBindVertexArray(slot.vao);
 }
 
-void GlImGuiRenderer::render(const ImDrawData& data) {
-  last_ = FrameStats{};
-  const int framebufferWidth = static_cast<int>(data.DisplaySize.x * data.FramebufferScale.x);
-  const int framebufferHeight = static_cast<int>(data.DisplaySize.y * data.FramebufferScale.y);
-  if (!ok() || !data.Valid || framebufferWidth <= 0 || framebufferHeight <= 0 || data.TotalVtxCount <= 0) return;
-
+GlImGuiRenderer::Slot& GlImGuiRenderer::upload(const ImDrawData& data) {
   // The frame's vertices list after list; each command's indices re-based to that array.
   vertices_.resize(static_cast<std::size_t>(data.TotalVtxCount) * sizeof(ImDrawVert));
   indices_.resize(static_cast<std::size_t>(data.TotalIdxCount));
@@ -137,15 +139,16 @@ void GlImGuiRenderer::render(const ImDrawData& data) {
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(slot.indexBytes), nullptr, GL_DYNAMIC_DRAW);
   }
   glBufferSubData(GL_ELEMENT_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(indexBytes), indices_.data());
-  last_.vertices = static_cast<std::uint32_t>(data.TotalVtxCount);
-  last_.indices = static_cast<std::uint32_t>(data.TotalIdxCount);
-  last_.uploadBytes = vertexBytes + indexBytes;
+  last_.uploadBytes += vertexBytes + indexBytes;
+  return slot;
+}
 
+void GlImGuiRenderer::drawLists(const ImDrawData& data, int framebufferWidth, int framebufferHeight, const Slot& slot) {
   setUpState(data, framebufferWidth, framebufferHeight, slot);
   const ImVec2 clipOffset = data.DisplayPos;
   const ImVec2 clipScale = data.FramebufferScale;
   unsigned boundTexture = ~0u;
-  indexBase = 0;
+  std::size_t indexBase = 0;
   for (int n = 0; n < data.CmdListsCount; ++n) {
     const ImDrawList& list = *data.CmdLists[n];
     for (const ImDrawCmd& cmd : list.CmdBuffer) {
@@ -180,6 +183,135 @@ void GlImGuiRenderer::render(const ImDrawData& data) {
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_BLEND);
   glBindVertexArray(0);
+}
+
+namespace {
+
+/// The framebuffer size `data` is drawn at (0 x 0 when it draws nothing).
+std::pair<int, int> framebufferSize(const ImDrawData& data) {
+  return {static_cast<int>(data.DisplaySize.x * data.FramebufferScale.x),
+          static_cast<int>(data.DisplaySize.y * data.FramebufferScale.y)};
+}
+
+}  // namespace
+
+void GlImGuiRenderer::render(const ImDrawData& data) {
+  last_ = FrameStats{};
+  const auto [framebufferWidth, framebufferHeight] = framebufferSize(data);
+  if (!ok() || !data.Valid || framebufferWidth <= 0 || framebufferHeight <= 0 || data.TotalVtxCount <= 0) return;
+  last_.vertices = static_cast<std::uint32_t>(data.TotalVtxCount);
+  last_.indices = static_cast<std::uint32_t>(data.TotalIdxCount);
+  last_.redrawn = true;
+  const Slot& slot = upload(data);
+  drawLists(data, framebufferWidth, framebufferHeight, slot);
+}
+
+bool GlImGuiRenderer::cacheFits(const ImDrawData& data) const {
+  const auto [width, height] = framebufferSize(data);
+  return cacheFramebuffer_ != 0 && width == cacheWidth_ && height == cacheHeight_;
+}
+
+bool GlImGuiRenderer::ensureCache(int width, int height) {
+  if (copyProgram_ == 0) {
+    std::string error;
+    copyProgram_ = shaders::linkProgram(shaders::kUiCopyVertex, shaders::kUiCopyFragment, error);
+    if (copyProgram_ == 0) return false;
+    copySizeUniform_ = glGetUniformLocation(copyProgram_, "u_size");
+    copyTextureUniform_ = glGetUniformLocation(copyProgram_, "u_texture");
+    glGenVertexArrays(1, &copyVao_);
+    glGenBuffers(1, &copyBuffer_);
+    glBindVertexArray(copyVao_);
+    glBindBuffer(GL_ARRAY_BUFFER, copyBuffer_);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 2 * sizeof(float), nullptr);
+    glBindVertexArray(0);
+  }
+  if (cacheFramebuffer_ != 0 && width == cacheWidth_ && height == cacheHeight_) return true;
+  if (cacheTexture_ == 0) glGenTextures(1, &cacheTexture_);
+  if (cacheFramebuffer_ == 0) glGenFramebuffers(1, &cacheFramebuffer_);
+  glBindTexture(GL_TEXTURE_2D, cacheTexture_);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, cacheFramebuffer_);
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, cacheTexture_, 0);
+  const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  cacheWidth_ = complete ? width : 0;
+  cacheHeight_ = complete ? height : 0;
+  return complete;
+}
+
+void GlImGuiRenderer::renderCached(const ImDrawData& data, bool redraw, std::span<const PixelRect> cover) {
+  const auto [framebufferWidth, framebufferHeight] = framebufferSize(data);
+  if (!ok() || !data.Valid || framebufferWidth <= 0 || framebufferHeight <= 0 || data.TotalVtxCount <= 0) {
+    last_ = FrameStats{};
+    return;
+  }
+  const bool fits = cacheFits(data);
+  if (cacheBroken_ || !ensureCache(framebufferWidth, framebufferHeight)) {
+    cacheBroken_ = true;  // no picture to keep on this device: drawn as it is, every frame
+    render(data);
+    return;
+  }
+  last_ = FrameStats{};
+  last_.vertices = static_cast<std::uint32_t>(data.TotalVtxCount);
+  last_.indices = static_cast<std::uint32_t>(data.TotalIdxCount);
+  last_.cached = true;
+  if (redraw || !fits) {
+    // Premultiplied: glBlendFuncSeparate(SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ONE, ONE_MINUS_SRC_ALPHA)
+    // over transparent black leaves colour x alpha in rgb and the coverage in alpha.
+    const Slot& slot = upload(data);
+    glBindFramebuffer(GL_FRAMEBUFFER, cacheFramebuffer_);
+    glViewport(0, 0, framebufferWidth, framebufferHeight);
+    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    drawLists(data, framebufferWidth, framebufferHeight, slot);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    last_.redrawn = true;
+
+    copyCorners_.clear();
+    copiedPixels_ = 0;
+    for (const PixelRect& r : cover) {
+      if (r.empty()) continue;
+      const auto x0 = static_cast<float>(r.x0), y0 = static_cast<float>(r.y0);
+      const auto x1 = static_cast<float>(r.x1), y1 = static_cast<float>(r.y1);
+      copyCorners_.insert(copyCorners_.end(), {x0, y0, x1, y0, x0, y1, x1, y0, x1, y1, x0, y1});
+      copiedPixels_ += static_cast<std::uint64_t>(r.area());
+    }
+    copyVertices_ = static_cast<int>(copyCorners_.size() / 2);
+    const std::size_t bytes = copyCorners_.size() * sizeof(float);
+    glBindBuffer(GL_ARRAY_BUFFER, copyBuffer_);
+    if (bytes > copyBytes_) {
+      copyBytes_ = grownCapacity(copyBytes_, bytes);
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(copyBytes_), nullptr, GL_DYNAMIC_DRAW);
+    }
+    if (bytes > 0) glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), copyCorners_.data());
+    last_.uploadBytes += bytes;
+  }
+  if (copyVertices_ == 0) return;
+  glViewport(0, 0, framebufferWidth, framebufferHeight);
+  glEnable(GL_BLEND);
+  glBlendEquation(GL_FUNC_ADD);
+  glBlendFunc(GL_ONE, GL_ONE_MINUS_SRC_ALPHA);
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_DEPTH_TEST);
+  glDisable(GL_STENCIL_TEST);
+  glDisable(GL_SCISSOR_TEST);
+  glUseProgram(copyProgram_);
+  glUniform2f(copySizeUniform_, static_cast<float>(framebufferWidth), static_cast<float>(framebufferHeight));
+  glUniform1i(copyTextureUniform_, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, cacheTexture_);
+  glBindVertexArray(copyVao_);
+  glDrawArrays(GL_TRIANGLES, 0, copyVertices_);
+  ++last_.drawCalls;
+  last_.copiedPixels = copiedPixels_;
+  glBindVertexArray(0);
+  glDisable(GL_BLEND);
 }
 
 }  // namespace qv

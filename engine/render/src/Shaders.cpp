@@ -200,4 +200,26 @@ void main() {
 }
 )";
 
+// The panels' cached picture (GlImGuiRenderer::renderCached) copied over the framebuffer: one
+// rectangle per two triangles, corners in framebuffer pixels from the top-left; the picture has the
+// framebuffer's size, so each fragment fetches its own pixel. Premultiplied: blend ONE,
+// ONE_MINUS_SRC_ALPHA.
+const char* const kUiCopyVertex = R"(#version 300 es
+precision highp float;
+layout(location = 0) in vec2 a_pixel;
+uniform vec2 u_size;  // the framebuffer's width and height in pixels
+void main() {
+  gl_Position = vec4(a_pixel.x / u_size.x * 2.0 - 1.0, 1.0 - a_pixel.y / u_size.y * 2.0, 0.0, 1.0);
+}
+)";
+
+const char* const kUiCopyFragment = R"(#version 300 es
+precision mediump float;
+uniform sampler2D u_texture;
+out vec4 o_color;
+void main() {
+  o_color = texelFetch(u_texture, ivec2(gl_FragCoord.xy), 0);
+}
+)";
+
 }  // namespace qv::shaders

@@ -11,6 +11,8 @@ extern const char* const kGroundVertex;
 extern const char* const kGroundFragment;
 extern const char* const kUiVertex;
 extern const char* const kUiFragment;
+extern const char* const kUiCopyVertex;
+extern const char* const kUiCopyFragment;
 
 /// Compiles and links a program from a vertex and a fragment shader (GlProgram.cpp). Returns 0 and sets `error`
 /// (which shader, and the driver's log) on failure. Needs a current context.
