@@ -202,12 +202,12 @@ void main() {
 
 // The panels' cached picture (GlImGuiRenderer::renderCached) copied over the framebuffer: one
 // rectangle per two triangles, corners in framebuffer pixels from the top-left; the picture has the
-// framebuffer's size, so each fragment fetches its own pixel. Premultiplied: blend ONE,
-// ONE_MINUS_SRC_ALPHA.
+// framebuffer's size, so each fragment samples its own pixel's centre (nearest filtering).
+// Premultiplied: blend ONE, ONE_MINUS_SRC_ALPHA.
 const char* const kUiCopyVertex = R"(#version 300 es
 precision highp float;
 layout(location = 0) in vec2 a_pixel;
-uniform vec2 u_size;  // the framebuffer's width and height in pixels
+uniform highp vec2 u_size;  // the framebuffer's width and height in pixels
 void main() {
   gl_Position = vec4(a_pixel.x / u_size.x * 2.0 - 1.0, 1.0 - a_pixel.y / u_size.y * 2.0, 0.0, 1.0);
 }
@@ -216,9 +216,11 @@ void main() {
 const char* const kUiCopyFragment = R"(#version 300 es
 precision mediump float;
 uniform sampler2D u_texture;
+uniform highp vec2 u_size;  // the framebuffer's width and height in pixels
 out vec4 o_color;
 void main() {
-  o_color = texelFetch(u_texture, ivec2(gl_FragCoord.xy), 0);
+  highp vec2 uv = gl_FragCoord.xy / u_size;
+  o_color = texture(u_texture, uv);
 }
 )";
 
