@@ -279,16 +279,12 @@ test('the panels are drawn from a kept picture: a folded section shows on the ca
     const ui = async () => (await page.evaluate(() => window.quakeview.stats())).lastFrame.ui;
     const panel = rect(await panelWindow());
     const before = await ui();
-    const first = decodePng(await page.screenshot());
     await page.waitForTimeout(2000);
     const after = await ui();
-    const second = decodePng(await page.screenshot());
     assert.ok(before.cached && after.cached, JSON.stringify(after));
     const redraws = after.redraws - before.redraws;
     assert.ok(redraws >= 1 && redraws <= 12, `${redraws} redraws in 2 s while playing: ${JSON.stringify(after)}`);
-    // (Whether the passive content visibly changes in 2 s depends on the frame rate shown and on
-    // whether the time line is scrolled into view; the fold below shows the picture following it.)
-    void first; void second; void panel;
+    // The fold below shows the picture following its content on the canvas.
 
     // A click on a section header folds it; the canvas shows the panel changed.
     await page.evaluate(() => window.quakeview.pause());
