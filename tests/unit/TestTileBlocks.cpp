@@ -234,7 +234,7 @@ TEST_CASE("A block's wall inside its neighbour is left out, one that shows is ke
 
 TEST_CASE("A far-view tile's regions: every building in one, blocks of each level region by region",
           "[scene][blocks]") {
-  // 3 km of city across the 1024 m region grid (and across the origin, negative cells included).
+  // 3 km of city across the 512 m region grid (and across the origin, negative cells included).
   TileBuilder t(-1500.0, -700.0);
   for (int i = 0; i < 30; ++i) {
     for (int j = 0; j < 14; ++j) {
@@ -244,14 +244,15 @@ TEST_CASE("A far-view tile's regions: every building in one, blocks of each leve
   }
   const TileContent tile = t.build();
   const TileRegions regions = buildTileRegions(tile);
-  REQUIRE(regions.boxes.size() >= 6);  // 3 x 2 regions at least
+  REQUIRE(regions.boxes.size() >= 12);  // 6 x 3 regions at least
   REQUIRE(regions.positionStart.size() == regions.boxes.size() + 1);
   REQUIRE(regions.positionStart.back() == tile.buildingCount());
   std::set<std::uint32_t> seen(regions.appendOrder.begin(), regions.appendOrder.end());
   CHECK(seen.size() == tile.buildingCount());  // a permutation of the positions
   for (std::uint32_t r = 0; r < regions.boxes.size(); ++r) {
     const Box& box = regions.boxes[r];
-    CHECK(box.maxX - box.minX == Approx(1024.0f));
+    CHECK(box.maxX - box.minX == Approx(blockCellM(kBlockRegionLevel)));
+    CHECK(box.maxX - box.minX == Approx(512.0f));
     for (std::uint32_t k = regions.positionStart[r]; k < regions.positionStart[r + 1]; ++k) {
       const std::uint32_t p = regions.appendOrder[k];
       CHECK(regions.regionOfPosition[p] == r);
@@ -261,7 +262,7 @@ TEST_CASE("A far-view tile's regions: every building in one, blocks of each leve
       CHECK(regions.regionOf(cx, cy) == r);
     }
   }
-  for (const float cell : {64.0f, 256.0f, 1024.0f}) {
+  for (const float cell : {64.0f, 256.0f, 512.0f}) {
     CAPTURE(cell);
     const TileBlockLevel level = buildBlockLevel(tile, cell, regions);
     REQUIRE(level.regionStart.size() == regions.boxes.size() + 1);

@@ -35,10 +35,10 @@ inline constexpr int kBlockLevels = 16;
 }
 
 /// A far-view tile chooses its form region by region: each square region of this level's grid
-/// (1024 m) is drawn building by building or as the blocks of one level, after its own distance
+/// (512 m) is drawn building by building or as the blocks of one level, after its own distance
 /// from the eye, so the far side of a large tile gets coarser blocks than its near side. Cells of
 /// every block level up to this one nest in exactly one region, so regions never overlap.
-inline constexpr int kBlockRegionLevel = 7;
+inline constexpr int kBlockRegionLevel = 6;
 
 /// The regions of a far-view tile: those its buildings' boxes reach into, in Morton order of the
 /// grid, and its buildings in region order (each building in the region of its box's centre).
