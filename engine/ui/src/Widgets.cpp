@@ -292,20 +292,24 @@ void Widgets::meter(std::string_view rawLabel, float fraction, std::string_view 
 
 namespace {
 
-// The width a fixed-fit table of these cells takes: each column its widest text and padding.
-float tableWidth(const std::vector<std::string>& headers, const std::vector<std::vector<std::string>>& rows) {
+// The width column c of a fixed-fit table of these cells takes: its widest text, padding and a border.
+float columnWidth(const std::vector<std::string>& headers, const std::vector<std::vector<std::string>>& rows,
+                  std::size_t c) {
   const ImGuiStyle& style = ImGui::GetStyle();
-  float width = 0.0f;
-  for (std::size_t c = 0; c < headers.size(); ++c) {
-    const Shown header(headers[c]);
-    float column = ImGui::CalcTextSize(header.begin(), header.end()).x;
-    for (const auto& row : rows) {
-      if (c >= row.size()) continue;
-      const Shown cell(row[c]);
-      column = std::max(column, ImGui::CalcTextSize(cell.begin(), cell.end()).x);
-    }
-    width += column + style.CellPadding.x * 2.0f + 1.0f;  // and a border
+  const Shown header(headers[c]);
+  float column = ImGui::CalcTextSize(header.begin(), header.end()).x;
+  for (const auto& row : rows) {
+    if (c >= row.size()) continue;
+    const Shown cell(row[c]);
+    column = std::max(column, ImGui::CalcTextSize(cell.begin(), cell.end()).x);
   }
+  return column + style.CellPadding.x * 2.0f + 1.0f;
+}
+
+// The width a fixed-fit table of these cells takes.
+float tableWidth(const std::vector<std::string>& headers, const std::vector<std::vector<std::string>>& rows) {
+  float width = 0.0f;
+  for (std::size_t c = 0; c < headers.size(); ++c) width += columnWidth(headers, rows, c);
   return width;
 }
 
@@ -329,11 +333,19 @@ void Widgets::table(const char* id, const std::vector<std::string>& headers,
       }
       mirror_.line(line);
     }
+    // A pair still too wide (a long label beside a value with its interval on a phone): the
+    // label keeps its width and the value wraps within what is left, rather than being cut off.
+    const float available = ImGui::GetContentRegionAvail().x;
+    const float first = columnWidth(headers, rows, 0);
     for (int c = 1; c < columns; ++c) {
+      const bool wrap = first + columnWidth(headers, rows, static_cast<std::size_t>(c)) > available;
       ImGui::PushID(c);
-      if (ImGui::BeginTable(id, 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingFixedFit)) {
-        ImGui::TableSetupColumn(std::string(Shown(headers[0]).view()).c_str());
-        ImGui::TableSetupColumn(std::string(Shown(headers[static_cast<std::size_t>(c)]).view()).c_str());
+      const ImGuiTableFlags sizing = wrap ? ImGuiTableFlags_SizingStretchProp : ImGuiTableFlags_SizingFixedFit;
+      if (ImGui::BeginTable(id, 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | sizing)) {
+        ImGui::TableSetupColumn(std::string(Shown(headers[0]).view()).c_str(),
+                                wrap ? ImGuiTableColumnFlags_WidthFixed : ImGuiTableColumnFlags_None);
+        ImGui::TableSetupColumn(std::string(Shown(headers[static_cast<std::size_t>(c)]).view()).c_str(),
+                                wrap ? ImGuiTableColumnFlags_WidthStretch : ImGuiTableColumnFlags_None);
         ImGui::TableHeadersRow();
         for (const auto& row : rows) {
           ImGui::TableNextRow();
@@ -343,7 +355,9 @@ void Widgets::table(const char* id, const std::vector<std::string>& headers,
                 static_cast<std::size_t>(k) < row.size() ? row[static_cast<std::size_t>(k)] : kEmpty;
             const Shown text(cell);  // holds a view: `cell` must outlive it
             ImGui::TableSetColumnIndex(k == 0 ? 0 : 1);
+            if (wrap && k != 0) ImGui::PushTextWrapPos(0.0f);  // at the column's right edge
             ImGui::TextUnformatted(text.view().data(), text.view().data() + text.view().size());
+            if (wrap && k != 0) ImGui::PopTextWrapPos();
           }
         }
         ImGui::EndTable();
