@@ -439,3 +439,75 @@ TEST_CASE("The Performance panel shows the frame's triangles and pixels, with th
   text = drawPanel(viewer, mirror, panel, host);
   CHECK(text.find(triangles + "pixels unknown\n") != std::string::npos);
 }
+
+namespace {
+
+// Cells of the tables drawn last frame whose text reaches beyond what is shown of their column
+// (the column's clip rectangle, within the window): what the screen cuts off.
+int cellsCutOff() {
+  ImGuiContext& g = *GImGui;  // ImPool has no const accessors
+  int cut = 0;
+  for (int n = 0; n < g.Tables.GetBufSize(); ++n) {
+    const ImGuiTable* table = g.Tables.GetByIndex(n);
+    if (table == nullptr || table->LastFrameActive != g.FrameCount) continue;
+    const float shown = table->OuterWindow->InnerClipRect.Max.x;
+    for (int c = 0; c < table->ColumnsCount; ++c) {
+      const ImGuiTableColumn& column = table->Columns[c];
+      if (column.ContentMaxXUnfrozen > std::min(column.ClipRect.Max.x, shown) + 1.0f) ++cut;
+    }
+  }
+  return cut;
+}
+
+}  // namespace
+
+TEST_CASE("On a phone a table too wide is shown as pairs, each value wrapping within the panel, none cut off",
+          "[ui][narrow]") {
+  HeadlessImGui imgui;
+  ImGui::GetIO().DisplaySize = ImVec2(390.0f, 844.0f);
+  TextMirror mirror;
+  const std::vector<std::string> headers{"", "City", "In view"};
+  const std::vector<std::vector<std::string>> rows{
+      {"Buildings (with a result)", "18008", "2691"},
+      {"Repair cost", "$107.78 M (80.09-142.71)", "$17.21 M (12.00-30.07)"},
+  };
+  float right = 0.0f;
+  for (int frame = 0; frame < 3; ++frame) {
+    ImGui::NewFrame();
+    mirror.beginFrame();
+    ui::Widgets w(mirror);
+    ImGui::SetNextWindowPos(ImVec2(10.0f, 10.0f), ImGuiCond_Always);
+    ImGui::SetNextWindowSize(ImVec2(370.0f, 600.0f), ImGuiCond_Always);
+    if (w.begin("Phone panel")) {
+      w.table("consequences", headers, rows);
+      right = ImGui::GetWindowPos().x + ImGui::GetWindowSize().x;
+    }
+    w.end();
+    ImGui::Render();
+    mirror.endFrame();
+  }
+  REQUIRE(right == Approx(380.0f));
+  // Every cell's text within its column and the window: nothing is cut off at the right.
+  REQUIRE(GImGui->Tables.GetAliveCount() >= 2);  // stacked: City, then In view
+  CHECK(cellsCutOff() == 0);
+  // The mirror (the accessible text) has every row whole, in one line.
+  CHECK(mirror.text().find("Repair cost | $107.78 M (80.09-142.71) | $17.21 M (12.00-30.07)") != std::string::npos);
+}
+
+TEST_CASE("On a tablet in portrait the panel's bottom stays clear of the map overlay in the corner", "[ui][narrow]") {
+  // 640 px wide (not a phone: no bottom sheet, the panel open) so that the mini city's panel and
+  // the overlay share columns; short enough for the panel to reach the bottom.
+  CityPanel setup(760, 640);
+  REQUIRE(setup.viewer.settled());
+  for (int i = 0; i < 4; ++i) drawPanel(setup.viewer, setup.mirror, setup.panel, setup.host);
+  ImGuiWindow* panel = ImGui::FindWindowByName("QuakeView");
+  ImGuiWindow* overlay = ImGui::FindWindowByName("Map");
+  REQUIRE(panel != nullptr);
+  REQUIRE(overlay != nullptr);
+  REQUIRE_FALSE(panel->Collapsed);
+  // The panel is as tall as the screen allows (its content is taller): the case where it met the overlay.
+  REQUIRE(panel->ContentSize.y > 760.0f);
+  REQUIRE(panel->Pos.x + panel->Size.x > overlay->Pos.x);  // they share columns of the screen
+  CHECK(panel->Pos.y + panel->Size.y <= overlay->Pos.y);
+  CHECK(overlay->Pos.y + overlay->Size.y <= 760.0f);
+}

@@ -18,6 +18,8 @@ constexpr double kFeetPerMetre = 3.280839895;
 constexpr float kPanelWidth = 350.0f;
 // The map overlay's height in the bottom corner (north arrow, scale bar), with its margin.
 constexpr float kOverlayRoomPx = 80.0f;
+// Its width before it was first drawn (the arrow, a scale bar and its text).
+constexpr float kOverlayWidthGuessPx = 330.0f;
 
 // The record as the panel shows it: file names only. Responses written before the files stored
 // only the name carried the path of the machine that ran `response`; its directories are dropped
@@ -386,11 +388,15 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   ImGui::SetNextWindowSize(ImVec2(kPanelWidth, 0.0f), ImGuiCond_FirstUseEver);
   // A phone starts with the panel folded to its title bar (tap it to open), the city in view; the
   // panel never grows wider than the screen and scrolls when taller.
-  // Its bottom stays clear of the map overlay in the corner, which a phone's panel would reach.
+  // Its bottom stays clear of the map overlay in the corner wherever the panel at its widest would
+  // reach the overlay's left edge (last frame's; before the first, a guess): on a phone, and on a
+  // tablet in portrait.
   const bool narrow = narrowLayout(display.x);
   if (narrow) ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
   const float maxWidth = std::max(200.0f, std::min(520.0f, display.x - 20.0f));
-  const float maxHeight = std::max(200.0f, display.y - 20.0f - (narrow ? kOverlayRoomPx : 0.0f));
+  const float overlayLeft = overlayLeft_ >= 0.0f ? overlayLeft_ : display.x - kOverlayWidthGuessPx;
+  const bool clearOverlay = narrow || 10.0f + maxWidth + 10.0f > overlayLeft;
+  const float maxHeight = std::max(200.0f, display.y - 20.0f - (clearOverlay ? kOverlayRoomPx : 0.0f));
   ImGui::SetNextWindowSizeConstraints(ImVec2(std::min(260.0f, maxWidth), 0.0f), ImVec2(maxWidth, maxHeight));
   ImGui::SetNextWindowBgAlpha(0.90f);
   if (focusSearch_) ImGui::SetNextWindowCollapsed(false);  // '/' opens the panel, whatever its state
@@ -749,6 +755,7 @@ void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
   if (w.begin("Map", nullptr, flags)) {
+    overlayLeft_ = ImGui::GetWindowPos().x;
     // North arrow: north points up when the heading is 0 and turns against the view.
     const float radius = 16.0f;
     const ImVec2 p = ImGui::GetCursorScreenPos();

@@ -112,7 +112,8 @@ class ControlPanel {
   std::optional<std::pair<double, double>> cursor_;
   bool focusSearch_ = false;
   std::string search_;
-  std::string inspected_;  // the building the inspection window showed last frame
+  std::string inspected_;      // the building the inspection window showed last frame
+  float overlayLeft_ = -1.0f;  // the map overlay's left edge last frame (px); -1 before it was drawn
   QualityPreset quality_ = QualityPreset::High;
   QualityState* qualityState_ = nullptr;
 };
