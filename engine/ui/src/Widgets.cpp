@@ -5,6 +5,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <numeric>
 
 #include <imgui.h>
 
@@ -306,11 +307,12 @@ float columnWidth(const std::vector<std::string>& headers, const std::vector<std
   return column + style.CellPadding.x * 2.0f + 1.0f;
 }
 
-// The width a fixed-fit table of these cells takes.
-float tableWidth(const std::vector<std::string>& headers, const std::vector<std::vector<std::string>>& rows) {
-  float width = 0.0f;
-  for (std::size_t c = 0; c < headers.size(); ++c) width += columnWidth(headers, rows, c);
-  return width;
+// The widths every column of a fixed-fit table of these cells takes.
+std::vector<float> columnWidths(const std::vector<std::string>& headers,
+                                const std::vector<std::vector<std::string>>& rows) {
+  std::vector<float> widths(headers.size());
+  for (std::size_t c = 0; c < headers.size(); ++c) widths[c] = columnWidth(headers, rows, c);
+  return widths;
 }
 
 }  // namespace
@@ -324,7 +326,9 @@ void Widgets::table(const char* id, const std::vector<std::string>& headers,
   mirror_.line(line);
   // Too wide for the window (a phone): one table of the first column with each other column in
   // turn, one under the other, so that no column is cut off. The mirror is the same either way.
-  if (columns > 2 && tableWidth(headers, rows) > ImGui::GetContentRegionAvail().x) {
+  const float available = ImGui::GetContentRegionAvail().x;
+  const std::vector<float> widths = columns > 2 ? columnWidths(headers, rows) : std::vector<float>{};
+  if (columns > 2 && std::accumulate(widths.begin(), widths.end(), 0.0f) > available) {
     for (const auto& row : rows) {
       line.clear();
       for (int c = 0; c < columns; ++c) {
@@ -335,10 +339,8 @@ void Widgets::table(const char* id, const std::vector<std::string>& headers,
     }
     // A pair still too wide (a long label beside a value with its interval on a phone): the
     // label keeps its width and the value wraps within what is left, rather than being cut off.
-    const float available = ImGui::GetContentRegionAvail().x;
-    const float first = columnWidth(headers, rows, 0);
     for (int c = 1; c < columns; ++c) {
-      const bool wrap = first + columnWidth(headers, rows, static_cast<std::size_t>(c)) > available;
+      const bool wrap = widths[0] + widths[static_cast<std::size_t>(c)] > available;
       ImGui::PushID(c);
       const ImGuiTableFlags sizing = wrap ? ImGuiTableFlags_SizingStretchProp : ImGuiTableFlags_SizingFixedFit;
       if (ImGui::BeginTable(id, 2, ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | sizing)) {
