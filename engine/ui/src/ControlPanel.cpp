@@ -17,7 +17,7 @@ namespace {
 constexpr double kFeetPerMetre = 3.280839895;
 constexpr float kPanelWidth = 350.0f;
 // The map overlay's height in the bottom corner (north arrow, scale bar), with its margin.
-constexpr float kOverlayRoomPx = 80.0f;
+constexpr float kOverlayRoomPx = 90.0f;
 // Its width before it was first drawn (the arrow, a scale bar and its text).
 constexpr float kOverlayWidthGuessPx = 330.0f;
 
@@ -757,9 +757,12 @@ void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
   if (w.begin("Map", nullptr, flags)) {
     overlayLeft_ = ImGui::GetWindowPos().x;
     // North arrow: north points up when the heading is 0 and turns against the view.
+    // The "N" goes round the circle at radius + 9 px (its glyph about 7 px across): the arrow's
+    // square leaves that much room on every side, so no heading puts it outside the window.
     const float radius = 16.0f;
+    const float room = radius + 14.0f;
     const ImVec2 p = ImGui::GetCursorScreenPos();
-    const ImVec2 centre(p.x + radius + 2.0f, p.y + radius + 2.0f);
+    const ImVec2 centre(p.x + room, p.y + room);
     ImDrawList* draw = ImGui::GetWindowDrawList();
     const auto angle = static_cast<float>(-viewer.camera().headingDeg * 3.14159265358979 / 180.0);
     auto rotate = [&](float x, float y) {
@@ -773,7 +776,7 @@ void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
                             IM_COL32(90, 90, 90, 255));
     const ImVec2 n = rotate(0.0f, -radius - 9.0f);
     draw->AddText(ImVec2(n.x - 4.0f, n.y - 7.0f), IM_COL32(30, 30, 30, 255), "N");
-    ImGui::Dummy(ImVec2(2.0f * radius + 4.0f, 2.0f * radius + 8.0f));
+    ImGui::Dummy(ImVec2(2.0f * room, 2.0f * room));
     w.mirror().line(ui::format("North arrow: view heading %.0f°", viewer.camera().headingDeg));
     ImGui::SameLine();
     ImGui::BeginGroup();
