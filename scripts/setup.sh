@@ -137,4 +137,8 @@ if [ ! -f "$stamp" ] || [ "$(cat "$stamp")" != "$want" ]; then
   echo "$want" >"$stamp"
 fi
 
+# Which browsers the end-to-end tests will run in: the versions depend on the APT sources (bookworm
+# main alone gives an older Firefox ESR than bookworm-security), and the README lists the tested ones.
+pkg_version() { dpkg-query -W -f='${Version}' "$1" 2>/dev/null || echo "not installed"; }
+log "browsers for the end-to-end tests: Chromium $(pkg_version chromium), Firefox ESR $(pkg_version firefox-esr)"
 log "ok"

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { decodePng } from './lib/pixels.mjs';
 import { ESB, URL_PATH, serveMidtown } from './lib/midtown.mjs';
 import { ARTIFACTS } from './lib/server.mjs';
@@ -17,7 +17,7 @@ const midtown = serveMidtown();
 async function openCity(context) {
   const { page, problems } = await openPage(context, `${midtown.server.url}${URL_PATH}`);
   assert.deepEqual(await waitReady(page), { ok: true });
-  await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 30000 });
+  await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 30000 });
   await page.evaluate(() => window.quakeview.pause());
   await page.focus('#canvas');
   return { page, problems };
@@ -67,16 +67,16 @@ test('keyboard only: / opens the search, typing does not turn the camera, Enter 
     await page.keyboard.press('/');
     // "Empire State" holds an e (Q/E turn the camera), an S (pans) and a space (plays).
     await page.keyboard.type('Empire State', { delay: 30 });
-    await page.waitForFunction(() => /Search \(\/\): \[Empire State\]/.test(window.quakeview.uiText()), null, { timeout: 20000 });
+    await waitForFunction(page, () => /Search \(\/\): \[Empire State\]/.test(window.quakeview.uiText()), null, { timeout: 20000 });
     const typed = await page.evaluate(() => window.quakeview.getCamera());
     for (const k of Object.keys(before)) assert.equal(typed[k], before[k], `camera ${k} unchanged while typing`);
     assert.equal(await page.evaluate(() => window.quakeview.playing()), false, 'the space typed did not start playback');
     await page.screenshot({ path: path.join(ARTIFACTS, 'accessibility-search.png') });
 
     await page.keyboard.press('Enter');
-    await page.waitForFunction((id) => window.quakeview.selection() === id, ESB, { timeout: 10000 });
+    await waitForFunction(page, (id) => window.quakeview.selection() === id, ESB, { timeout: 10000 });
     // It flies there, as a click on the result does.
-    await page.waitForFunction((b) => {
+    await waitForFunction(page, (b) => {
       const c = window.quakeview.getCamera();
       return Math.abs(c.x - b.x) > 1 || Math.abs(c.y - b.y) > 1 || Math.abs(c.distance - b.distance) > 1;
     }, before, { timeout: 10000 });
@@ -92,7 +92,7 @@ test('Tab reaches headers, checkboxes, buttons and the inspection window beyond 
     const { page, problems } = await openCity(context);
     assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
     await page.keyboard.press('/');  // opens "Find and filter" (its checkbox and list)
-    await page.waitForFunction(() => /Search \(\/\): \[\]/.test(window.quakeview.uiText()), null, { timeout: 20000 });
+    await waitForFunction(page, () => /Search \(\/\): \[\]/.test(window.quakeview.uiText()), null, { timeout: 20000 });
     await nextFrames(page);
     await page.keyboard.press('Escape');  // leaves the search field
     await nextFrames(page);
@@ -113,17 +113,17 @@ test('Tab reaches headers, checkboxes, buttons and the inspection window beyond 
     // Space presses the focused checkbox.
     assert.equal((await page.evaluate(() => window.quakeview.filters())).criticalOnly, false);
     await page.keyboard.press('Space');
-    await page.waitForFunction(() => window.quakeview.filters().criticalOnly === true, null, { timeout: 20000 });
+    await waitForFunction(page, () => window.quakeview.filters().criticalOnly === true, null, { timeout: 20000 });
     assert.equal(await page.evaluate(() => window.quakeview.playing()), false, 'Space pressed the checkbox, not Play');
     await page.keyboard.press('Space');
-    await page.waitForFunction(() => window.quakeview.filters().criticalOnly === false, null, { timeout: 20000 });
+    await waitForFunction(page, () => window.quakeview.filters().criticalOnly === false, null, { timeout: 20000 });
 
     // On to Export and the inspection window's Close, which Enter presses.
     const more = await tabUntil(page, (f) => f.startsWith('Close (Esc), button'));
     assert.ok(more.some((f) => f && f.startsWith('Export CSV, button')), `Export: ${JSON.stringify(more)}`);
     await page.screenshot({ path: path.join(ARTIFACTS, 'accessibility-focus-close.png') });
     await page.keyboard.press('Enter');
-    await page.waitForFunction(() => window.quakeview.selection() === null, null, { timeout: 20000 });
+    await waitForFunction(page, () => window.quakeview.selection() === null, null, { timeout: 20000 });
     assert.deepEqual(problems, []);
   } finally {
     await close();
@@ -141,18 +141,18 @@ test('the accessibility tree holds the panels as headings and names the selected
     await page.keyboard.press('/');
     await page.keyboard.type('Empire State', { delay: 30 });
     await page.keyboard.press('Enter');
-    await page.waitForFunction((id) => window.quakeview.selection() === id, ESB, { timeout: 10000 });
+    await waitForFunction(page, (id) => window.quakeview.selection() === id, ESB, { timeout: 10000 });
     const building = await page.evaluate((id) => window.quakeview.building(id), ESB);
 
     // The live region announces the selection with its damage.
-    await page.waitForFunction(() => /^Selected: /.test(document.getElementById('qv-status').textContent), null,
+    await waitForFunction(page, () => /^Selected: /.test(document.getElementById('qv-status').textContent), null,
       { timeout: 20000 });
     const status = await page.locator('#qv-status').textContent();
     assert.match(status, /^Selected: Empire State Building, /);
     assert.ok(status.includes(building.damageState === 'none' ? 'no damage' : `${building.damageState} damage`), status);
 
     // The accessibility tree, as a screen reader gets it.
-    await page.waitForFunction(() => /Selected building: Empire State Building/.test(document.getElementById('qv-panel').textContent),
+    await waitForFunction(page, () => /Selected building: Empire State Building/.test(document.getElementById('qv-panel').textContent),
       null, { timeout: 20000 });
     const tree = await page.locator('body').ariaSnapshot();
     fs.writeFileSync(path.join(ARTIFACTS, 'accessibility-tree.yaml'), tree);

@@ -9,7 +9,7 @@
 //   node tests/e2e/bench-memory.mjs CITY_DIR [--memory MB] [--grid N] [--distance M]
 import fs from 'node:fs';
 import path from 'node:path';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { serveSite } from './lib/server.mjs';
 
 const args = process.argv.slice(2);
@@ -31,7 +31,7 @@ const manifest = JSON.parse(fs.readFileSync(path.join(dir, 'tileset.json'), 'utf
 const [x0, y0, x1, y1] = manifest.bounds;
 
 async function calm(page, timeout = 300000) {
-  await page.waitForFunction(() => {
+  await waitForFunction(page, () => {
     const s = window.quakeview.stats();
     window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
     return window.__calm >= 4;
@@ -56,7 +56,7 @@ try {
       index: await page.evaluate(() => window.quakeview.searchReady()) });
   };
   await record('overview');
-  await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 1800000, polling: 1000 });
+  await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 1800000, polling: 1000 });
   await calm(page);
   await record('overview, city index loaded');
   for (let j = 0; j < grid; ++j) {

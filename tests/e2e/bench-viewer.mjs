@@ -50,7 +50,7 @@ if (cities.length === 0 || (poses !== null && poses !== 'overview') || !(seconds
 if (flight === null) flight = poses === null;
 
 // lib/browser.mjs reads QUAKEVIEW_BROWSER when it is loaded: after --browser.
-const { BROWSER, launchBrowser, openPage, settle, waitReady } = await import('./lib/browser.mjs');
+const { BROWSER, launchBrowser, openPage, settle, waitForFunction, waitReady } = await import('./lib/browser.mjs');
 const { serveSite } = await import('./lib/server.mjs');
 const BROWSER_NAME = BROWSER === 'firefox' ? 'Firefox ESR' : 'Chromium';
 
@@ -156,7 +156,7 @@ try {
   try {
     for (const n of [30000, 100000]) {
       const { page } = await openPage(context, `${server.url}/reference/reference.html?n=${n}`);
-      await page.waitForFunction(() => document.title.startsWith('drawing') || document.title.startsWith('error'), null, { timeout: 60000 });
+      await waitForFunction(page, () => document.title.startsWith('drawing') || document.title.startsWith('error'), null, { timeout: 60000 });
       const title = await page.evaluate(() => document.title);
       if (!title.startsWith('drawing')) throw new Error(`reference page: ${title}`);
       await page.waitForTimeout(1000);

@@ -5,7 +5,7 @@ import fs from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { changedFraction, colourAt, colourDistance, decodePng, luminanceStats } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -54,7 +54,7 @@ async function frameWith(page, camera) {
   await page.evaluate((c) => window.quakeview.setCamera(c), camera);
   // Wait until the new view has streamed in (several frames in a row with nothing pending: the
   // view refines level by level).
-  await page.waitForFunction(() => {
+  await waitForFunction(page, () => {
     const s = window.quakeview.stats();
     window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
     return window.__calm >= 4;
@@ -136,7 +136,7 @@ test('a corrupted tile and a missing tile are reported while the rest renders', 
     const overview = await page.evaluate(() => window.quakeview.getCamera());
     // Close enough that every leaf is wanted.
     await page.evaluate((o) => window.quakeview.setCamera({ distance: o.distance * 0.35, pitchDeg: 70 }), overview);
-    await page.waitForFunction(() => window.quakeview.stats().tiles.failed >= 2, null, { timeout: 60000 });
+    await waitForFunction(page, () => window.quakeview.stats().tiles.failed >= 2, null, { timeout: 60000 });
     await page.waitForTimeout(500);
     const errors = await page.evaluate(() => window.quakeview.errors());
     assert.ok(errors.some((e) => /failed: .*(corrupt|checksum)/.test(e)), `a corrupt-tile error in ${JSON.stringify(errors)}`);

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -115,7 +115,7 @@ after(async () => {
 
 // Waits until the view has streamed in and the buildings near the camera are animated.
 async function settle(page, { animated }) {
-  await page.waitForFunction((wantAnimated) => {
+  await waitForFunction(page, (wantAnimated) => {
     const s = window.quakeview.stats();
     const ok = s && s.tiles.pending === 0 && (!wantAnimated || s.buildings.animated > 0);
     window.__calm = ok ? (window.__calm || 0) + 1 : 0;

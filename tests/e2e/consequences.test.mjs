@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -33,7 +33,7 @@ test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool w
   try {
     const { page, problems } = await openPage(context, `${server.url}/?data=/actual/tileset.json`);
     assert.deepEqual(await waitReady(page), { ok: true });
-    await page.waitForFunction(() => window.quakeview.consequences()?.city != null, null, { timeout: 30000 });
+    await waitForFunction(page, () => window.quakeview.consequences()?.city != null, null, { timeout: 30000 });
     const text = await page.evaluate(() => window.quakeview.uiText());
     assert.match(text, /Shaking: ACTUAL EVENT \(ShakeMap of a recorded earthquake\)/);
     assert.match(text, /ShakeMap: qvtest2026 version 4, processed 2026-11-25T10:05:00Z/);
@@ -66,7 +66,7 @@ test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool w
 
     // The Consequences section of the panel (open by default) shows the same table; the suite's
     // spread follows once the city-wide summary (loaded after the search index) is in.
-    await page.waitForFunction(() => /Record-to-record spread: peak drifts/.test(window.quakeview.uiText()), null,
+    await waitForFunction(page, () => /Record-to-record spread: peak drifts/.test(window.quakeview.uiText()), null,
       { timeout: 30000 });
     const panel = await page.evaluate(() => window.quakeview.uiText());
     assert.match(panel, /\| City \| In view/);
@@ -101,7 +101,7 @@ test('the probabilistic colour modes colour the city, and the inspection shows t
 
     const info = JSON.parse(fs.readFileSync(path.join(DATA, 'synth-s1.json'), 'utf8'));
     await page.evaluate(() => window.quakeview.select('s1'));
-    await page.waitForFunction(() => window.quakeview.building('s1')?.damageProbabilities != null, null, { timeout: 30000 });
+    await waitForFunction(page, () => window.quakeview.building('s1')?.damageProbabilities != null, null, { timeout: 30000 });
     const b = await page.evaluate(() => window.quakeview.building('s1'));
     const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
     const total = states.reduce((a, s) => a + b.damageProbabilities[s], 0);

@@ -9,7 +9,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
@@ -36,7 +36,7 @@ after(async () => {
 async function openCity(context, hash) {
   const { page, problems } = await openPage(context, `${server.url}/?data=/data/critical/tileset.json#${hash}`);
   assert.deepEqual(await waitReady(page), { ok: true });
-  await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 60000 });
+  await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 60000 });
   return { page, problems };
 }
 
@@ -80,7 +80,7 @@ test('the critical filter from a link returns exactly the planted essential faci
     assert.deepEqual(hazardous, planted.filter((p) => p.expect === 'hazardous' || p.expect === 'high_occupancy')
       .map((p) => p.expect).sort());
     // The link keeps the categories in its critical field.
-    await page.waitForFunction(() => /f=,,(hazardous\+high_occupancy|high_occupancy\+hazardous)(&|$)/.test(location.hash),
+    await waitForFunction(page, () => /f=,,(hazardous\+high_occupancy|high_occupancy\+hazardous)(&|$)/.test(location.hash),
       null, { timeout: 10000 });
     assert.deepEqual(problems, []);
   } finally {

@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, settle, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, settle, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -36,7 +36,7 @@ async function inspect(page, id) {
   assert.equal(await page.evaluate(() => window.quakeview.flyToSelection()), true);
   await page.waitForTimeout(1500);  // the 1.2 s flight
   await settle(page);
-  await page.waitForFunction(() => /Roof displacement over time/.test(window.quakeview.uiText()), null, { timeout: 30000 });
+  await waitForFunction(page, () => /Roof displacement over time/.test(window.quakeview.uiText()), null, { timeout: 30000 });
   await page.waitForTimeout(300);
 }
 
@@ -59,7 +59,7 @@ test('the inspection window: units that show values, one peak drift with its sou
     const { page, problems } = await openPage(context, `${server.url}/?data=/data/midtown/tileset.json`);
     assert.deepEqual(await waitReady(page), { ok: true });
     await page.evaluate(() => { window.quakeview.pause(); window.quakeview.setTime(8); });
-    await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 30000 });
+    await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 30000 });
     // Load the blocks around the Empire State Building, whose loaded buildings building() describes.
     const esb = JSON.parse(fs.readFileSync(path.join(DATA, 'midtown-esb.json'), 'utf8'));
     assert.ok(await page.evaluate(({ x, y }) => window.quakeview.setCamera({ x, y, distance: 900, headingDeg: 0, pitchDeg: 70, fovDeg: 45 }),

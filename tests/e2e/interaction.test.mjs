@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { launchBrowser, openPage, settle, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, settle, waitReady } from './lib/browser.mjs';
 import { changedFraction, colourAt, colourDistance, decodePng } from './lib/pixels.mjs';
 import { ESB, MIDTOWN, URL_PATH, serveMidtown } from './lib/midtown.mjs';
 import { ARTIFACTS } from './lib/server.mjs';
@@ -39,11 +39,11 @@ test('clicking the Empire State Building selects it and the inspection window sh
 
     assert.equal(await page.evaluate(() => window.quakeview.selection()), null);
     await page.mouse.click(at.x, at.y);
-    await page.waitForFunction(() => window.quakeview.selection() !== null, null, { timeout: 10000 });
+    await waitForFunction(page, () => window.quakeview.selection() !== null, null, { timeout: 10000 });
     assert.equal(await page.evaluate(() => window.quakeview.selection()), ESB);
     // Selecting loads the building's full-detail tile; what follows reads that copy (until it is
     // here, building() answers from a far-view copy, and a second read could differ from the first).
-    await page.waitForFunction((id) => window.quakeview.building(id)?.detailed === true, ESB, { timeout: 30000, polling: 100 });
+    await waitForFunction(page, (id) => window.quakeview.building(id)?.detailed === true, ESB, { timeout: 30000, polling: 100 });
 
     const building = await page.evaluate((id) => window.quakeview.building(id), ESB);
     assert.equal(building.id, ESB);
@@ -88,7 +88,7 @@ test('search finds the Empire State Building; the damage filter dims the others;
   const { context, close } = await launchBrowser();
   try {
     const { page, problems } = await openCity(context);
-    await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 30000 });
+    await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 30000 });
     const results = await page.evaluate(() => window.quakeview.search('Empire State'));
     assert.ok(results.length >= 1, 'search found something');
     assert.equal(results[0].id, ESB);
@@ -180,7 +180,7 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     assert.ok(await page.evaluate(() => window.quakeview.setFilters({ minDamage: 'slight', criticalOnly: false })));
     // The hash follows the view (kept every half second, so it may be written between two of the
     // calls above: wait until it holds all of them).
-    await page.waitForFunction((id) => {
+    await waitForFunction(page, (id) => {
       const h = window.location.hash;
       return h.includes('sel=' + id) && h.includes('t=7.5') && /(^#|&)f=1(,|&|$)/.test(h);
     }, ESB, { timeout: 5000 });
@@ -294,7 +294,7 @@ test('the panels are drawn from a kept picture: a folded section shows on the ca
     await page.waitForTimeout(600);
     const open = decodePng(await page.screenshot());
     await page.mouse.click(header.x + 40, header.y + header.height / 2);
-    await page.waitForFunction(() => /^> Consequences$/m.test(window.quakeview.uiText()), null, { timeout: 10000, polling: 100 });
+    await waitForFunction(page, () => /^> Consequences$/m.test(window.quakeview.uiText()), null, { timeout: 10000, polling: 100 });
     const folded = decodePng(await page.screenshot());
     assert.ok(changedFraction(open, folded, 24, panel) > 0.05, `folding the section shows: ${changedFraction(open, folded, 24, panel)}`);
     assert.deepEqual(problems, []);

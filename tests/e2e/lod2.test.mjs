@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -25,7 +25,7 @@ after(async () => {
 });
 
 async function calm(page, timeout = 60000) {
-  await page.waitForFunction(() => {
+  await waitForFunction(page, () => {
     const s = window.quakeview.stats();
     window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
     return window.__calm >= 4;

@@ -5,7 +5,7 @@ import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { serveFaulty } from './lib/faulty-server.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
@@ -20,7 +20,7 @@ before(() => {
 });
 
 async function calm(page, timeout = 60000) {
-  await page.waitForFunction(() => {
+  await waitForFunction(page, () => {
     const s = window.quakeview.stats();
     window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
     return window.__calm >= 4;
@@ -63,7 +63,7 @@ test('a failing tile server: failures are shown, the frame loop keeps going, and
 
     // The server recovers; so does the city (retries back off up to 30 s for bad content).
     server.setFaulty(false);
-    await page.waitForFunction(() => {
+    await waitForFunction(page, () => {
       const s = window.quakeview.stats();
       return s.tiles.failed === 0 && s.tiles.pending === 0 && !/No result \(hatched\): [1-9]/.test(window.quakeview.uiText());
     }, null, { timeout: 120000, polling: 500 });
@@ -130,14 +130,14 @@ test('a small memory budget: flying over a city several times larger keeps the h
     // The coarse tiles hold only the city's largest buildings (--max-coarse-buildings); the search
     // index still lists every one, and selecting one from far away brings in its leaf.
     assert.ok(manifest.root.buildings < manifest.buildings, `a bounded root: ${manifest.root.buildings}`);
-    await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 60000, polling: 250 });
+    await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 60000, polling: 250 });
     const all = await page.evaluate(() => window.quakeview.filteredList(0));
     assert.equal(all.total, manifest.buildings);
     assert.ok(await page.evaluate(() => window.quakeview.setCamera({ distance: 20000, pitchDeg: 60 })));
     const far = await page.evaluate(() => window.quakeview.search('s49999', 1));
     assert.equal(far.length, 1);
     assert.ok(await page.evaluate(() => window.quakeview.select('s49999')));
-    await page.waitForFunction(() => window.quakeview.building('s49999') !== null, null, { timeout: 60000, polling: 250 });
+    await waitForFunction(page, () => window.quakeview.building('s49999') !== null, null, { timeout: 60000, polling: 250 });
     const b = await page.evaluate(() => window.quakeview.building('s49999'));
     assert.ok(Math.hypot(b.x - far[0].x, b.y - far[0].y) < 1, 'the index places it where its tile does');
     const errors = await page.evaluate(() => window.quakeview.errors());

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { launchBrowser, openPage, settle, swipe, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, settle, swipe, waitReady } from './lib/browser.mjs';
 import { ESB, URL_PATH, serveMidtown } from './lib/midtown.mjs';
 import { ARTIFACTS } from './lib/server.mjs';
 
@@ -23,7 +23,7 @@ async function tapPanelHeader(page, wantOpen) {
   const panel = panelOf(await layout(page));
   assert.ok(panel, 'the panel is drawn');
   await page.touchscreen.tap(panel.x + Math.min(120, panel.width / 2), panel.y + 8);
-  await page.waitForFunction((open) => {
+  await waitForFunction(page, (open) => {
     const p = window.quakeview.uiLayout().windows.find((w) => w.title === 'QuakeView');
     return p && p.collapsed === !open;
   }, wantOpen, { timeout: 20000, polling: 100 });
@@ -102,7 +102,7 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
     assert.ok(await page.evaluate(() => window.quakeview.playing()), 'the animation plays at the start');
     const pause = await pauseButton(page);
     await page.touchscreen.tap(centre(pause).x, centre(pause).y);
-    await page.waitForFunction(() => !window.quakeview.playing(), null, { timeout: 20000, polling: 100 });
+    await waitForFunction(page, () => !window.quakeview.playing(), null, { timeout: 20000, polling: 100 });
     assert.ok(await timeStops(page), 'the time stops advancing');
 
     // Folded again, a tap on the Empire State Building selects it, without moving the camera.
@@ -113,7 +113,7 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
     assert.ok(!l.windows.some((w) => inside(at, w)), `ESB not under a window: ${JSON.stringify(l.windows)}`);
     const cameraBefore = await page.evaluate(() => window.quakeview.getCamera());
     await page.touchscreen.tap(at.x, at.y);
-    await page.waitForFunction((id) => window.quakeview.selection() === id, ESB, { timeout: 20000, polling: 100 });
+    await waitForFunction(page, (id) => window.quakeview.selection() === id, ESB, { timeout: 20000, polling: 100 });
     await page.waitForTimeout(500);
     const cameraAfter = await page.evaluate(() => window.quakeview.getCamera());
     assert.deepEqual(cameraAfter, cameraBefore, 'a tap does not pan the camera');
@@ -146,7 +146,7 @@ test('on a phone, taps open the folded panel, press Pause and select a building 
     const [, hiddenY] = await page.evaluate(({ x, y }) => window.quakeview.worldToScreen(x, y, 200), { x: midtown.esb.x_m, y: midtown.esb.y_m });
     assert.ok(hiddenY > 844 * 0.6, `set-up: the building low on the screen (${hiddenY}, was ${low.y})`);
     assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
-    await page.waitForFunction(({ x, y, limit }) => {
+    await waitForFunction(page, ({ x, y, limit }) => {
       const p = window.quakeview.worldToScreen(x, y, 200);
       return p && p[1] < limit;
     }, { x: midtown.esb.x_m, y: midtown.esb.y_m, limit: 844 * 0.6 }, { timeout: 20000, polling: 100 });
@@ -176,7 +176,7 @@ test('on a tablet, a tap presses Pause in the open panel and a tap selects a bui
 
     const pause = await pauseButton(page);
     await page.touchscreen.tap(centre(pause).x, centre(pause).y);
-    await page.waitForFunction(() => !window.quakeview.playing(), null, { timeout: 20000, polling: 100 });
+    await waitForFunction(page, () => !window.quakeview.playing(), null, { timeout: 20000, polling: 100 });
     assert.ok(await timeStops(page), 'the time stops advancing');
 
     // The panel folds with a tap on its title bar, and opens again.
@@ -186,7 +186,7 @@ test('on a tablet, a tap presses Pause in the open panel and a tap selects a bui
     l = await layout(page);
     assert.ok(!l.windows.some((w) => inside(at, w)), `ESB not under a window: ${JSON.stringify([at, l.windows])}`);
     await page.touchscreen.tap(at.x, at.y);
-    await page.waitForFunction((id) => window.quakeview.selection() === id, ESB, { timeout: 20000, polling: 100 });
+    await waitForFunction(page, (id) => window.quakeview.selection() === id, ESB, { timeout: 20000, polling: 100 });
     await page.waitForTimeout(300);
     l = await layout(page);
     const inspection = l.windows.find((w) => w.title === `Building ${ESB}`);

@@ -10,7 +10,7 @@ import path from 'node:path';
 import { after, before, test } from 'node:test';
 import { parse as parseCsv } from 'csv-parse/sync';
 import { contentSecurityPolicy, handleStatic } from '../../web/serve.mjs';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
 import { REPO, SITE, serveSite } from './lib/server.mjs';
 
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
@@ -171,7 +171,7 @@ test('the page runs under the site\'s Content-Security-Policy, with nosniff and 
     assert.equal(document['x-content-type-options'], 'nosniff');
     // Use the page as a person would: play, select, search, filter, export (a download).
     await page.evaluate(() => window.quakeview.play());
-    await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 60000 });
+    await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 60000 });
     const id = (await page.evaluate(() => window.quakeview.search('s', 1)))[0].id;
     assert.ok(await page.evaluate((i) => window.quakeview.select(i), id));
     await page.evaluate(() => window.quakeview.setFilters({ minDamage: 'slight' }));
@@ -215,7 +215,7 @@ test('exports of hostile names are safe in a spreadsheet, parse with standard CS
   try {
     const { page, problems } = await openPage(context, `${server.url}/?data=/data/hostile/tileset.json`);
     assert.deepEqual(await waitReady(page), { ok: true });
-    await page.waitForFunction(() => window.quakeview.searchReady(), null, { timeout: 60000 });
+    await waitForFunction(page, () => window.quakeview.searchReady(), null, { timeout: 60000 });
 
     const csv = await page.evaluate(() => window.quakeview.exportList('csv'));
     // The first line is the export's provenance comment (docs/formats.md "Exports"); a name may hold '#'.

@@ -5,7 +5,7 @@
 //   WebDriver BiDi (playwright-core drives only its own patched Firefox, a download).
 // Tests are written against the subset of Playwright's Page API below; for Firefox the puppeteer
 // page is wrapped so the same test file runs unchanged in either engine:
-//   page.evaluate(fn, arg), page.waitForFunction(fn, arg, {timeout, polling}), page.waitForTimeout(ms),
+//   page.evaluate(fn, arg), page.waitForTimeout(ms),
 //   page.screenshot({path}) -> Buffer, page.mouse.{move(x, y, {steps}), down(), up(), click(x, y),
 //   wheel(dx, dy)}, page.keyboard.{press, down, up, type}, page.focus(selector),
 //   page.locator(selector).{innerText(), isVisible()}, page.waitForEvent('download', {timeout}) ->
@@ -13,7 +13,10 @@
 //   page.goto(url, {waitUntil: 'load'}), page.close(), page.touchscreen.tap(x, y) (with
 //   options.touch); context.newPage().
 // One-finger swipes, which Playwright's API lacks, go through swipe(page, from, to) below in
-// either engine.
+// either engine. Waiting for a condition in the page goes through waitForFunction(page, fn, arg,
+// options) below in either engine, never the drivers' own waitForFunction: both inject the
+// predicate in ways a strict Content-Security-Policy can block (Firefox ESR 140 refuses
+// puppeteer's `Function()` under the page's `script-src 'self' 'wasm-unsafe-eval'`).
 //
 // Touch emulation (launchBrowser({viewport, deviceScaleFactor, touch: true})):
 // - Chromium: Playwright's viewport, deviceScaleFactor, hasTouch and isMobile; swipes are the
@@ -194,12 +197,8 @@ function wrapPuppeteerPage(page, downloads) {
       return settled();
     },
     evaluate: (fn, arg) => (arg === undefined ? page.evaluate(fn) : page.evaluate(fn, arg)),
-    // Playwright: (fn, arg, options); puppeteer: (fn, options, ...args). Playwright polls on
-    // animation frames by default; puppeteer's 'raf' is the same.
-    waitForFunction: (fn, arg, options = {}) => {
-      const opts = { timeout: options.timeout ?? defaultTimeout, polling: options.polling ?? 'raf' };
-      return arg === undefined || arg === null ? page.waitForFunction(fn, opts) : page.waitForFunction(fn, opts, arg);
-    },
+    // Kept for code written against Playwright's API: the CSP-proof poller below.
+    waitForFunction: (fn, arg, options = {}) => waitForFunction(wrapped, fn, arg, { timeout: defaultTimeout, ...options }),
     waitForTimeout: (ms) => sleep(ms),
     screenshot: async (options = {}) => Buffer.from(await page.screenshot(options)),
     focus: (selector) => page.focus(selector),
@@ -243,6 +242,28 @@ function wrapPuppeteerPage(page, downloads) {
   return wrapped;
 }
 
+/// Resolves to fn(arg)'s value once it is truthy, evaluating fn in the page every
+/// `options.polling` ms (a number; default 50) until `options.timeout` ms (default 30000) have
+/// passed, then rejects naming the condition. Each poll is one page.evaluate from the test side:
+/// nothing is compiled from a string in the page, so it works under the viewer's strict
+/// Content-Security-Policy in every engine and version (Playwright's and puppeteer's own
+/// waitForFunction inject the predicate in the page; puppeteer's `Function()` is blocked by
+/// `script-src 'self' 'wasm-unsafe-eval'` in Firefox ESR 140). An error thrown by fn rejects.
+export async function waitForFunction(page, fn, arg, options = {}) {
+  const timeout = options.timeout ?? 30000;
+  const interval = typeof options.polling === 'number' ? options.polling : 50;
+  const deadline = Date.now() + timeout;
+  for (;;) {
+    const value = await (arg === undefined || arg === null ? page.evaluate(fn) : page.evaluate(fn, arg));
+    if (value) return value;
+    if (Date.now() >= deadline) {
+      const what = String(fn).replace(/\s+/g, ' ').slice(0, 240);
+      throw new Error(`waitForFunction: not true after ${timeout} ms: ${what}`);
+    }
+    await sleep(Math.min(interval, Math.max(0, deadline - Date.now())));
+  }
+}
+
 const cdpSessions = new WeakMap();
 
 /// A one-finger swipe on a page of a touch context (launchBrowser({touch: true})): the finger goes
@@ -275,6 +296,8 @@ export async function openPage(context, url, { timeoutMs = 60000 } = {}) {
   });
   page.on('pageerror', (err) => problems.push(`page error: ${err.message}`));
   page.setDefaultTimeout(timeoutMs);
+  // Either engine: the driver's own waitForFunction injects code the page's CSP may block.
+  page.waitForFunction = (fn, arg, options = {}) => waitForFunction(page, fn, arg, { timeout: timeoutMs, ...options });
   await page.goto(url, { waitUntil: 'load' });
   return { page, problems };
 }
@@ -283,7 +306,7 @@ export async function openPage(context, url, { timeoutMs = 60000 } = {}) {
 /// apart: after a camera move or a flight, what it brought into view is there.
 export async function settle(page) {
   await page.evaluate(() => { window.__calm = 0; });
-  await page.waitForFunction(() => {
+  await waitForFunction(page, () => {
     const s = window.quakeview.stats();
     window.__calm = s && s.tiles.pending === 0 ? (window.__calm || 0) + 1 : 0;
     return window.__calm >= 4;
