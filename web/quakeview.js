@@ -29,7 +29,8 @@
 //   setTime(s), time(), duration(), play(), pause(), playing()
 //   pick(x, y), building(id), select(id), selection()   picking and the selected building
 //   consequences()   totals of the city, the view and each district, and the shaking's provenance
-//   setFilters({minDamage, use, criticalOnly, categories}), filters(), setLodVisibility({lod1, lod2}),
+//   setFilters({minDamage, minProbability: {state, percent}, use, criticalOnly, categories}), filters(),
+//   setLodVisibility({lod1, lod2}),
 //              use: one normalized use or several joined by '+' ('hospital+school'); criticalOnly:
 //              essential facilities, schools and shelters; categories: an array of 'essential',
 //              'school_shelter', 'high_occupancy', 'hazardous' (a building passes with any).
@@ -194,8 +195,16 @@
       if (typeof f.minDamage === 'number') minDamage = f.minDamage;
       else if (typeof f.minDamage === 'string') minDamage = states.indexOf(f.minDamage);
       const categories = Array.isArray(f.categories) ? f.categories.filter((c) => typeof c === 'string').join('+') : '';
-      return engine.ccall('qv_set_filters', 'number', ['number', 'string', 'number', 'string'],
-        [minDamage, typeof f.use === 'string' ? f.use : '', f.criticalOnly ? 1 : 0, categories]) === 1;
+      // minProbability: {state: 'moderate' (or 1..4), percent: 10}: P(>= state) at least 10 %.
+      let pState = -1;
+      let pPercent = 0;
+      const p = f.minProbability;
+      if (p && typeof p === 'object') {
+        pState = typeof p.state === 'number' ? p.state : states.indexOf(p.state);
+        pPercent = typeof p.percent === 'number' ? Math.round(p.percent) : 0;
+      }
+      return engine.ccall('qv_set_filters', 'number', ['number', 'string', 'number', 'string', 'number', 'number'],
+        [minDamage, typeof f.use === 'string' ? f.use : '', f.criticalOnly ? 1 : 0, categories, pState, pPercent]) === 1;
     },
     filters() {
       const text = callString('qv_filters_json');
@@ -363,7 +372,7 @@
   if (params.get('memory')) args.push('--memory-mb', params.get('memory'));
 
   // The shareable view lives in the URL hash: #cam=x,y,distance,heading,pitch,fov&t=seconds
-  // &play=0|1&sel=id&f=minDamage,use,critical. The engine validates every value (a malformed one falls
+  // &play=0|1&sel=id&f=minDamage,use,critical[,state:percent]. The engine validates every value (a malformed one falls
   // back to the default with a message).
   const hash = new URLSearchParams(window.location.hash.replace(/^#/, ''));
   if (hash.get('cam')) args.push('--camera', hash.get('cam'));
@@ -390,7 +399,7 @@
     if (sel) parts.push('sel=' + encodeURIComponent(sel));
     const f = api.filters();
     const categories = f && Array.isArray(f.categories) ? f.categories : [];
-    if (f && (f.minDamage || f.use || f.criticalOnly || categories.length)) {
+    if (f && (f.minDamage || f.minProbability || f.use || f.criticalOnly || categories.length)) {
       const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
       const d = f.minDamage ? states.indexOf(f.minDamage) : '';
       // The critical field: "1" (essential, schools, shelters) or category names joined by '+'.
@@ -400,7 +409,10 @@
         if (f.criticalOnly) { names.add('essential'); names.add('school_shelter'); }
         critical = [...names].join('+');
       }
-      parts.push('f=' + [d, f.use, critical].join(','));
+      const fields = [d, f.use, critical];
+      // The fourth field only when set: links made before it keep their three fields.
+      if (f.minProbability) fields.push(states.indexOf(f.minProbability.state) + ':' + f.minProbability.percent);
+      parts.push('f=' + fields.join(','));
     }
     return parts.join('&');
   }

@@ -119,10 +119,34 @@ test('search finds the Empire State Building; the damage filter dims the others;
     const expected = counts.slice(threshold).reduce((a, b) => a + b, 0);
     assert.equal(filtered.total, expected);
     for (const item of filtered.buildings) assert.ok(states.indexOf(item.damageState) >= threshold, item.id);
-    // Sorted by damage, worst first.
-    for (let i = 1; i < filtered.buildings.length; ++i) {
-      assert.ok(states.indexOf(filtered.buildings[i - 1].damageState) >= states.indexOf(filtered.buildings[i].damageState));
+    // Most likely damaged first: by the HAZUS probability of at least the filter's state where the
+    // buildings have probabilities (they come first), else by the state.
+    const listed = filtered.buildings;
+    for (let i = 1; i < listed.length; ++i) {
+      const [a, b] = [listed[i - 1], listed[i]];
+      if (a.probabilityAtLeast && b.probabilityAtLeast) {
+        assert.ok(a.probabilityAtLeast[states[threshold]] >= b.probabilityAtLeast[states[threshold]], `${a.id} before ${b.id}`);
+      } else if (!a.probabilityAtLeast && !b.probabilityAtLeast) {
+        assert.ok(states.indexOf(a.damageState) >= states.indexOf(b.damageState), `${a.id} before ${b.id}`);
+      } else {
+        assert.ok(a.probabilityAtLeast, `${a.id} with probabilities before ${b.id} without`);
+      }
     }
+    // The probabilistic filter finds buildings by their probability of damage, most likely first:
+    // P(>= slight) at least the median of the city's.
+    const withP = all.buildings.filter((b) => b.probabilityAtLeast).map((b) => b.probabilityAtLeast.slight).sort((a, b) => a - b);
+    assert.ok(withP.length > 100, `the midtown response has HAZUS probabilities: ${withP.length}`);
+    const percent = Math.max(1, Math.floor(withP[Math.floor(withP.length / 2)] * 100));
+    assert.ok(await page.evaluate((p) => window.quakeview.setFilters({ minProbability: { state: 'slight', percent: p } }), percent));
+    assert.deepEqual((await page.evaluate(() => window.quakeview.filters())).minProbability, { state: 'slight', percent });
+    const likely = await page.evaluate(() => window.quakeview.filteredList(100000));
+    const likelyExpected = withP.filter((p) => Math.round(p * 100 * 100) >= percent * 100).length;
+    assert.equal(likely.total, likelyExpected, `P(>= slight) >= ${percent} %`);
+    assert.ok(likely.total > 0 && likely.total < all.total, `the probability filter splits the city: ${likely.total}`);
+    for (let i = 1; i < likely.buildings.length; ++i) {
+      assert.ok(likely.buildings[i - 1].probabilityAtLeast.slight >= likely.buildings[i].probabilityAtLeast.slight);
+    }
+    assert.ok(await page.evaluate((d) => window.quakeview.setFilters({ minDamage: d }), states[threshold]));
     await page.waitForTimeout(400);
     const after = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'interaction-filtered.png') }));
     // The dimmed buildings changed colour on screen.
@@ -177,12 +201,13 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     assert.ok(await page.evaluate((c) => window.quakeview.setCamera(c), camera));
     assert.ok(await page.evaluate(() => window.quakeview.setTime(7.5)));
     assert.ok(await page.evaluate((id) => window.quakeview.select(id), ESB));
-    assert.ok(await page.evaluate(() => window.quakeview.setFilters({ minDamage: 'slight', criticalOnly: false })));
+    assert.ok(await page.evaluate(() => window.quakeview.setFilters({
+      minDamage: 'slight', minProbability: { state: 'moderate', percent: 5 }, criticalOnly: false })));
     // The hash follows the view (kept every half second, so it may be written between two of the
     // calls above: wait until it holds all of them).
     await waitForFunction(page, (id) => {
       const h = window.location.hash;
-      return h.includes('sel=' + id) && h.includes('t=7.5') && /(^#|&)f=1(,|&|$)/.test(h);
+      return h.includes('sel=' + id) && h.includes('t=7.5') && /(^#|&)f=1,,,2:5(&|$)/.test(h);
     }, ESB, { timeout: 5000 });
     const shared = await page.evaluate(() => window.location.href);
     assert.match(shared, /#cam=/);
@@ -199,9 +224,10 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     assert.ok(Math.abs((await other.evaluate(() => window.quakeview.time())) - 7.5) < 0.05);
     assert.equal(await other.evaluate(() => window.quakeview.selection()), ESB);
     assert.equal((await other.evaluate(() => window.quakeview.filters())).minDamage, 'slight');
+    assert.deepEqual((await other.evaluate(() => window.quakeview.filters())).minProbability, { state: 'moderate', percent: 5 });
     // The active filter shows on the canvas whatever the panel's state.
     assert.match(await other.evaluate(() => window.quakeview.uiText()),
-      /== Active filters ==\nFiltered \(the rest is dimmed\): damage at least slight/);
+      /== Active filters ==\nFiltered \(the rest is dimmed\): damage at least slight \| P\(damage at least moderate\) at least 5 %/);
     assert.deepEqual(await other.evaluate(() => window.quakeview.errors()), []);
     assert.deepEqual(problems, []);
 

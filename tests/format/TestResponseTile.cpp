@@ -1,6 +1,7 @@
 #include <catch2/catch.hpp>
 
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "qv/format/ResponseTile.h"
@@ -233,4 +234,87 @@ TEST_CASE("The optional summary sections (scaling, suite spread, losses) round-t
     REQUIRE_FALSE(bad.ok());
     CHECK_THAT(bad.error(), Catch::Contains("SPEC"));
   }
+}
+
+TEST_CASE("The drift series section round-trips, keeps small drifts and is checked", "[format][response]") {
+  ResponseSummaryTile t = tinySummary();
+  REQUIRE(t.buildings.size() == 2);
+  // Building 0: four windows from 2.5 s; building 1 (no history): none.
+  t.driftSeries.rateHz = kDriftSeriesRateHz;
+  t.driftSeries.fullScale = kDriftSeriesFullScale;
+  for (const float drift : {0.0f, 0.001f, 0.02f, 0.2f}) {
+    t.driftSeries.codes.push_back(driftSeriesCode(drift, kDriftSeriesFullScale));
+  }
+  t.driftSeries.spans = {DriftSpan{2.5f, 0, 4}, DriftSpan{0.0f, 4, 0}};
+  const auto bytes = encodeResponseSummary(t);
+  // One more section table entry, its 12-byte header, 8 bytes a building and a byte a sample.
+  CHECK(bytes.size() == encodeResponseSummary(tinySummary()).size() + 12 + 12 + 2 * 8 + 4);
+  const auto decoded = decodeResponseSummary(bytes, "series.qvs");
+  REQUIRE(decoded.ok());
+  CHECK(decoded->driftSeries == t.driftSeries);
+  // Quantization: 0 stays 0; 0.1 % drift within 3 % of itself; above the full scale clips to it.
+  const DriftSeries& d = decoded->driftSeries;
+  CHECK(driftSeriesValue(d.codes[0], d.fullScale) == 0.0f);
+  CHECK(driftSeriesValue(d.codes[1], d.fullScale) == Approx(0.001f).epsilon(0.03));
+  CHECK(driftSeriesValue(d.codes[2], d.fullScale) == Approx(0.02f).epsilon(0.01));
+  CHECK(d.codes[3] == 255);
+  CHECK(driftSeriesValue(255, d.fullScale) == Approx(kDriftSeriesFullScale));
+  // Codes grow with the drift.
+  for (int q = 1; q < 256; ++q) {
+    CHECK(driftSeriesValue(static_cast<std::uint8_t>(q), 0.05f) >
+          driftSeriesValue(static_cast<std::uint8_t>(q - 1), 0.05f));
+  }
+  // Without the section, no series.
+  const auto plain = decodeResponseSummary(encodeResponseSummary(tinySummary()), "plain.qvs");
+  REQUIRE(plain.ok());
+  CHECK(plain->driftSeries.empty());
+
+  SECTION("a rate of zero is refused, naming the section") {
+    t.driftSeries.rateHz = 0.0f;
+    const auto bad = decodeResponseSummary(encodeResponseSummary(t), "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("bad.qvs") && Catch::Contains("DSER") && Catch::Contains("rate"));
+  }
+  SECTION("a non-finite start time is refused") {
+    t.driftSeries.spans[0].startSeconds = std::numeric_limits<float>::infinity();
+    const auto bad = decodeResponseSummary(encodeResponseSummary(t), "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("DSER") && Catch::Contains("start"));
+  }
+}
+
+TEST_CASE("A history's drift series is the largest storey drift in each window", "[format][response]") {
+  // Two storeys of 4 m, one X mode: floor 1 moves q, floor 2 moves 3q (drifts q / 4 and 2q / 4);
+  // q ramps up by one step a sample at 20 samples a second for 2 s, from t = 1.5 s.
+  BuildingHistory h;
+  h.floors = 2;
+  h.sampleRateHz = 20.0f;
+  h.startSeconds = 1.5f;
+  h.sampleCount = 41;
+  h.x.modes = 1;
+  h.x.shapes = {1.0f, 3.0f};
+  h.x.scales = {0.001f};  // metres a step
+  for (std::uint32_t i = 0; i < h.sampleCount; ++i) h.x.coordinates.push_back(static_cast<std::int16_t>(i));
+  DriftSeries series;
+  series.rateHz = 4.0f;
+  series.fullScale = kDriftSeriesFullScale;
+  series.codes = {7};  // codes already there stay
+  const DriftSpan span = appendDriftSeries(h, 4.0f, series);
+  CHECK(span.first == 1);
+  CHECK(span.startSeconds == 1.5f);
+  REQUIRE(span.count == 9);  // 2 s at 4 windows a second, and the window holding the last sample
+  REQUIRE(series.codes.size() == 10);
+  CHECK(series.codes[0] == 7);
+  for (std::uint32_t w = 0; w < span.count; ++w) {
+    // Window w holds samples 5w .. 5w + 4; its largest q is the last of them (the last window: 40).
+    const double q = std::min(5.0 * w + 4.0, 40.0);
+    const double drift = 2.0 * q * 0.001 / 4.0;
+    CAPTURE(w);
+    CHECK(driftSeriesValue(series.codes[span.first + w], series.fullScale) ==
+          Approx(drift).epsilon(0.025).margin(1e-6));
+  }
+  // No history, no series.
+  const DriftSpan none = appendDriftSeries(BuildingHistory{}, 3.0f, series);
+  CHECK(none.count == 0);
+  CHECK(series.codes.size() == 10);
 }

@@ -3,14 +3,18 @@
 #include <unistd.h>
 
 #include <simdjson.h>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
+#include <vector>
 
 #include "ResponseTestCity.h"
 #include "ToolRun.h"
+#include "qv/format/ResponseTile.h"
+#include "qv/format/Tileset.h"
 
 namespace {
 
@@ -77,6 +81,44 @@ TEST_CASE("response gives rooftop parts no result with a reason, and publishes o
     CHECK(doc["approximate"].get_array().value().size() == 0);
     // The record by its file name and header title, never the path of the machine that ran it.
     CHECK(std::string(doc["motion"].get_string().value()) == "TAK000.AT2 (KOBE, 01/16/1995, Takatori, 000)");
+  }
+
+  SECTION("every tile summary carries its analysed buildings' drift series; the city-wide index does not") {
+    CHECK(response.output.find("far series") != std::string::npos);
+    const std::string json = readText(dir + "/city/tileset.json");
+    const auto tileset = qv::parseTileset(json, "tileset.json");
+    REQUIRE(tileset.ok());
+    auto summaryOf = [&dir](const std::string& file) {
+      std::ifstream in(dir + "/city/" + file, std::ios::binary);
+      const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      auto decoded = qv::decodeResponseSummary(bytes, file);
+      REQUIRE(decoded.ok());
+      return std::move(decoded).value();
+    };
+    int withSeries = 0;
+    for (const qv::TileNode& n : tileset->nodes) {
+      REQUIRE(n.response);
+      const qv::ResponseSummaryTile s = summaryOf(n.response->summaryFile);
+      REQUIRE(s.driftSeries.spans.size() == s.buildings.size());
+      CHECK(s.driftSeries.rateHz == qv::kDriftSeriesRateHz);
+      for (std::size_t b = 0; b < s.buildings.size(); ++b) {
+        const qv::DriftSpan& span = s.driftSeries.spans[b];
+        const bool result = s.buildings[b].source != qv::ResponseSource::None;
+        CHECK((span.count > 0) == result);  // the rooftop part without a result has none
+        if (!result) continue;
+        ++withSeries;
+        // Its largest window is its peak drift, from the stored history (within the series'
+        // quantization and the history's compression: each floor within 1.9 % of the peak roof
+        // displacement, so a storey's drift within a few tens of percent).
+        std::uint8_t top = 0;
+        for (std::uint32_t i = 0; i < span.count; ++i) top = std::max(top, s.driftSeries.codes[span.first + i]);
+        CHECK(qv::driftSeriesValue(top, s.driftSeries.fullScale) ==
+              Approx(s.buildings[b].peakDriftRatio).epsilon(0.35));
+      }
+    }
+    CHECK(withSeries >= 2);
+    REQUIRE(tileset->response->summaryIndex);
+    CHECK(summaryOf(tileset->response->summaryIndex->file).driftSeries.empty());
   }
 
   SECTION("no response file carries the record's directory") {

@@ -101,9 +101,11 @@ struct MiniCity {
   /// `rootLimit`: how many buildings the coarse root draws (the first ones of the first leaves), as
   /// a large city's coarse tiles hold only some of theirs. `heightsM`: cells (i, j) whose prism
   /// rises to another height than kStoreys x kStoreyHeight (towers; still kStoreys storeys).
+  /// `withSeries`: the tile summaries carry the far view's drift series (DSER), made from the
+  /// histories as quakeview-prep makes them (appendDriftSeries).
   explicit MiniCity(bool withResponse = true, bool withLod2 = false, std::size_t rootLimit = kSide * kSide,
-                    std::map<std::pair<int, int>, float> heightsM = {})
-      : withLod2_(withLod2), heightsM_(std::move(heightsM)) {
+                    std::map<std::pair<int, int>, float> heightsM = {}, bool withSeries = false)
+      : withLod2_(withLod2), withSeries_(withSeries), heightsM_(std::move(heightsM)) {
     const std::string prefix = "city/";
     tileset.generator = "test";
     tileset.originLon = -74.0;
@@ -274,6 +276,13 @@ struct MiniCity {
         h.x.coordinates.push_back(static_cast<std::int16_t>(
             std::lround(30000.0 * std::sin(2.0 * 3.14159265358979 * (s / 50.0) / period(i, j)))));
       }
+      if (withSeries_) {
+        if (summary.driftSeries.empty()) {
+          summary.driftSeries.rateHz = kDriftSeriesRateHz;
+          summary.driftSeries.fullScale = kDriftSeriesFullScale;
+        }
+        summary.driftSeries.spans.push_back(appendDriftSeries(h, kStoreyHeight, summary.driftSeries));
+      }
       history.buildings.push_back(h);
     }
     TileNode n;
@@ -314,6 +323,7 @@ struct MiniCity {
   }
 
   bool withLod2_ = false;
+  bool withSeries_ = false;
   std::map<std::pair<int, int>, float> heightsM_;
 };
 

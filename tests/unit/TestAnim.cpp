@@ -7,6 +7,7 @@
 #include "qv/anim/FloorBlend.h"
 #include "qv/anim/FloorDisplacements.h"
 #include "qv/anim/HistorySampling.h"
+#include "qv/anim/SeriesSampling.h"
 
 using namespace qv;
 
@@ -190,4 +191,37 @@ TEST_CASE("Skinning by height: a vertex follows the floors below and above it by
     CHECK(std::fabs(below - dx[2]) < 1e-4f);
     CHECK(std::fabs(above - dx[2]) < 1e-4f);
   }
+}
+
+TEST_CASE("A drift series is read at its windows' centres, linear between, at rest before it starts",
+          "[anim][series]") {
+  // Codes 0, 255, 51 (drifts 0, full scale, full scale / 25) at 4 windows a second from 2 s.
+  const std::vector<std::uint8_t> codes = {9, 0, 255, 51};
+  const qv::SeriesRef s{1, 2.0f, 3, 4.0f};
+  const float full = 0.05f;
+  CHECK(qv::seriesDriftAt(codes, s, full, 1.99) == 0.0f);                                 // before the shaking
+  CHECK(qv::seriesDriftAt(codes, s, full, 2.0) == 0.0f);                                  // first window
+  CHECK(qv::seriesDriftAt(codes, s, full, 2.375) == Approx(0.05f));                       // window 1's centre
+  CHECK(qv::seriesDriftAt(codes, s, full, 2.25) == Approx(0.025f));                       // halfway
+  CHECK(qv::seriesDriftAt(codes, s, full, 2.625) == Approx(0.05f * 0.04f).margin(1e-4));  // window 2
+  CHECK(qv::seriesDriftAt(codes, s, full, 60.0) == Approx(0.05f * 0.04f).margin(1e-4));   // holds the last
+  CHECK(qv::seriesDriftAt(codes, qv::SeriesRef{}, full, 2.0) == -1.0f);                   // no series
+  CHECK(qv::seriesDriftAt(codes, qv::SeriesRef{2, 0.0f, 5, 4.0f}, full, 2.0) == -1.0f);   // beyond the codes
+}
+
+TEST_CASE("Merged series take the largest member code at each moment, over all members' times", "[anim][series]") {
+  // Member a from 0 s: 10, 20, 30, 40; member b from 0.5 s (two windows later): 50, 5, 5.
+  const std::vector<std::uint8_t> codes = {10, 20, 30, 40, 50, 5, 5};
+  const std::vector<qv::SeriesRef> members = {{0, 0.0f, 4, 4.0f}, {4, 0.5f, 3, 4.0f}, qv::SeriesRef{}};
+  std::vector<std::uint8_t> out = {77};
+  const qv::SeriesRef merged = qv::mergeSeries(codes, members, 4.0f, out);
+  CHECK(merged.base == 1);
+  CHECK(merged.startSeconds == 0.0f);
+  REQUIRE(merged.count == 5);  // 0 .. 1.25 s
+  CHECK(std::vector<std::uint8_t>(out.begin() + 1, out.end()) == std::vector<std::uint8_t>{10, 20, 50, 40, 5});
+  CHECK(out[0] == 77);
+  // No member with a series: none.
+  std::vector<std::uint8_t> none;
+  CHECK(qv::mergeSeries(codes, std::vector<qv::SeriesRef>{qv::SeriesRef{}}, 4.0f, none).count == 0);
+  CHECK(none.empty());
 }

@@ -171,6 +171,48 @@ TEST_CASE("Filter text: empty fields mean any, as the shell writes them", "[opti
   CHECK(f->criticalOnly == c.critical);
 }
 
+TEST_CASE("Filter text: a fourth field state:percent filters by the probability of damage", "[options]") {
+  const Result<BuildingFilters> f = parseFilters("1,,,2:10");
+  REQUIRE(f.ok());
+  CHECK(f->minDamage == 1);
+  CHECK(f->probabilityState == 2);
+  CHECK(f->minProbabilityPercent == 10);
+  CHECK(f->probabilityActive());
+  CHECK(f->active());
+  // An empty fourth field, or none (links made before it), leaves it off.
+  for (const char* text : {",,,", ",,"}) {
+    const Result<BuildingFilters> off = parseFilters(text);
+    REQUIRE(off.ok());
+    CHECK_FALSE(off->probabilityActive());
+    CHECK_FALSE(off->active());
+  }
+  // P(>= moderate) = P(moderate) + P(extensive) + P(complete) = 0.06 + 0.03 + 0.01 = 10 %: passes at
+  // 10 %, not at 11 %; a building without probabilities never passes.
+  BuildingResponse r;
+  r.source = ResponseSource::Model;
+  r.damage = DamageState::None;
+  BuildingLoss loss;
+  const float p[5] = {0.7f, 0.2f, 0.06f, 0.03f, 0.01f};
+  std::copy(p, p + 5, loss.structural);
+  CHECK(loss.structuralAtLeast(2) == Approx(0.10f));
+  CHECK(loss.structuralAtLeast(0) == 1.0f);
+  CHECK(loss.structuralAtLeast(5) == 0.0f);
+  const Result<BuildingFilters> ten = parseFilters(",,,2:10");
+  REQUIRE(ten.ok());
+  CHECK(ten->passes(FacilityCategory::None, "office", &r, &loss));
+  CHECK_FALSE(ten->passes(FacilityCategory::None, "office", &r, nullptr));
+  const Result<BuildingFilters> eleven = parseFilters(",,,2:11");
+  REQUIRE(eleven.ok());
+  CHECK_FALSE(eleven->passes(FacilityCategory::None, "office", &r, &loss));
+  const Result<BuildingFilters> slight = parseFilters(",,,1:30");
+  REQUIRE(slight.ok());
+  CHECK(slight->passes(FacilityCategory::None, "office", &r, &loss));  // 0.2 + 0.1 = 30 %
+  // The deterministic state is "none", yet the probability filter finds the building.
+  const Result<BuildingFilters> deterministic = parseFilters("1,,");
+  REQUIRE(deterministic.ok());
+  CHECK_FALSE(deterministic->passes(FacilityCategory::None, "office", &r, &loss));
+}
+
 TEST_CASE("Filter text: the critical field takes facility categories joined by '+'", "[options]") {
   const Result<BuildingFilters> f = parseFilters(",,essential+high_occupancy");
   REQUIRE(f.ok());
@@ -206,9 +248,13 @@ TEST_CASE("Bad filter text is refused with the field at fault", "[options]") {
     const char* expected;
   };
   const Case c = GENERATE(
-      Case{"banana", "1 field where 3 are expected"}, Case{"1,,,", "4 fields where 3"}, Case{"9,,", "minDamage '9'"},
-      Case{"12,,", "minDamage '12'"}, Case{"x,,", "minDamage 'x'"}, Case{"1,Hospital,0", "use 'Hospital'"},
-      Case{"1,hos pital,0", "use 'hos pital'"}, Case{"1,,2", "critical '2'"}, Case{"1,,yes", "critical 'yes'"},
+      Case{"banana", "1 field where 3 or 4 are expected"}, Case{"1,,,,", "5 fields where 3 or 4"},
+      Case{",,,5:10", "probability '5:10'"}, Case{",,,2:0", "probability '2:0'"},
+      Case{",,,2:101", "probability '2:101'"}, Case{",,,2", "probability '2'"}, Case{",,,2:", "probability '2:'"},
+      Case{",,,0:10", "probability '0:10'"}, Case{",,,2:1x", "probability '2:1x'"},
+      Case{",,,2:-5", "probability '2:-5'"}, Case{"9,,", "minDamage '9'"}, Case{"12,,", "minDamage '12'"},
+      Case{"x,,", "minDamage 'x'"}, Case{"1,Hospital,0", "use 'Hospital'"}, Case{"1,hos pital,0", "use 'hos pital'"},
+      Case{"1,,2", "critical '2'"}, Case{"1,,yes", "critical 'yes'"},
       Case{",hospital+,", "use 'hospital+' has an empty use"}, Case{",+school,", "use '+school' has an empty use"},
       Case{",hospital++school,", "use 'hospital++school' has an empty use"},
       Case{",Hospital+school,", "use 'Hospital+school'"},

@@ -31,6 +31,12 @@ class RowRecorder final : public RenderDevice {
     CHECK(first == 0);
     floorRowsSent = rows.size();
   }
+  void writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) override {
+    seriesFirst = first;
+    seriesSent = codes.size();
+  }
+  std::uint32_t seriesFirst = 0;
+  std::size_t seriesSent = 0;
 };
 
 }  // namespace

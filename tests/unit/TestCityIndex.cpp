@@ -192,3 +192,54 @@ TEST_CASE("List rows name a building by its name, else its address, never only a
   CHECK(plain.find("(") == std::string::npos);  // no category for general stock
   CHECK(plain.find("| 0 m") != std::string::npos);
 }
+
+TEST_CASE("With HAZUS probabilities the list filters and sorts by the probability of damage",
+          "[scene][index][filters]") {
+  IndexRig rig;
+  // Plant probabilities in the served summary: building k (index order) has P(>= slight) = k / 100
+  // and P(>= moderate) = k / 400, so the most likely damaged are the last ones, whatever their
+  // deterministic state (MiniCity's states cycle through none .. complete).
+  auto& bytes = rig.fetcher.files.at("city/response/index.qvs");
+  auto summary = decodeResponseSummary(bytes, "planted");
+  REQUIRE(summary.ok());
+  const std::size_t n = summary->buildings.size();
+  REQUIRE(n == static_cast<std::size_t>(MiniCity::kSide * MiniCity::kSide));
+  summary->losses.resize(n);
+  for (std::size_t k = 0; k < n; ++k) {
+    BuildingLoss& l = summary->losses[k];
+    const float slight = static_cast<float>(k) / 100.0f, moderate = static_cast<float>(k) / 400.0f;
+    l.structural[0] = 1.0f - slight;
+    l.structural[1] = slight - moderate;
+    l.structural[2] = moderate;
+  }
+  bytes = encodeResponseSummary(*summary);
+  rig.city.tileset.response->summaryIndex->bytes = bytes.size();
+  rig.city.tileset.response->summaryIndex->crc32 = crc32(bytes);
+  rig.index.open(rig.city.tileset);
+  rig.load();
+  REQUIRE(rig.index.loaded());
+
+  // No filter: every building, most likely damaged (P >= slight) first.
+  std::size_t total = 0;
+  const auto all = rig.index.filteredList(BuildingFilters{}, 1000, &total);
+  REQUIRE(all.size() == n);
+  for (std::size_t k = 1; k < all.size(); ++k) {
+    REQUIRE(all[k - 1].loss.has_value());
+    CHECK(all[k - 1].loss->structuralAtLeast(1) >= all[k].loss->structuralAtLeast(1));
+  }
+  CHECK(all.front().loss->structuralAtLeast(1) == Approx(static_cast<float>(n - 1) / 100.0f));
+
+  // P(>= moderate) at least 10 %: k / 400 >= 0.10, k >= 40.
+  BuildingFilters likely;
+  likely.probabilityState = 2;
+  likely.minProbabilityPercent = 10;
+  const auto top = rig.index.filteredList(likely, 5, &total);
+  CHECK(total == n - 40);
+  REQUIRE(top.size() == 5);
+  CHECK(top.front().loss->structuralAtLeast(2) == Approx(static_cast<float>(n - 1) / 400.0f));
+  for (const BuildingListEntry& e : top) CHECK(e.loss->structuralAtLeast(2) >= 0.0999f);
+  // Its rows say the probability the list is sorted by.
+  const std::string row = listRowText(top.front(), 0.0, 0.0, listProbabilityState(likely));
+  CHECK_THAT(row, Catch::Contains("P(>= moderate) 16 %"));
+  CHECK_THAT(listRowText(top.front(), 0.0, 0.0), Catch::Contains("P(>= slight) 63 %"));
+}

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "MiniCity.h"
+#include "qv/anim/SeriesSampling.h"
 #include "qv/scene/NullRenderDevice.h"
 #include "qv/scene/Viewer.h"
 
@@ -20,6 +21,7 @@ class RecordingDevice final : public RenderDevice {
  public:
   std::map<std::uint32_t, BuildingGpuRecord> buildings;  // slot -> row
   std::vector<FloorGpuRecord> floors;
+  std::vector<std::uint8_t> series;
   std::map<std::uint32_t, std::map<std::uint32_t, glm::vec2>> slotCentres;  // mesh -> slot -> local centre
   // mesh -> slot -> vertex counts: plain, LOD2 model, LOD1 fallback of a model
   std::map<std::uint32_t, std::map<std::uint32_t, std::array<int, 3>>> slotVertices;
@@ -74,6 +76,11 @@ class RecordingDevice final : public RenderDevice {
     counter.writeFloors(first, r);
     if (floors.size() < first + r.size()) floors.resize(first + r.size());
     std::copy(r.begin(), r.end(), floors.begin() + static_cast<std::ptrdiff_t>(first));
+  }
+  void writeSeries(std::uint32_t first, std::span<const std::uint8_t> c) override {
+    counter.writeSeries(first, c);
+    if (series.size() < first + c.size()) series.resize(first + c.size());
+    std::copy(c.begin(), c.end(), series.begin() + static_cast<std::ptrdiff_t>(first));
   }
   void render(const FrameUniforms& u, std::span<const DrawItem> items) override {
     counter.render(u, items);
@@ -860,4 +867,80 @@ TEST_CASE("Fly to shows a low-rise building surrounded by towers: no other build
   CHECK(viewer.camera().pitchDeg == Approx(45.0));
   CHECK(viewer.camera().distance == Approx(300.0));  // 2.5 x 120 m
   CHECK(firstHit(tower) == tower);
+}
+
+TEST_CASE("Every drawn building and block follows its drift series, with no history loaded", "[scene][city][series]") {
+  SceneRig rig(MiniCity(true, false, MiniCity::kSide * MiniCity::kSide, {}, true));
+  CitySceneOptions options;
+  options.blockPixels = 60.0f;  // blocks 6 km away, as in the far-view test
+  rig.open(0.0f, options);      // nothing moves floor by floor: only the series
+  Viewer& viewer = rig.viewer;
+  viewer.pause();
+  viewer.setCamera(CameraState{0.0, 0.0, 600.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  // Every building in view follows its history in the current-drift colours.
+  CHECK(viewer.stats().latest.buildingsVisible == 64);
+  CHECK(viewer.stats().latest.buildingsAnimated == 64);
+  const auto drawn = rig.device.drawnSlots();
+  REQUIRE(drawn.size() == 64);
+  auto refOf = [](const BuildingGpuRecord& row) {
+    return SeriesRef{static_cast<std::int64_t>(row.seriesBase), row.seriesStart,
+                     static_cast<std::uint32_t>(row.seriesCount), row.seriesRateHz};
+  };
+  for (const auto& [slot, centre] : drawn) {
+    const BuildingGpuRecord& row = rig.device.buildings.at(slot);
+    REQUIRE(row.floorBase == -1.0f);
+    REQUIRE(row.seriesBase >= 0.0f);
+    CHECK(row.seriesRateHz == kDriftSeriesRateHz);
+    CHECK(row.seriesCount == 41.0f);  // 10 s at 4 windows a second, and the last sample's window
+    // Its largest drift over the record is its peak storey drift (every storey of a MiniCity
+    // building drifts the roof's fifth over 3.5 m), within the series' quantization.
+    const auto [i, j] = cellOf(centre);
+    float peak = 0.0f;
+    for (double t = 0.0; t < 10.0; t += 0.05)
+      peak = std::max(peak, seriesDriftAt(rig.device.series, refOf(row), kSeriesFullScale, t));
+    CHECK(peak == Approx(MiniCity::amplitude(i, j) / 5.0 / MiniCity::kStoreyHeight).epsilon(0.03));
+  }
+  // Buildings shake differently: their drifts at one moment differ.
+  std::set<long> distinct;
+  for (const auto& [slot, centre] : drawn)
+    distinct.insert(std::lround(
+        1e6 * seriesDriftAt(rig.device.series, refOf(rig.device.buildings.at(slot)), kSeriesFullScale, 3.3)));
+  CHECK(distinct.size() > 20);
+  // In the peak-drift colours the series are not drawn: nothing follows its history.
+  viewer.setColorMode(ColorMode::PeakDrift);
+  runFrames(viewer, 2);
+  CHECK(viewer.stats().latest.buildingsAnimated == 0);
+  viewer.setColorMode(ColorMode::CurrentDrift);
+
+  // Far away, as blocks: each block's drift at a window's centre is the largest of its members'.
+  viewer.setCamera(CameraState{0.0, 0.0, 6000.0, 0.0, 60.0, 45.0});
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  CHECK(viewer.stats().latest.buildingsAnimated == 64);
+  const auto blocks = rig.device.drawnSlots();
+  REQUIRE(blocks.size() == 4);
+  for (const auto& [slot, centre] : blocks) {
+    const BuildingGpuRecord& block = rig.device.buildings.at(slot);
+    REQUIRE(block.seriesBase >= 0.0f);
+    // The block's quadrant of the grid: its members' rows are the root tile's (the coarse copies).
+    for (const double t : {1.125, 4.625, 8.375}) {
+      float worst = 0.0f;
+      for (int i = 0; i < MiniCity::kSide; ++i) {
+        for (int j = 0; j < MiniCity::kSide; ++j) {
+          if ((MiniCity::centreX(i) < 0.0) != (centre.x < 0.0f) || (MiniCity::centreY(j) < 0.0) != (centre.y < 0.0f))
+            continue;
+          worst = std::max(worst, static_cast<float>(std::abs(MiniCity::roofX(i, j, t))));
+        }
+      }
+      // At a window's centre (1.125 s, ...) the block shows that window's largest member drift: at
+      // least the instantaneous drift there (less the 50 Hz samples' distance from that moment).
+      const double largest =
+          MiniCity::amplitude(MiniCity::kSide - 1, MiniCity::kSide - 1) / 5.0 / MiniCity::kStoreyHeight;
+      CHECK(seriesDriftAt(rig.device.series, refOf(block), kSeriesFullScale, t) >=
+            worst / 5.0f / MiniCity::kStoreyHeight - 0.12 * largest);
+      CHECK(seriesDriftAt(rig.device.series, refOf(block), kSeriesFullScale, t) <= 1.03 * largest);
+    }
+  }
 }

@@ -358,6 +358,12 @@ TEST_CASE("Export file names carry the city, the event, what they hold and the f
   critical.criticalOnly = true;
   CHECK(describeFilters(critical) == "critical facilities only (essential or school/shelter)");
   CHECK(exportProvenance(tileset, several).filter == describeFilters(several));
+  BuildingFilters likely;
+  likely.probabilityState = 2;
+  likely.minProbabilityPercent = 10;
+  CHECK(describeFilters(likely) == "P(damage at least moderate) at least 10 %");
+  CHECK(exportFileName(tileset, likely, "buildings", "csv") ==
+        "quakeview-synthetic-city-100000-buildings-scenario-buildings-p-moderate-10pct.csv");
   tileset.name = "midtown";
   tileset.response->eventType = "ACTUAL";
   tileset.response->shakingField = "shakemap";

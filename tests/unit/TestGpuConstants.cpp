@@ -101,7 +101,12 @@ TEST_CASE("The generated row readers read each field where the device stores it"
   b.flags = 5.0f;
   b.baseZ = 7.25f;
   b.lossCode = 70000.0f;
-  float texels[8];
+  b.seriesBase = 123456.0f;
+  b.seriesStart = 4.25f;
+  b.seriesCount = 161.0f;
+  b.seriesRateHz = 4.0f;
+  float texels[12];
+  static_assert(sizeof texels == sizeof b);
   std::memcpy(texels, &b, sizeof b);  // the bytes writeBuildings sends
   const std::map<std::string, float> building = {{"storeyHeightMeters", b.storeyHeightMeters},
                                                  {"storeys", b.storeys},
@@ -110,7 +115,11 @@ TEST_CASE("The generated row readers read each field where the device stores it"
                                                  {"damageState", b.damageState},
                                                  {"flags", b.flags},
                                                  {"baseZ", b.baseZ},
-                                                 {"lossCode", b.lossCode}};
+                                                 {"lossCode", b.lossCode},
+                                                 {"seriesBase", b.seriesBase},
+                                                 {"seriesStart", b.seriesStart},
+                                                 {"seriesCount", b.seriesCount},
+                                                 {"seriesRateHz", b.seriesRateHz}};
   for (const auto& [name, expected] : building) {
     INFO(name);
     CHECK(readByGlsl(glsl, "readBuilding", name, texels) == expected);

@@ -26,7 +26,9 @@ struct NoHost final : UiHost {
 // The mini city in a viewer, settled, looked at from 500 m: its buildings are within the default
 // animation radius (1 km).
 struct LegendSetup {
-  LegendSetup() {
+  /// `withSeries`: the city's summaries carry drift series (MiniCity's `withSeries`).
+  explicit LegendSetup(bool withSeries = false)
+      : city(true, false, test::MiniCity::kSide * test::MiniCity::kSide, {}, withSeries) {
     city.serve(fetcher);
     viewer.openCity("city/tileset.json", fetcher);
     viewer.setViewport(1280, 720, 1280.0, 720.0);
@@ -122,4 +124,22 @@ TEST_CASE("The other colour modes have no not-animated entry", "[ui][city][legen
   }
   setup.viewer.setColorMode(ColorMode::PeakDrift);
   CHECK(has(legendOf(setup.draw()), "Inter-storey drift (peak):\n"));
+}
+
+TEST_CASE("With drift series every building follows its response and the legend says so, without a grey entry",
+          "[ui][city][legend]") {
+  LegendSetup setup(true);
+  REQUIRE(setup.viewer.settled());
+  REQUIRE(setup.viewer.city()->hasDriftSeries());
+  const std::string legend = legendOf(setup.draw());
+  INFO(legend);
+  CHECK(has(legend, "Inter-storey drift (now), every building: its largest storey (close by, each storey):\n"));
+  CHECK_FALSE(has(legend, "Not animated"));
+  std::smatch m;
+  REQUIRE(
+      std::regex_search(legend, m,
+                        std::regex("([0-9]+) buildings in view follow their response now; within 1\\.00 km of the "
+                                   "camera \\(at most 20000\\) each storey also moves by its own displacement\\.")));
+  CHECK(std::stoul(m[1]) == setup.viewer.stats().latest.buildingsAnimated);
+  CHECK(setup.viewer.stats().latest.buildingsAnimated == setup.viewer.stats().latest.buildingsVisible);
 }

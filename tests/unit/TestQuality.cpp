@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "qv/quality/FrameGovernor.h"
+#include "qv/quality/QualityPreset.h"
 #include "qv/quality/SoftwareRenderer.h"
 
 using qv::FrameGovernor;
@@ -133,4 +135,28 @@ TEST_CASE("detailScaleForStep makes each step coarser and cheaper", "[quality][g
     CHECK(b.animationRadius < a.animationRadius);
     CHECK(b.animatedBuildings < a.animatedBuildings);
   }
+}
+
+TEST_CASE("Quality presets: each lighter preset draws and animates less, and the governor's steps lower them further",
+          "[quality][presets]") {
+  using qv::QualityPreset;
+  const qv::QualitySettings high = qv::qualitySettings(QualityPreset::High);
+  const qv::QualitySettings balanced = qv::qualitySettings(QualityPreset::Balanced);
+  const qv::QualitySettings low = qv::qualitySettings(QualityPreset::Low);
+  for (const auto& [heavier, lighter] : {std::pair{high, balanced}, std::pair{balanced, low}}) {
+    CHECK(lighter.maxScreenSpaceError > heavier.maxScreenSpaceError);
+    CHECK(lighter.blockPixels > heavier.blockPixels);
+    CHECK(lighter.maxDrawTiles < heavier.maxDrawTiles);
+    CHECK(lighter.animationRadiusM < heavier.animationRadiusM);
+    CHECK(lighter.maxAnimatedBuildings < heavier.maxAnimatedBuildings);
+  }
+  // Step 0 is the preset itself; a step scales it as detailScaleForStep says; never under 8 tiles.
+  CHECK(qv::qualitySettings(QualityPreset::Low, 0) == low);
+  const qv::DetailScale s2 = qv::detailScaleForStep(2);
+  const qv::QualitySettings low2 = qv::qualitySettings(QualityPreset::Low, 2);
+  CHECK(low2.maxScreenSpaceError == Approx(low.maxScreenSpaceError * s2.screenSpaceError));
+  CHECK(low2.animationRadiusM == Approx(low.animationRadiusM * s2.animationRadius));
+  CHECK(low2.maxDrawTiles < low.maxDrawTiles);
+  CHECK(qv::qualitySettings(QualityPreset::Low, 100).maxDrawTiles == 8u);
+  CHECK(std::string(qv::qualityName(QualityPreset::Low)) == "Low (weak devices)");
 }

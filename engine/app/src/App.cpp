@@ -317,7 +317,7 @@ std::string App::statsJson(const MemoryInfo& memory) const {
   w.beginObject();
   w.field("softwareRenderer", quality_.softwareRenderer).field("renderer", quality_.renderer);
   w.field("antialias", quality_.antialias).field("maxPixelRatio", quality_.maxPixelRatio);
-  w.field("quality", ControlPanel::qualityName(panel_.quality())).field("governor", quality_.governorOn);
+  w.field("quality", qualityName(panel_.quality())).field("governor", quality_.governorOn);
   w.field("qualityStep", quality_.governorStep);
   // This frame's drawing buffer (pixels: width x height; samples: x the MSAA samples, = pixels
   // without antialiasing) and this frame's triangles and draw calls (the fields above are medians).

@@ -191,12 +191,18 @@ EMSCRIPTEN_KEEPALIVE const char* qv_lod_visibility_json() {
 }
 
 /// Filters: minDamage -1..4, use ("" any; several joined by '+'), critical 0/1, categories
-/// (FacilityCategory names joined by '+', "" none; unknown names are ignored). Returns 0 when
-/// there is no city.
-EMSCRIPTEN_KEEPALIVE int qv_set_filters(int minDamage, const char* use, int critical, const char* categories) {
+/// (FacilityCategory names joined by '+', "" none; unknown names are ignored), the probability
+/// filter: P(structural damage >= probabilityState) at least minPercent % (state 1..4 and percent
+/// 1..100, else off). Returns 0 when there is no city.
+EMSCRIPTEN_KEEPALIVE int qv_set_filters(int minDamage, const char* use, int critical, const char* categories,
+                                        int probabilityState, int minPercent) {
   if (gApp == nullptr || gApp->viewer().city() == nullptr || use == nullptr || categories == nullptr) return 0;
   qv::BuildingFilters f;
   f.minDamage = minDamage < 0 || minDamage > 4 ? -1 : minDamage;
+  if (probabilityState >= 1 && probabilityState <= 4 && minPercent >= 1 && minPercent <= 100) {
+    f.probabilityState = probabilityState;
+    f.minProbabilityPercent = minPercent;
+  }
   f.use = use;
   f.criticalOnly = critical != 0;
   for (std::string_view rest = categories; !rest.empty();) {
@@ -217,6 +223,14 @@ EMSCRIPTEN_KEEPALIVE const char* qv_filters_json() {
     w.field("minDamage", qv::damageStateName(static_cast<qv::DamageState>(f.minDamage)));
   else
     w.key("minDamage").null();
+  if (f.probabilityActive()) {
+    w.key("minProbability").beginObject();
+    w.field("state", qv::damageStateName(static_cast<qv::DamageState>(f.probabilityState)));
+    w.field("percent", f.minProbabilityPercent);
+    w.endObject();
+  } else {
+    w.key("minProbability").null();
+  }
   w.field("use", f.use).field("criticalOnly", f.criticalOnly);
   w.key("categories").beginArray();
   for (auto i = 1u; i < static_cast<unsigned>(qv::FacilityCategory::Count); ++i) {
@@ -234,6 +248,17 @@ void writeEntries(qv::JsonWriter& w, const std::vector<qv::BuildingListEntry>& l
     w.beginObject().field("id", e.id).field("name", e.name).field("address", e.address).field("use", e.use);
     w.field("facility", qv::facilityCategoryName(e.facility)).field("label", qv::listName(e));
     w.field("damageState", qv::damageStateName(e.damage)).field("peakDriftRatio", e.peakDriftRatio);
+    // P(structural damage >= slight, moderate, extensive, complete); null without probabilities.
+    if (e.loss) {
+      w.key("probabilityAtLeast").beginObject();
+      for (int k = 1; k <= 4; ++k) {
+        w.field(qv::damageStateName(static_cast<qv::DamageState>(k)),
+                static_cast<double>(e.loss->structuralAtLeast(k)));
+      }
+      w.endObject();
+    } else {
+      w.key("probabilityAtLeast").null();
+    }
     w.field("x", e.x).field("y", e.y).endObject();
   }
   w.endArray();

@@ -230,10 +230,53 @@ Status decodeOptionalSections(std::span<const std::uint8_t> bytes, const Parsed&
       }
     }
   }
+  if (const auto dser = findSection(header, tag("DSER"))) {
+    ByteReader r(bytes.subspan(dser->first, dser->second), dser->first);
+    DriftSeries& d = tile.driftSeries;
+    d.rateHz = r.f32("rate");
+    d.fullScale = r.f32("full scale");
+    const std::uint32_t total = r.u32("sample count");
+    if (!r.ok()) return bad("DSER", r, "truncated header");
+    if (!std::isfinite(d.rateHz) || d.rateHz <= 0.0f || d.rateHz > 1000.0f) return bad("DSER", r, "invalid rate");
+    if (!std::isfinite(d.fullScale) || d.fullScale <= 0.0f || d.fullScale > 1.0f)
+      return bad("DSER", r, "invalid full scale");
+    if (dser->second != 12 + n * 8 + static_cast<std::size_t>(total)) {
+      return Error{prefix + "section DSER at byte " + std::to_string(dser->first) + " holds " +
+                   std::to_string(dser->second) + " bytes, expected " + std::to_string(12 + n * 8) + " for " +
+                   std::to_string(n) + " buildings and " + std::to_string(total) + " samples"};
+    }
+    d.spans.resize(n);
+    std::uint64_t next = 0;
+    for (DriftSpan& span : d.spans) {
+      span.startSeconds = r.f32("start");
+      span.count = r.u32("count");
+      if (!std::isfinite(span.startSeconds) || std::abs(span.startSeconds) > 1e6f)
+        return bad("DSER", r, "invalid start time");
+      if (span.count > kMaxSamples) return bad("DSER", r, "too many samples for one building");
+      span.first = static_cast<std::uint32_t>(next);
+      next += span.count;
+      if (next > total) return bad("DSER", r, "the buildings' samples exceed the section's count");
+    }
+    if (next != total) return bad("DSER", r, "the buildings' samples do not add up to the section's count");
+    const auto codes = r.bytes(total, "samples");
+    if (!r.ok()) return bad("DSER", r, "truncated samples");
+    d.codes.assign(codes.begin(), codes.end());
+  }
   return Status{};
 }
 
 }  // namespace
+
+std::uint8_t driftSeriesCode(float driftRatio, float fullScale) {
+  if (!(driftRatio > 0.0f) || !(fullScale > 0.0f)) return 0;
+  const float x = std::min(driftRatio / fullScale, 1.0f);
+  return static_cast<std::uint8_t>(std::lround(255.0f * std::sqrt(x)));
+}
+
+float driftSeriesValue(std::uint8_t code, float fullScale) {
+  const float x = static_cast<float>(code) / 255.0f;
+  return fullScale * x * x;
+}
 
 std::string_view noResultReasonName(NoResultReason r) {
   switch (r) {
@@ -360,8 +403,36 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
     }
     sections.push_back({tag("LOSS"), &loss});
   }
+  ByteWriter dser;
+  const DriftSeries& d = tile.driftSeries;
+  if (!d.empty() && d.spans.size() == tile.buildings.size()) {
+    std::uint64_t total = 0;
+    for (const DriftSpan& span : d.spans) total += span.count;
+    dser.f32(d.rateHz);
+    dser.f32(d.fullScale);
+    dser.u32(static_cast<std::uint32_t>(total));
+    for (const DriftSpan& span : d.spans) {
+      dser.f32(span.startSeconds);
+      dser.u32(span.count);
+    }
+    // In building order whatever `first` says (a tile's spans may come from several sources).
+    for (const DriftSpan& span : d.spans) {
+      for (std::uint32_t i = 0; i < span.count; ++i) {
+        const std::size_t at = static_cast<std::size_t>(span.first) + i;
+        dser.u8(at < d.codes.size() ? d.codes[at] : 0);
+      }
+    }
+    sections.push_back({tag("DSER"), &dser});
+  }
   return assemble("QVRS", kResponseSummaryVersion, static_cast<std::uint32_t>(tile.buildings.size()), storeyValues,
                   sections);
+}
+
+float BuildingLoss::structuralAtLeast(int k) const {
+  if (k <= 0) return 1.0f;
+  float sum = 0.0f;
+  for (int j = std::min(k, 5); j < 5; ++j) sum += structural[j];
+  return std::min(sum, 1.0f);
 }
 
 float BuildingLoss::expectedState() const {
@@ -598,6 +669,66 @@ void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX,
       out[f + 1] = v;
     }
   }
+}
+
+DriftSpan appendDriftSeries(const BuildingHistory& h, float storeyHeightM, DriftSeries& series) {
+  DriftSpan span;
+  span.first = static_cast<std::uint32_t>(series.codes.size());
+  span.startSeconds = h.startSeconds;
+  if (h.sampleCount == 0 || h.floors == 0 || !(h.sampleRateHz > 0.0f) || !(series.rateHz > 0.0f) ||
+      !(series.fullScale > 0.0f)) {
+    return span;
+  }
+  // The largest storey drift at each stored sample (where the interpolated history equals the
+  // samples), straight from the modes: floor f = sum over k of shape[f][k] scale[k] q_k.
+  const std::size_t floors = h.floors;
+  std::vector<float> drift(h.sampleCount, 0.0f);
+  std::vector<float> x(floors + 1, 0.0f), y(floors + 1, 0.0f);
+  const float height = std::max(storeyHeightM, 0.5f);
+  for (std::uint32_t i = 0; i < h.sampleCount; ++i) {
+    for (const auto& [d, out] : {std::pair{&h.x, &x}, std::pair{&h.y, &y}}) {
+      const std::size_t modes = std::min<std::size_t>(d->modes, kMaxModes);
+      const bool complete = d->shapes.size() >= floors * d->modes && d->scales.size() >= d->modes &&
+                            d->coordinates.size() >= (std::size_t{i} + 1) * d->modes;
+      for (std::size_t f = 0; f < floors; ++f) {
+        float v = 0.0f;
+        if (complete) {
+          for (std::size_t k = 0; k < modes; ++k) {
+            v += d->shapes[f * d->modes + k] * d->scales[k] *
+                 static_cast<float>(d->coordinates[std::size_t{i} * d->modes + k]);
+          }
+        }
+        (*out)[f + 1] = v;
+      }
+    }
+    float worst = 0.0f;
+    for (std::size_t f = 1; f <= floors; ++f) {
+      worst = std::max({worst, std::abs(x[f] - x[f - 1]), std::abs(y[f] - y[f - 1])});
+    }
+    drift[i] = worst / height;
+  }
+  // Each window takes its samples' largest; a window between two samples (histories stored at
+  // fewer samples a second than windows) the larger of its neighbours'.
+  const double duration = static_cast<double>(h.sampleCount - 1) / static_cast<double>(h.sampleRateHz);
+  const auto windows = static_cast<std::uint32_t>(
+      std::min(std::floor(duration * static_cast<double>(series.rateHz)) + 1.0, double{kMaxSamples}));
+  std::vector<float> window(windows, -1.0f);
+  for (std::uint32_t i = 0; i < h.sampleCount; ++i) {
+    const auto w = static_cast<std::uint32_t>(static_cast<double>(i) / h.sampleRateHz * series.rateHz);
+    if (w < windows) window[w] = std::max(window[w], drift[i]);
+  }
+  for (std::uint32_t w = 0; w < windows; ++w) {
+    float v = window[w];
+    if (v < 0.0f) {
+      const double t = static_cast<double>(w) / series.rateHz * h.sampleRateHz;  // in samples
+      const auto before = static_cast<std::uint32_t>(std::min(std::floor(t), static_cast<double>(h.sampleCount - 1)));
+      const std::uint32_t after = std::min(before + 1, h.sampleCount - 1);
+      v = std::max(drift[before], drift[after]);
+    }
+    series.codes.push_back(driftSeriesCode(v, series.fullScale));
+  }
+  span.count = windows;
+  return span;
 }
 
 }  // namespace qv

@@ -201,9 +201,9 @@ Result<BuildingFilters> parseFilters(std::string_view text) {
     return Error{"longer than " + std::to_string(kMaxFilterTextBytes) + " characters"};
   }
   const std::vector<std::string_view> parts = splitCommas(text);
-  if (parts.size() != 3) {
+  if (parts.size() != 3 && parts.size() != 4) {
     return Error{std::to_string(parts.size()) + (parts.size() == 1 ? " field" : " fields") +
-                 " where 3 are expected (minDamage,use,critical)"};
+                 " where 3 or 4 are expected (minDamage,use,critical[,probability])"};
   }
   BuildingFilters f;
   if (!parts[0].empty()) {
@@ -238,6 +238,27 @@ Result<BuildingFilters> parseFilters(std::string_view text) {
       if (plus == std::string_view::npos) break;
       rest.remove_prefix(plus + 1);
     }
+  }
+  if (parts.size() == 4 && !parts[3].empty()) {
+    // "state:percent": P(structural damage >= state) at least percent %, state 1..4, percent 1..100.
+    const std::string_view p = parts[3];
+    const std::size_t colon = p.find(':');
+    const std::string_view state = p.substr(0, colon);
+    const std::string_view percent = colon == std::string_view::npos ? std::string_view() : p.substr(colon + 1);
+    int value = 0;
+    bool digits = !percent.empty() && percent.size() <= 3;
+    for (const char c : percent) {
+      if (c < '0' || c > '9')
+        digits = false;
+      else
+        value = value * 10 + (c - '0');
+    }
+    if (state.size() != 1 || state[0] < '1' || state[0] > '4' || !digits || value < 1 || value > 100) {
+      return Error{"probability '" + shown(p) + "' is not state:percent with a damage state 1 to 4 and a percent " +
+                   "1 to 100 (e.g. 2:10, P(at least moderate) at least 10 %)"};
+    }
+    f.probabilityState = state[0] - '0';
+    f.minProbabilityPercent = value;
   }
   return f;
 }

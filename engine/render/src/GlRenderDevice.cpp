@@ -50,6 +50,8 @@ const GlRenderDevice::BuildingProgram* GlRenderDevice::buildingProgram(ColorMode
   b.origin = glGetUniformLocation(p, "u_origin");
   b.buildings = glGetUniformLocation(p, "u_buildings");
   b.floors = glGetUniformLocation(p, "u_floors");
+  b.series = glGetUniformLocation(p, "u_series");
+  b.time = glGetUniformLocation(p, "u_time");
   b.driftFullScale = glGetUniformLocation(p, "u_driftFullScale");
   b.amplitude = glGetUniformLocation(p, "u_amplitude");
   b.sunDirection = glGetUniformLocation(p, "u_sunDirection");
@@ -83,9 +85,9 @@ GlRenderDevice::GlRenderDevice() {
   glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, 0, nullptr);
   glBindVertexArray(0);
 
-  for (DataTexture* t : {&buildings_, &floors_}) {
-    glGenTextures(1, &t->texture);
-    glBindTexture(GL_TEXTURE_2D, t->texture);
+  for (unsigned* texture : {&buildings_.texture, &floors_.texture, &series_.texture}) {
+    glGenTextures(1, texture);
+    glBindTexture(GL_TEXTURE_2D, *texture);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -101,6 +103,7 @@ GlRenderDevice::~GlRenderDevice() {
   }
   glDeleteTextures(1, &buildings_.texture);
   glDeleteTextures(1, &floors_.texture);
+  glDeleteTextures(1, &series_.texture);
   glDeleteVertexArrays(1, &groundVao_);
   glDeleteBuffers(1, &groundBuffer_);
   for (const BuildingProgram& b : building_) {
@@ -198,8 +201,45 @@ void GlRenderDevice::flush(DataTexture& table) {
 }
 
 void GlRenderDevice::writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) {
-  writeTexels(buildings_, static_cast<std::size_t>(first) * 2, reinterpret_cast<const float*>(records.data()),
-              records.size() * 2);
+  writeTexels(buildings_, static_cast<std::size_t>(first) * kBuildingTexels,
+              reinterpret_cast<const float*>(records.data()), records.size() * kBuildingTexels);
+}
+
+void GlRenderDevice::writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) {
+  if (codes.empty()) return;
+  constexpr std::size_t rowBytes = static_cast<std::size_t>(kTableWidth) * 4;
+  const std::size_t end = static_cast<std::size_t>(first) + codes.size();
+  const auto neededRows = static_cast<int>((end + rowBytes - 1) / rowBytes);
+  if (neededRows > maxTextureSize_) return;  // beyond the device: the table's capacity prevents this
+  ByteTexture& t = series_;
+  if (neededRows > t.rows) {
+    int rows = std::max(t.rows, 8);
+    while (rows < neededRows) rows *= 2;
+    rows = std::min(rows, maxTextureSize_);
+    t.shadow.resize(static_cast<std::size_t>(rows) * rowBytes, 0);
+    glBindTexture(GL_TEXTURE_2D, t.texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, kTableWidth, rows, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    t.dirtyFirstRow = 0;
+    t.dirtyLastRow = rows - 1;
+    t.rows = rows;
+  }
+  std::memcpy(t.shadow.data() + first, codes.data(), codes.size());
+  const auto firstRow = static_cast<int>(first / rowBytes);
+  const auto lastRow = static_cast<int>((end - 1) / rowBytes);
+  t.dirtyFirstRow = t.dirtyFirstRow < 0 ? firstRow : std::min(t.dirtyFirstRow, firstRow);
+  t.dirtyLastRow = std::max(t.dirtyLastRow, lastRow);
+}
+
+void GlRenderDevice::flush(ByteTexture& t) {
+  if (t.dirtyFirstRow < 0) return;
+  const int rows = t.dirtyLastRow - t.dirtyFirstRow + 1;
+  constexpr std::size_t rowBytes = static_cast<std::size_t>(kTableWidth) * 4;
+  glBindTexture(GL_TEXTURE_2D, t.texture);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, t.dirtyFirstRow, kTableWidth, rows, GL_RGBA, GL_UNSIGNED_BYTE,
+                  t.shadow.data() + static_cast<std::size_t>(t.dirtyFirstRow) * rowBytes);
+  pendingUpload_ += static_cast<std::uint64_t>(rows) * rowBytes;
+  t.dirtyFirstRow = t.dirtyLastRow = -1;
 }
 
 void GlRenderDevice::writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) {
@@ -210,6 +250,7 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
   DeviceFrameStats stats;
   flush(buildings_);
   flush(floors_);
+  flush(series_);
   stats.uploadBytes = pendingUpload_;
   pendingUpload_ = 0;
 
@@ -257,6 +298,16 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
     }
     glBindTexture(GL_TEXTURE_2D, floors_.texture);
     glUniform1i(u.floors, 1);
+    glActiveTexture(GL_TEXTURE2);
+    // An empty series table likewise.
+    if (series_.rows == 0) {
+      const std::uint8_t zero[4] = {0, 0, 0, 0};
+      writeSeries(0, zero);
+      flush(series_);
+    }
+    glBindTexture(GL_TEXTURE_2D, series_.texture);
+    glUniform1i(u.series, 2);
+    glUniform1f(u.time, f.timeSeconds);
     for (const DrawItem& item : items) {
       const auto it = meshes_.find(item.mesh.id);
       if (it == meshes_.end()) continue;
@@ -288,7 +339,7 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
 }
 
 std::size_t GlRenderDevice::gpuBytes() const {
-  return meshBytes_ + (buildings_.shadow.size() + floors_.shadow.size()) * sizeof(float);
+  return meshBytes_ + (buildings_.shadow.size() + floors_.shadow.size()) * sizeof(float) + series_.shadow.size();
 }
 
 }  // namespace qv

@@ -19,6 +19,8 @@ uniform mat4 u_viewProjection;
 uniform vec3 u_origin;
 uniform sampler2D u_buildings;
 uniform sampler2D u_floors;
+uniform sampler2D u_series;
+uniform float u_time;  // scene time, seconds: where the drift series are read
 // The colour mode (qv::ColorMode) is a constant of each program: GlRenderDevice defines
 // QV_COLOR_MODE after the #version line.
 const int colorMode = QV_COLOR_MODE;
@@ -35,6 +37,20 @@ flat out float v_hatch;
 // the device when it builds the program.
 @CONSTANTS@
 @PALETTE@
+
+// The largest storey drift of a building or block at time t from its drift series (the windows'
+// values at their centres, linear between them; 0 before the shaking arrives, the last window's
+// after), or -1 when it has none. The C++ mirror and its tests: qv::seriesDriftAt (qv/anim/SeriesSampling.h).
+float seriesDrift(BuildingRow b, float t) {
+  if (b.seriesBase < 0.0 || b.seriesCount < 0.5) return -1.0;
+  if (t < b.seriesStart) return 0.0;
+  float last = b.seriesCount - 1.0;
+  float u = clamp((t - b.seriesStart) * b.seriesRateHz - 0.5, 0.0, last);
+  float i0 = floor(u);
+  float a = seriesCode(u_series, int(b.seriesBase + i0));
+  float c = seriesCode(u_series, int(b.seriesBase + min(i0 + 1.0, last)));
+  return kSeriesFullScale * mix(a * a, c * c, u - i0);
+}
 
 void main() {
   BuildingRow b = readBuilding(u_buildings, int(a_slot));
@@ -68,9 +84,14 @@ void main() {
   }
 
   vec3 color;
-  // Current drift: the warm ramp only for a drift at this moment (animated buildings); the others
-  // show their peak over the whole record in grey levels, never in colours of damage (Palette.h).
-  if (colorMode == kModeCurrentDrift) color = floorBase >= 0 ? ramp(drift / u_driftFullScale) : notAnimatedGrey(peakValue / u_driftFullScale);
+  // Current drift: the warm ramp only for a drift at this moment: each storey's for the buildings
+  // animated floor by floor, else the building's (or block's) largest from its drift series; those
+  // without either show their peak over the whole record in grey levels, never in colours of
+  // damage (Palette.h).
+  if (colorMode == kModeCurrentDrift) {
+    float now = floorBase >= 0 ? drift : seriesDrift(b, u_time);
+    color = now >= 0.0 ? ramp(now / u_driftFullScale) : notAnimatedGrey(peakValue / u_driftFullScale);
+  }
   else if (colorMode == kModePeakDrift) color = ramp(peakStorey / u_driftFullScale);
   else if (colorMode == kModeDamageState) color = damage < kDamageNoResult + 0.5 ? kNoResult : ramp(damage / kDamageComplete);
   else if (colorMode >= kModeModerateOrWorse) {

@@ -6,9 +6,10 @@
 
 namespace qv {
 
-BuildingTable::BuildingTable(std::uint32_t maxBuildingRows, std::uint32_t maxFloorRows)
+BuildingTable::BuildingTable(std::uint32_t maxBuildingRows, std::uint32_t maxFloorRows, std::uint32_t maxSeriesSamples)
     : buildingSlots_(std::make_unique<RangeAllocator>(maxBuildingRows)),
-      floorSlots_(std::make_unique<RangeAllocator>(maxFloorRows)) {}
+      floorSlots_(std::make_unique<RangeAllocator>(maxFloorRows)),
+      seriesSlots_(std::make_unique<RangeAllocator>(maxSeriesSamples)) {}
 
 BuildingTable::~BuildingTable() = default;
 
@@ -52,7 +53,39 @@ std::span<FloorGpuRecord> BuildingTable::floors(std::uint32_t first, std::uint32
   return std::span(floorRows_).subspan(first, count);
 }
 
+std::optional<std::uint32_t> BuildingTable::reserveSeries(std::uint32_t count) {
+  if (count == 0) return std::nullopt;
+  const auto first = seriesSlots_->allocate(count);
+  if (!first) return std::nullopt;
+  if (seriesCodes_.size() < seriesSlots_->highWater()) seriesCodes_.resize(seriesSlots_->highWater(), 0);
+  seriesInUse_ += count;
+  return first;
+}
+
+void BuildingTable::releaseSeries(std::uint32_t first, std::uint32_t count) {
+  if (count == 0) return;
+  seriesSlots_->release(first, count);
+  seriesInUse_ -= std::min<std::uint64_t>(seriesInUse_, count);
+}
+
+std::span<std::uint8_t> BuildingTable::editSeries(std::uint32_t first, std::uint32_t count) {
+  seriesChangedFirst_ = std::min(seriesChangedFirst_, first);
+  seriesChangedEnd_ = std::max(seriesChangedEnd_, first + count);
+  return std::span(seriesCodes_).subspan(first, count);
+}
+
+std::uint64_t BuildingTable::seriesInUse() const {
+  return seriesInUse_;
+}
+
 void BuildingTable::upload(RenderDevice& device, bool floorsInUse) {
+  if (seriesChangedFirst_ < seriesChangedEnd_) {
+    seriesChangedEnd_ = std::min<std::uint32_t>(seriesChangedEnd_, static_cast<std::uint32_t>(seriesCodes_.size()));
+    device.writeSeries(seriesChangedFirst_,
+                       std::span(seriesCodes_).subspan(seriesChangedFirst_, seriesChangedEnd_ - seriesChangedFirst_));
+  }
+  seriesChangedFirst_ = UINT32_MAX;
+  seriesChangedEnd_ = 0;
   if (changedFirst_ < changedEnd_) {
     changedEnd_ = std::min<std::uint32_t>(changedEnd_, static_cast<std::uint32_t>(buildings_.size()));
     device.writeBuildings(changedFirst_, std::span(buildings_).subspan(changedFirst_, changedEnd_ - changedFirst_));

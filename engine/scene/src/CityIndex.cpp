@@ -19,14 +19,26 @@ bool BuildingFilters::usePasses(std::string_view buildingUse) const {
   }
 }
 
-bool BuildingFilters::passes(FacilityCategory facility, std::string_view buildingUse, const BuildingResponse* r) const {
+bool BuildingFilters::passes(FacilityCategory facility, std::string_view buildingUse, const BuildingResponse* r,
+                             const BuildingLoss* loss) const {
   if (const unsigned mask = categoryMask(); mask != 0 && (mask & facilityCategoryBit(facility)) == 0) return false;
   if (!usePasses(buildingUse)) return false;
   if (minDamage >= 0) {
     if (r == nullptr || r->damage == DamageState::NoResult) return false;
     if (static_cast<int>(r->damage) < minDamage) return false;
   }
+  if (probabilityActive()) {
+    if (loss == nullptr || r == nullptr || r->source == ResponseSource::None) return false;
+    // Compared in whole hundredths of a percent, so 10 % passes a probability printed as "10 %".
+    const double percent = static_cast<double>(loss->structuralAtLeast(probabilityState)) * 100.0;
+    if (std::round(percent * 100.0) < static_cast<double>(minProbabilityPercent) * 100.0) return false;
+  }
   return true;
+}
+
+int listProbabilityState(const BuildingFilters& filters) {
+  if (filters.probabilityActive()) return filters.probabilityState;
+  return std::clamp(filters.minDamage, 1, 4);
 }
 
 std::string_view listName(const BuildingListEntry& entry) {
@@ -35,9 +47,16 @@ std::string_view listName(const BuildingListEntry& entry) {
   return entry.id;
 }
 
-std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY) {
+std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY, int probabilityState) {
   std::string text(listName(entry));
   text += " | ";
+  if (entry.loss && probabilityState >= 1 && probabilityState <= 4) {
+    char probability[64];
+    std::snprintf(probability, sizeof probability, "P(>= %s) %.0f %%, ",
+                  std::string(damageStateName(static_cast<DamageState>(probabilityState))).c_str(),
+                  static_cast<double>(entry.loss->structuralAtLeast(probabilityState)) * 100.0);
+    text += probability;
+  }
   text += damageStateName(entry.damage);
   if (entry.damage != DamageState::NoResult) {
     char drift[32];
@@ -189,6 +208,13 @@ const BuildingResponse* CityIndex::response(std::uint32_t index) const {
   return summary_ && index < summary_->buildings.size() ? &summary_->buildings[index] : nullptr;
 }
 
+const BuildingLoss* CityIndex::loss(std::uint32_t index) const {
+  const BuildingResponse* r = response(index);
+  if (r == nullptr || r->source == ResponseSource::None || !summary_ || index >= summary_->losses.size())
+    return nullptr;
+  return &summary_->losses[index];
+}
+
 BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
   const SearchEntry& s = entries_[index];
   BuildingListEntry e;
@@ -207,9 +233,7 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
     e.peakDriftRatio = r->peakDriftRatio;
     e.peakRoofDisplacementM = r->peakRoofDisplacementM;
     e.pgaG = r->pgaG;
-    if (r->source != ResponseSource::None && summary_ && index < summary_->losses.size()) {
-      e.loss = summary_->losses[index];
-    }
+    if (const BuildingLoss* l = loss(index)) e.loss = *l;
   }
   return e;
 }
@@ -242,22 +266,34 @@ std::vector<BuildingListEntry> CityIndex::filteredList(const BuildingFilters& fi
   std::vector<BuildingListEntry> out;
   if (total != nullptr) *total = 0;
   if (search_.state != TileState::Loaded) return out;
+  // Most likely damaged first: with probabilities by P(>= the list's state), then the expected
+  // state; without (e.g. imported results) after them, by the deterministic state.
   struct Key {
+    bool probabilities;
+    double probability;
+    double expected;
     int damage;
     float drift;
     std::uint32_t index;
   };
+  const int state = listProbabilityState(filters);
   std::vector<Key> keys;
   for (std::uint32_t i = 0; i < entries_.size(); ++i) {
     const BuildingResponse* r = response(i);
-    if (!filters.passes(entries_[i].facility, entries_[i].use, r)) continue;
+    const BuildingLoss* loss = this->loss(i);
+    if (!filters.passes(entries_[i].facility, entries_[i].use, r, loss)) continue;
     const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
-    keys.push_back({damage, r != nullptr ? r->peakDriftRatio : 0.0f, i});
+    keys.push_back({loss != nullptr, loss != nullptr ? static_cast<double>(loss->structuralAtLeast(state)) : 0.0,
+                    loss != nullptr ? static_cast<double>(loss->expectedState()) : 0.0, damage,
+                    r != nullptr ? r->peakDriftRatio : 0.0f, i});
   }
   if (total != nullptr) *total = keys.size();
   const std::size_t n = std::min(limit, keys.size());
   std::partial_sort(keys.begin(), keys.begin() + static_cast<std::ptrdiff_t>(n), keys.end(),
                     [](const Key& a, const Key& b) {
+                      if (a.probabilities != b.probabilities) return a.probabilities;
+                      if (a.probability != b.probability) return a.probability > b.probability;
+                      if (a.expected != b.expected) return a.expected > b.expected;
                       if (a.damage != b.damage) return a.damage > b.damage;
                       if (a.drift != b.drift) return a.drift > b.drift;
                       return a.index < b.index;

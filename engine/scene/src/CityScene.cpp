@@ -143,18 +143,6 @@ FileSpec CityScene::tileSpec(std::uint32_t node) const {
   return FileSpec{FileKind::Tile, resolveUrl(manifestUrl_, n.file), n.bytes, n.crc32, n.key()};
 }
 
-FileSpec CityScene::summarySpec(std::uint32_t node) const {
-  const TileResponseFiles& r = *tileset_->nodes[node].response;
-  return FileSpec{
-      FileKind::ResponseSummary, resolveUrl(manifestUrl_, r.summaryFile), r.summaryBytes, r.summaryCrc32, {}};
-}
-
-FileSpec CityScene::historySpec(std::uint32_t node) const {
-  const TileResponseFiles& r = *tileset_->nodes[node].response;
-  return FileSpec{
-      FileKind::ResponseHistory, resolveUrl(manifestUrl_, r.historyFile), r.historyBytes, r.historyCrc32, {}};
-}
-
 void CityScene::request(std::uint32_t node) {
   // Verified bytes wait for the frame's decoding budget (finishTile).
   const bool started =
@@ -218,78 +206,6 @@ void CityScene::finishTile(std::uint32_t node) {
   else if (t.summaryLoad.state == TileState::Failed)
     markNoResult(node);
   if (tileset_->nodes[node].response) requestSummary(node);
-}
-
-void CityScene::requestSummary(std::uint32_t node) {
-  if (!tileset_->nodes[node].response) return;
-  const FileSpec spec = summarySpec(node);
-  loader_.start(
-      tiles_[node]->summaryLoad, spec,
-      [this, node, url = spec.url](std::vector<std::uint8_t>& bytes) {
-        auto decoded = decodeResponseSummary(bytes, url);
-        if (!decoded.ok()) return Verdict::rejected(decoded.error(), false);
-        if (decoded->buildings.size() != tileset_->nodes[node].buildings) {
-          return Verdict::rejected(url + ": building count differs from the city tile", false);
-        }
-        tiles_[node]->summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
-        applySummary(node);
-        return Verdict::loaded();
-      },
-      [this, node] { markNoResult(node); });  // its buildings are hatched: no result
-}
-
-void CityScene::markNoResult(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
-  if (!t.loaded) return;
-  const LoadedTile& tile = *t.loaded;
-  for (BuildingGpuRecord& row : table_.edit(tile.slotBase, tile.buildingCount())) row.damageState = -1.0f;
-  refreshBlockRows(node);
-}
-
-void CityScene::applySummary(std::uint32_t node) {
-  TileRuntime& t = *tiles_[node];
-  if (!t.loaded || !t.summary) return;
-  const LoadedTile& tile = *t.loaded;
-  for (std::size_t b = 0; b < t.summary->buildings.size() && b < tile.positionOf.size(); ++b) {
-    const BuildingResponse& r = t.summary->buildings[b];
-    BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
-    row.peakValue = r.peakDriftRatio;
-    row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
-    row.lossCode = -1.0f;
-    if (b < t.summary->losses.size() && r.source != ResponseSource::None) {
-      const BuildingLoss& l = t.summary->losses[b];
-      int tag = 0;
-      for (int k = 1; k < 3; ++k) {
-        if (l.tag[k] > l.tag[tag]) tag = k;
-      }
-      row.lossCode = packLossCode(l.structural[2] + l.structural[3] + l.structural[4], l.expectedState(), tag);
-    }
-  }
-  table_.changed(tile.slotBase, tile.buildingCount());
-  applyFlags(node);  // damage filters need the summary
-}
-
-void CityScene::requestHistory(std::uint32_t node) {
-  const TileNode& n = tileset_->nodes[node];
-  if (!n.response || n.response->historyFile.empty()) return;
-  const FileSpec spec = historySpec(node);
-  loader_.start(tiles_[node]->historyLoad, spec, [this, node, url = spec.url](std::vector<std::uint8_t>& bytes) {
-    auto decoded = decodeResponseHistory(bytes, url);
-    if (!decoded.ok()) return Verdict::rejected(decoded.error(), false);
-    if (decoded->buildings.size() != tileset_->nodes[node].buildings) {
-      return Verdict::rejected(url + ": building count differs from the city tile", false);
-    }
-    TileRuntime& t = *tiles_[node];
-    t.history = std::make_unique<ResponseHistoryTile>(std::move(decoded).value());
-    std::uint64_t historyBytes = 0;
-    for (const BuildingHistory& h : t.history->buildings) {
-      historyBytes += sizeof(BuildingHistory) + (h.x.coordinates.size() + h.y.coordinates.size()) * 2 +
-                      (h.x.shapes.size() + h.y.shapes.size()) * 4;
-    }
-    t.historyBytes = historyBytes;
-    ++residencyGeneration_;
-    return Verdict::loaded();
-  });
 }
 
 void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs& times, FrameCounts& counts,
@@ -409,6 +325,7 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
   const Frustum& frustum = view.frustum();
   // Tile boxes first, then the buildings of partly visible tiles.
   std::uint32_t visibleBuildings = 0;
+  seriesInView_ = 0;
   // Leaves' plain-prism meshes are made within a time budget (at least one a frame); until then a
   // leaf is drawn with its storeys.
   const double prismStart = clock_.nowSeconds();
@@ -425,7 +342,11 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
     if (frustum.classify(nodeBox(tileset_->nodes[i])) == Containment::Outside) continue;
     // What is in view is counted (the panel's totals in view), what shows on screen is drawn.
     t.loaded->tree.query(frustum, t.inView);
-    for (const IndexRange& r : t.inView) visibleBuildings += r.end - r.begin;
+    const std::vector<std::uint32_t>& withSeries = t.loaded->seriesBefore;
+    for (const IndexRange& r : t.inView) {
+      visibleBuildings += r.end - r.begin;
+      if (r.end < withSeries.size()) seriesInView_ += withSeries[r.end] - withSeries[r.begin];
+    }
     if (t.loaded->data.coarse) {
       cullRegions(i, view, items);
       continue;

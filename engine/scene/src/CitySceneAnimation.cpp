@@ -30,6 +30,11 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   }
   sampleFloors(timeSeconds);
   counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
+  // In view with a drift series and not moved floor by floor (Viewer::frame counts them as
+  // following their history in the current-drift colours).
+  std::uint32_t movingWithSeries = 0;
+  for (const auto& a : animated_) movingWithSeries += table_.row(a->slot).seriesBase >= 0.0f ? 1u : 0u;
+  counts.buildingsSeriesOnly += seriesInView_ - std::min(seriesInView_, movingWithSeries);
   counts.modelsAnimated += modelsAnimated_;
 }
 

@@ -102,6 +102,7 @@ void CityScene::refreshBlockRows(std::uint32_t node) {
     if (!blocks) continue;
     const auto count = static_cast<std::uint32_t>(blocks->level.boxes.size());
     aggregateBlockRows(blocks->level, rows, table_.edit(blocks->slotBase, count));
+    if (tile.seriesCount > 0) refreshBlockSeries(*blocks, rows);
   }
 }
 

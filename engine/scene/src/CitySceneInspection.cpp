@@ -17,8 +17,11 @@ void CityScene::applyFlags(std::uint32_t node) {
     BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
     const BuildingAttributes& a = tile.data.buildings[b].attributes;
     const BuildingResponse* r = t.summary && b < t.summary->buildings.size() ? &t.summary->buildings[b] : nullptr;
+    const BuildingLoss* loss = r != nullptr && r->source != ResponseSource::None && b < t.summary->losses.size()
+                                   ? &t.summary->losses[b]
+                                   : nullptr;
     BuildingTable::setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
-    BuildingTable::setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r));
+    BuildingTable::setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r, loss));
     BuildingTable::setFlag(row, kFlagHidden, hiddenByLod(a.lod));
   }
   table_.changed(tile.slotBase, tile.buildingCount());

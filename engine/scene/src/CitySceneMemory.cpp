@@ -10,9 +10,17 @@ namespace qv {
 std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
   const TileRuntime& t = *tiles_[node];
   std::uint64_t total = t.bytes.size() + t.historyBytes;
-  if (t.loaded) total += t.loaded->cpuBytes + t.loaded->gpuBytes;
+  if (t.loaded) {
+    total += t.loaded->cpuBytes + t.loaded->gpuBytes;
+    // Drift series: the table's copy and the device's.
+    std::uint64_t series = t.loaded->seriesCount + t.loaded->seriesBefore.size() * sizeof(std::uint32_t) / 2;
+    for (const auto& blocks : t.loaded->blocks) series += blocks ? blocks->seriesCount : 0;
+    total += 2 * series;
+  }
   if (t.summary) {
-    total += t.summary->buildings.size() * sizeof(BuildingResponse) + t.summary->storeyPeakDrift.size() * sizeof(float);
+    total += t.summary->buildings.size() * sizeof(BuildingResponse) +
+             t.summary->storeyPeakDrift.size() * sizeof(float) + t.summary->driftSeries.codes.size() +
+             t.summary->driftSeries.spans.size() * sizeof(DriftSpan);
   }
   return total;
 }
@@ -70,6 +78,7 @@ void CityScene::evict(std::uint32_t node) {
     t.animatedIndex.clear();
     reindexAnimated();
     destroyMeshes(*t.loaded);
+    releaseSeries(*t.loaded);
     for (const auto& blocks : t.loaded->blocks) {
       if (blocks) table_.releaseBuildings(blocks->slotBase, static_cast<std::uint32_t>(blocks->level.boxes.size()));
     }

@@ -1,6 +1,6 @@
 // The per-node state of a CityScene, shared by its source files (CityScene.cpp: loading, the
 // frame and memory; CitySceneAnimation.cpp; CitySceneBlocks.cpp: the far view; CitySceneInspection.cpp:
-// flags, picking, selection).
+// flags, picking, selection; CitySceneResponse.cpp: the response files of each tile).
 #pragma once
 
 #include <cstdint>
@@ -22,6 +22,8 @@ struct CityScene::BlockLevelRuntime {
   MeshHandle mesh;
   TileIndexRuns runs;          // where each block's triangles are in the mesh
   std::uint32_t slotBase = 0;  // block p's row is slotBase + p
+  // The blocks' drift series (the worst member at each moment) in the series table.
+  std::uint32_t seriesBase = 0, seriesCount = 0;
 };
 
 struct CityScene::LoadedTile : TileContent {
@@ -29,6 +31,10 @@ struct CityScene::LoadedTile : TileContent {
   MeshHandle mesh;
   TileIndexRuns runs;  // where each position's triangles are in the mesh
   std::uint32_t slotBase = 0;
+  // Its buildings' drift series in the series table (from the summary), and per position p how
+  // many positions before it have one (seriesBefore[p]; positionOf.size() + 1 entries, or empty).
+  std::uint32_t seriesBase = 0, seriesCount = 0;
+  std::vector<std::uint32_t> seriesBefore;
   std::uint64_t cpuBytes = 0;
   std::uint64_t gpuBytes = 0;
   // Far-view tiles: block levels made so far, by level; levels below minBlockLevel are not worth

@@ -121,6 +121,10 @@ std::string describeFilters(const BuildingFilters& f) {
   if (f.minDamage >= 0 && f.minDamage <= 4) {
     add("damage at least " + std::string(damageStateName(static_cast<DamageState>(f.minDamage))));
   }
+  if (f.probabilityActive()) {
+    add("P(damage at least " + std::string(damageStateName(static_cast<DamageState>(f.probabilityState))) +
+        ") at least " + std::to_string(f.minProbabilityPercent) + " %");
+  }
   if (!f.use.empty()) add("use: " + joinedWith(f.use, " or "));
   if (f.criticalOnly) add("critical facilities only (essential or school/shelter)");
   if (f.categories != 0) add("facility: " + categoryNames(f.categories, " or ", false));
@@ -166,6 +170,10 @@ std::string exportFileName(const Tileset& tileset, const BuildingFilters& filter
   add(what);
   if (filters.minDamage >= 0 && filters.minDamage <= 4) {
     add("damage-" + std::string(damageStateName(static_cast<DamageState>(filters.minDamage))));
+  }
+  if (filters.probabilityActive()) {
+    add("p-" + std::string(damageStateName(static_cast<DamageState>(filters.probabilityState))) + "-" +
+        std::to_string(filters.minProbabilityPercent) + "pct");
   }
   if (!filters.use.empty()) add("use-" + filters.use);  // "use-hospital-school": slug turns '+' into '-'
   if (filters.criticalOnly) add("critical");

@@ -14,7 +14,7 @@ struct Field {
   std::size_t offsetBytes;
 };
 
-constexpr std::array<Field, 8> kBuildingFields = {{
+constexpr std::array<Field, 12> kBuildingFields = {{
     {"storeyHeightMeters", offsetof(BuildingGpuRecord, storeyHeightMeters)},
     {"storeys", offsetof(BuildingGpuRecord, storeys)},
     {"floorBase", offsetof(BuildingGpuRecord, floorBase)},
@@ -23,6 +23,10 @@ constexpr std::array<Field, 8> kBuildingFields = {{
     {"flags", offsetof(BuildingGpuRecord, flags)},
     {"baseZ", offsetof(BuildingGpuRecord, baseZ)},
     {"lossCode", offsetof(BuildingGpuRecord, lossCode)},
+    {"seriesBase", offsetof(BuildingGpuRecord, seriesBase)},
+    {"seriesStart", offsetof(BuildingGpuRecord, seriesStart)},
+    {"seriesCount", offsetof(BuildingGpuRecord, seriesCount)},
+    {"seriesRateHz", offsetof(BuildingGpuRecord, seriesRateHz)},
 }};
 static_assert(kBuildingFields.size() * sizeof(float) == sizeof(BuildingGpuRecord), "a field is missing");
 
@@ -110,6 +114,15 @@ std::string glslConstants() {
   s += "vec4 texel(sampler2D table, int i) { return texelFetch(table, ivec2(i % kTableWidth, i / kTableWidth), 0); }\n";
   s += rowReader("BuildingRow", "readBuilding", "i * kBuildingTexels", kBuildingFields);
   s += rowReader("FloorRow", "readFloor", "i", kFloorFields);
+  // The series table (RGBA8, kSeriesSamplesPerTexel codes a texel): code i as code / 255.
+  s += "const float kSeriesFullScale = " + std::to_string(kSeriesFullScale).substr(0, 8) + ";\n";
+  s += intConstant("kSeriesSamplesPerTexel", kSeriesSamplesPerTexel);
+  s += "float seriesCode(sampler2D series, int i) {\n"
+       "  int t = i / kSeriesSamplesPerTexel;\n"
+       "  vec4 v = texelFetch(series, ivec2(t % kTableWidth, t / kTableWidth), 0);\n"
+       "  int c = i - t * kSeriesSamplesPerTexel;\n"
+       "  return c == 0 ? v.x : (c == 1 ? v.y : (c == 2 ? v.z : v.w));\n"
+       "}\n";
   return s;
 }
 

@@ -32,6 +32,11 @@ void NullRenderDevice::writeFloors(std::uint32_t first, std::span<const FloorGpu
   pendingUpload_ += records.size_bytes();
 }
 
+void NullRenderDevice::writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) {
+  seriesSamples_ = std::max(seriesSamples_, static_cast<std::size_t>(first) + codes.size());
+  pendingUpload_ += codes.size_bytes();
+}
+
 void NullRenderDevice::render(const FrameUniforms& uniforms, std::span<const DrawItem> items) {
   DeviceFrameStats stats;
   stats.uploadBytes = pendingUpload_;
@@ -59,7 +64,7 @@ void NullRenderDevice::render(const FrameUniforms& uniforms, std::span<const Dra
 }
 
 std::size_t NullRenderDevice::gpuBytes() const {
-  std::size_t total = buildingRows_ * sizeof(BuildingGpuRecord) + floorRows_ * sizeof(FloorGpuRecord);
+  std::size_t total = buildingRows_ * sizeof(BuildingGpuRecord) + floorRows_ * sizeof(FloorGpuRecord) + seriesSamples_;
   for (const auto& [id, mesh] : meshes_) total += mesh.bytes;
   return total;
 }

@@ -206,6 +206,9 @@ void Viewer::frame(double dtSeconds) {
   if (test_) frameTestScene(view, times, counts, items, uniforms);
   if (city_) {
     city_->update(view, time_, times, counts, items);
+    // Drawn in the current-drift colours, the buildings with a drift series follow their history
+    // too (coloured by their drift at this time), not only those moved floor by floor.
+    if (colorMode_ == ColorMode::CurrentDrift) counts.buildingsAnimated += counts.buildingsSeriesOnly;
     uniforms.showModels = city_->showLod2();
     if (const Tileset* t = city_->tileset()) {
       // Ground under the whole city with a margin.
@@ -221,6 +224,7 @@ void Viewer::frame(double dtSeconds) {
   uniforms.eye = view.eye();
   uniforms.colorMode = colorMode_;
   uniforms.amplitude = amplitude_;
+  uniforms.timeSeconds = static_cast<float>(time_);
   uniforms.viewportWidth = widthPixels_;
   uniforms.viewportHeight = heightPixels_;
   device_.render(uniforms, items);

@@ -116,52 +116,16 @@ void drawQualityState(QualityState& q, ui::Widgets& w) {
 
 }  // namespace
 
-const char* ControlPanel::qualityName(QualityPreset preset) {
-  switch (preset) {
-    case QualityPreset::High:
-      return "High (desktop)";
-    case QualityPreset::Balanced:
-      return "Balanced";
-    default:
-      return "Low (weak devices)";
-  }
-}
-
 void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset, int governorStep) {
   CityScene* city = viewer.city();
   if (city == nullptr) return;
+  const QualitySettings q = qualitySettings(preset, governorStep);
   CitySceneOptions& o = city->mutableOptions();
-  switch (preset) {
-    case QualityPreset::High:
-      o.maxScreenSpaceError = 12.0f;
-      o.blockPixels = 4.0f;
-      o.maxDrawTiles = 240;
-      o.animationRadiusM = 1000.0f;
-      o.maxAnimatedBuildings = 20000;
-      break;
-    case QualityPreset::Balanced:
-      o.maxScreenSpaceError = 24.0f;
-      o.blockPixels = 6.0f;
-      o.maxDrawTiles = 120;
-      o.animationRadiusM = 600.0f;
-      o.maxAnimatedBuildings = 6000;
-      break;
-    case QualityPreset::Low:
-      o.maxScreenSpaceError = 48.0f;
-      o.blockPixels = 8.0f;
-      o.maxDrawTiles = 48;
-      o.animationRadiusM = 300.0f;
-      o.maxAnimatedBuildings = 1500;
-      break;
-  }
-  const DetailScale scale = detailScaleForStep(governorStep);
-  o.maxScreenSpaceError *= scale.screenSpaceError;
-  o.blockPixels *= scale.screenSpaceError;
-  o.maxDrawTiles = std::max<std::uint32_t>(
-      8u, static_cast<std::uint32_t>(std::lround(static_cast<float>(o.maxDrawTiles) * scale.drawTiles)));
-  o.animationRadiusM *= scale.animationRadius;
-  o.maxAnimatedBuildings =
-      static_cast<std::uint32_t>(std::lround(static_cast<float>(o.maxAnimatedBuildings) * scale.animatedBuildings));
+  o.maxScreenSpaceError = q.maxScreenSpaceError;
+  o.blockPixels = q.blockPixels;
+  o.maxDrawTiles = q.maxDrawTiles;
+  o.animationRadiusM = q.animationRadiusM;
+  o.maxAnimatedBuildings = q.maxAnimatedBuildings;
 }
 
 std::string ControlPanel::lengthText(const Viewer& viewer, double metres) const {
@@ -496,6 +460,8 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       w.text("Damage state (HAZUS, from peak inter-storey drift):");
     } else if (mode == ColorMode::PeakDrift) {
       w.text("Inter-storey drift (peak):");
+    } else if (city != nullptr && city->hasDriftSeries()) {
+      w.textWrapped("Inter-storey drift (now), every building: its largest storey (close by, each storey):");
     } else {
       w.text("Inter-storey drift (now), animated buildings:");
     }
@@ -521,7 +487,15 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       }
       w.swatch(c.r, c.g, c.b, label);
     }
-    if (mode == ColorMode::CurrentDrift && city != nullptr && tileset != nullptr) {
+    if (mode == ColorMode::CurrentDrift && city != nullptr && tileset != nullptr && city->hasDriftSeries()) {
+      // Every building with a response follows its drift series (far blocks: their worst member).
+      const CitySceneOptions& o = city->options();
+      w.textWrapped(
+          ui::format("%u buildings in view follow their response now; within %s of the camera "
+                     "(at most %u) each storey also moves by its own displacement.",
+                     s.latest.buildingsAnimated, lengthText(viewer, static_cast<double>(o.animationRadiusM)).c_str(),
+                     o.maxAnimatedBuildings));
+    } else if (mode == ColorMode::CurrentDrift && city != nullptr && tileset != nullptr) {
       // Only animated buildings have a drift now; the others show their peak, in greys that no one
       // can take for damage that has already happened (qv/scene/Palette.h).
       w.textWrapped("Not animated (beyond the animation radius): peak drift over the whole record");
@@ -593,6 +567,38 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     int damage = std::clamp(f.minDamage, 0, 4);
     if (f.minDamage < 0) damage = 0;
     if (w.combo("Damage", &damage, damageItems, 5)) f.minDamage = damage == 0 ? -1 : damage;
+    // The probabilistic filter (HAZUS fragility): the choices people ask for, plus the one in use
+    // when a link or the API set another.
+    struct ProbabilityChoice {
+      int state, percent;
+    };
+    static constexpr ProbabilityChoice kProbabilityChoices[] = {{-1, 0}, {1, 10}, {1, 25}, {2, 5},
+                                                                {2, 10}, {2, 25}, {3, 5},  {4, 1}};
+    std::vector<std::string> probabilityLabels;
+    std::vector<ProbabilityChoice> probabilityValues;
+    int probability = 0;
+    for (const ProbabilityChoice& c : kProbabilityChoices) {
+      if (c.state == f.probabilityState && c.percent == f.minProbabilityPercent) {
+        probability = static_cast<int>(probabilityValues.size());
+      }
+      probabilityValues.push_back(c);
+    }
+    if (f.probabilityActive() && probability == 0) {
+      probability = static_cast<int>(probabilityValues.size());
+      probabilityValues.push_back({f.probabilityState, f.minProbabilityPercent});
+    }
+    for (const ProbabilityChoice& c : probabilityValues) {
+      probabilityLabels.push_back(
+          c.state < 1 ? std::string("any")
+                      : ui::format("P(%s or worse) at least %d %%",
+                                   std::string(damageStateName(static_cast<DamageState>(c.state))).c_str(), c.percent));
+    }
+    std::vector<const char*> probabilityItems;
+    for (const std::string& label : probabilityLabels) probabilityItems.push_back(label.c_str());
+    if (w.combo("Likely damage", &probability, probabilityItems.data(), static_cast<int>(probabilityItems.size()))) {
+      f.probabilityState = probabilityValues[static_cast<std::size_t>(probability)].state;
+      f.minProbabilityPercent = probabilityValues[static_cast<std::size_t>(probability)].percent;
+    }
     // Facility categories (FacilityCategory.h: Hazus essential facilities, FEMA community lifelines).
     w.checkbox("Critical facilities only (essential, schools and shelters)", &f.criticalOnly);
     w.text("Facility categories (any checked):");
@@ -633,7 +639,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     // Each row: name or address, damage, use and category, distance from the camera's target.
     const CameraState& camera = viewer.camera();
     for (const BuildingListEntry& e : list) {
-      const std::string label = listRowText(e, camera.x, camera.y) + "##list" + e.id;
+      const std::string label = listRowText(e, camera.x, camera.y, listProbabilityState(f)) + "##list" + e.id;
       if (w.selectable(label.c_str(), e.id == viewer.selection())) {
         if (!viewer.select(e.id) || !viewer.flyToSelection())
           viewer.flyTo(e.x, e.y, std::max(200.0, static_cast<double>(e.heightM) * 3.0));
@@ -669,7 +675,8 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   // person sees why and how to get full quality back.
   if (w.collapsingHeader("Performance", qualityState_ != nullptr && qualityState_->weakStart)) {
     int quality = static_cast<int>(quality_);
-    static const char* const qualities[] = {"High (desktop)", "Balanced", "Low (weak devices)"};
+    static const char* const qualities[] = {qualityName(QualityPreset::High), qualityName(QualityPreset::Balanced),
+                                            qualityName(QualityPreset::Low)};
     if (w.combo("Quality", &quality, qualities, 3)) {
       quality_ = static_cast<QualityPreset>(quality);
       applyQuality(viewer, quality_);

@@ -215,6 +215,13 @@ int runResponse(const CommandArgs& argv) {
               r.buildings > 0 ? static_cast<double>(r.historyBytes) / static_cast<double>(r.buildings) : 0.0,
               r.meanSampleRateHz);
   std::printf(
+      "far series  %s of drift series in the tile summaries (%.0f B per building and tile holding it, %.0f "
+      "windows a second)\n",
+      humanBytes(r.driftSeriesBytes).c_str(),
+      r.driftSeriesBuildings > 0 ? static_cast<double>(r.driftSeriesBytes) / static_cast<double>(r.driftSeriesBuildings)
+                                 : 0.0,
+      static_cast<double>(kDriftSeriesRateHz));
+  std::printf(
       "histories   worst error %.2f %% of peak roof displacement, 99th percentile %.2f %% (%.2f encodings a "
       "building)\n",
       100.0 * r.worstRelativeError, 100.0 * r.p99RelativeError,

@@ -827,6 +827,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   report.approximateBuildings = written->approximate;
   report.summaryBytes = written->summaryBytes;
   report.historyBytes = written->historyBytes;
+  report.driftSeriesBytes = written->driftSeriesBytes;
+  report.driftSeriesBuildings = written->driftSeriesBuildings;
   report.folder = written->folder;
   report.meanSampleRateHz = info.sampleRateHz;
   if (!relativeErrors.empty()) {

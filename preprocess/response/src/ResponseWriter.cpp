@@ -51,8 +51,28 @@ NoResultReason reasonFromName(std::string_view name) {
 // section only when some building has its value (the others then get zeros).
 class SummaryBuilder {
  public:
+  /// `withSeries`: the tile summaries carry the far view's drift series; the city-wide index does
+  /// not (the viewer's list and filters do not need them).
+  explicit SummaryBuilder(bool withSeries = true) : withSeries_(withSeries) {
+    if (withSeries_) {
+      tile_.driftSeries.rateHz = kDriftSeriesRateHz;
+      tile_.driftSeries.fullScale = kDriftSeriesFullScale;
+    }
+  }
   /// `r` null: a building without a response (not in the results).
   void add(const BuildingResult* r) {
+    if (withSeries_) {
+      DriftSpan span;
+      span.first = static_cast<std::uint32_t>(tile_.driftSeries.codes.size());
+      if (r != nullptr && r->summary.source != ResponseSource::None && !r->driftCodes.empty()) {
+        span.startSeconds = r->driftStartSeconds;
+        span.count = static_cast<std::uint32_t>(r->driftCodes.size());
+        tile_.driftSeries.codes.insert(tile_.driftSeries.codes.end(), r->driftCodes.begin(), r->driftCodes.end());
+        hasSeries_ = true;
+        ++seriesBuildings_;
+      }
+      tile_.driftSeries.spans.push_back(span);
+    }
     BuildingResponse s = r != nullptr ? r->summary : BuildingResponse{};
     s.firstStorey = static_cast<std::uint32_t>(tile_.storeyPeakDrift.size());
     for (std::uint16_t k = 0; k < s.storeys; ++k) {
@@ -74,12 +94,20 @@ class SummaryBuilder {
     if (!hasSpread_) tile_.spread.clear();
     if (!hasStoreySpread_) tile_.storeySpread.clear();
     if (!hasLoss_) tile_.losses.clear();
+    if (!hasSeries_) tile_.driftSeries = DriftSeries{};
     return tile_;
   }
+  /// Bytes the drift series section takes in the encoded summary (0 without one).
+  [[nodiscard]] std::uint64_t seriesBytes() const {
+    return hasSeries_ ? 12 + 12 + 8 * tile_.driftSeries.spans.size() + tile_.driftSeries.codes.size() : 0;
+  }
+  [[nodiscard]] std::uint64_t seriesBuildings() const { return seriesBuildings_; }
 
  private:
   ResponseSummaryTile tile_;
-  bool hasScaling_ = false, hasSpread_ = false, hasStoreySpread_ = false, hasLoss_ = false;
+  bool withSeries_ = true;
+  bool hasScaling_ = false, hasSpread_ = false, hasStoreySpread_ = false, hasLoss_ = false, hasSeries_ = false;
+  std::uint64_t seriesBuildings_ = 0;
 };
 
 }  // namespace
@@ -182,11 +210,20 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
   SummaryBuilder summary;
   ResponseHistoryTile history;
   history.durationSeconds = 0.0f;
-  for (BuildingResult& r : results) {
+  for (std::size_t b = 0; b < results.size(); ++b) {
+    BuildingResult& r = results[b];
     if (r.summary.source == ResponseSource::None) {
       r.summary.storeys = 0;
       r.summary.damage = DamageState::NoResult;
     }
+    // The far view's drift series from the stored history, with the storey height the viewer
+    // colours the animated buildings' drift by (TileMeshBuilder).
+    DriftSeries series;
+    series.rateHz = kDriftSeriesRateHz;
+    series.fullScale = kDriftSeriesFullScale;
+    const DriftSpan span = appendDriftSeries(r.history, tile.buildings[b].attributes.storeyHeightM(), series);
+    r.driftStartSeconds = span.startSeconds;
+    r.driftCodes = std::move(series.codes);
     summary.add(&r);
     if (r.history.sampleCount > 0 && r.history.sampleRateHz > 0.0f) {
       history.durationSeconds =
@@ -210,6 +247,8 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
   tileset_.nodes[node].response = files;
   report_.summaryBytes += summaryBytes.size();
   report_.historyBytes += historyBytes.size();
+  report_.driftSeriesBytes += summary.seriesBytes();
+  report_.driftSeriesBuildings += summary.seriesBuildings();
   for (std::size_t b = 0; b < tile.buildings.size(); ++b) {
     BuildingResult& r = results[b];
     const BuildingResponse& s = r.summary;
@@ -262,6 +301,8 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
     if (Status s = writeFileAtomic(cityDir_ + "/" + files.summaryFile, encoded); !s.ok()) return Error{s.error()};
     n.response = files;
     report_.summaryBytes += encoded.size();
+    report_.driftSeriesBytes += summary.seriesBytes();
+    report_.driftSeriesBuildings += summary.seriesBuildings();
   }
   // The city-wide summary, in the search index's order (the viewer's list, filters and exports).
   if (tileset_.search) {
@@ -270,7 +311,7 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
     if (!bytes.ok()) return Error{bytes.error()};
     auto index = decodeSearchIndex(*bytes, path);
     if (!index.ok()) return Error{index.error()};
-    SummaryBuilder summary;
+    SummaryBuilder summary(false);
     for (const SearchEntry& e : *index) {
       const auto it = byId_.find(e.id);
       summary.add(it != byId_.end() ? &it->second : nullptr);

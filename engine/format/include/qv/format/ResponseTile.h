@@ -127,7 +127,35 @@ struct BuildingLoss {
   bool operator==(const BuildingLoss&) const = default;
   /// Σ k · P(DS = k) of the structural states, 0 .. 4.
   [[nodiscard]] float expectedState() const;
+  /// P(structural DS >= k) = Σ_{j >= k} P(DS = j): 1 for k <= 0, 0 for k > 4.
+  [[nodiscard]] float structuralAtLeast(int k) const;
 };
+
+/// The far view's drift series (optional summary section DSER), for every drawn building to follow
+/// the shaking without its full history: per building, the largest inter-storey drift ratio over
+/// its storeys and the two directions in each window [start + i / rateHz, start + (i + 1) / rateHz),
+/// quantized to one byte on a square-root scale: code = round(255 sqrt(min(drift, fullScale) /
+/// fullScale)) (driftSeriesCode), so small drifts keep their resolution. A building without a
+/// history has count 0. `first` indexes `codes`; spans are laid out in building order.
+struct DriftSpan {
+  float startSeconds = 0.0f;  ///< scene time of its first window (the shaking's arrival)
+  std::uint32_t first = 0;
+  std::uint32_t count = 0;
+  bool operator==(const DriftSpan&) const = default;
+};
+struct DriftSeries {
+  float rateHz = 0.0f;              ///< windows per second
+  float fullScale = 0.0f;           ///< drift ratio of code 255
+  std::vector<DriftSpan> spans;     ///< one per building, or empty (no series)
+  std::vector<std::uint8_t> codes;  ///< every building's codes, one after another
+  [[nodiscard]] bool empty() const { return spans.empty(); }
+  bool operator==(const DriftSeries&) const = default;
+};
+/// What quakeview-prep response writes: 4 windows a second, 5 % drift at code 255.
+inline constexpr float kDriftSeriesRateHz = 4.0f;
+inline constexpr float kDriftSeriesFullScale = 0.05f;
+[[nodiscard]] std::uint8_t driftSeriesCode(float driftRatio, float fullScale);
+[[nodiscard]] float driftSeriesValue(std::uint8_t code, float fullScale);
 
 struct ResponseSummaryTile {
   std::vector<BuildingResponse> buildings;
@@ -138,6 +166,7 @@ struct ResponseSummaryTile {
   std::vector<BuildingSpread> spread;      ///< SUIT
   std::vector<StoreySpread> storeySpread;  ///< SSPR
   std::vector<BuildingLoss> losses;        ///< LOSS
+  DriftSeries driftSeries;                 ///< DSER (tile summaries; not the city-wide index)
 };
 
 std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile);
@@ -174,5 +203,13 @@ Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> 
 /// engine::anim's (qv/anim/HistorySampling.h), which the viewer's frame loop uses directly.
 void sampleHistory(const BuildingHistory& history, double timeSeconds, std::span<float> floorsX,
                    std::span<float> floorsY);
+
+/// Appends the drift series of `history` (DriftSeries: windows of 1 / series.rateHz seconds from
+/// its start, each the largest inter-storey drift ratio over its storeys and the two directions,
+/// |dx| / storeyHeightM or |dy| / storeyHeightM, as the summary's peak drift and the HAZUS
+/// thresholds have it, at the history's stored samples; a window between two samples takes the
+/// larger of theirs) to `series.codes` and returns its span. A history without samples or floors
+/// gives count 0. series.rateHz and fullScale must be set (> 0).
+DriftSpan appendDriftSeries(const BuildingHistory& history, float storeyHeightM, DriftSeries& series);
 
 }  // namespace qv

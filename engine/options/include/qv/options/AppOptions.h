@@ -3,7 +3,7 @@
 // The URL names are a contract with everyone who shares a link (README, "URL options" and
 // "Sharing a view"):
 //   query: ?data=URL ?scene=test ?aa=0|1 ?quality=high|balanced|low ?memory=MB ?bench=SECONDS
-//   hash:  #cam=x,y,distance,heading,pitch[,fov] &t=seconds &play=0|1 &sel=id &f=minDamage,use,critical
+//   hash:  #cam=x,y,distance,heading,pitch[,fov] &t=seconds &play=0|1 &sel=id &f=minDamage,use,critical[,probability]
 // A bad value never stops the viewer: the option keeps its default and a message for the person
 // reading the page names the URL parameter and the value given ("The time in the link (t=-3) is
 // not a number of seconds from 0; starting at 0 s.").
@@ -73,13 +73,14 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
 /// Longest filter text parseFilters accepts, bytes.
 inline constexpr std::size_t kMaxFilterTextBytes = 300;
 
-/// Parses the hash's filter text "minDamage,use,critical": exactly three fields, each empty for
-/// "any": minDamage a digit 0..4 (none .. complete); use one normalized use (lower-case letters
+/// Parses the hash's filter text "minDamage,use,critical[,probability]": three or four fields, each
+/// empty for "any": minDamage a digit 0..4 (none .. complete); use one normalized use (lower-case letters
 /// and '_': "hospital") or several joined by '+' ("hospital+school+fire_station"); critical "0" or
 /// "1" (1: critical facilities, FacilityCategory Essential or SchoolShelter) or facility category
-/// names joined by '+' ("essential+school_shelter+high_occupancy+hazardous", facilityCategoryName).
-/// At most kMaxFilterTextBytes. The error names the field at fault and its value ("minDamage '9'
-/// is not a damage state 0 to 4").
+/// names joined by '+' ("essential+school_shelter+high_occupancy+hazardous", facilityCategoryName);
+/// probability "state:percent", P(structural damage >= state) at least percent % (state 1..4 for
+/// slight .. complete, percent 1..100: "2:10"). At most kMaxFilterTextBytes. The error names the field at fault and its
+/// value ("minDamage '9' is not a damage state 0 to 4").
 Result<BuildingFilters> parseFilters(std::string_view text);
 
 }  // namespace qv

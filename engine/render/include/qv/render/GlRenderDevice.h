@@ -3,7 +3,9 @@
 // Meshes live in one VAO + vertex buffer + index buffer each (a tile's merged geometry). The
 // per-building table and the per-floor displacement table are RGBA32F data textures kGpuTableWidth
 // texels wide that the vertex shader reads with texelFetch; CPU shadows let them grow and let only the
-// changed rows be re-sent each frame. Must be created and used with a current WebGL2 context.
+// changed rows be re-sent each frame. The series table (the drift series, one byte a sample) is an
+// RGBA8 texture of the same width, four samples a texel, kept the same way. Must be created and used
+// with a current WebGL2 context.
 #pragma once
 
 #include <array>
@@ -31,6 +33,7 @@ class GlRenderDevice final : public RenderDevice {
   [[nodiscard]] std::size_t meshTriangles(MeshHandle mesh) const override;
   void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) override;
   void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) override;
+  void writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) override;
   void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) override;
   [[nodiscard]] DeviceFrameStats lastFrameStats() const override { return last_; }
   [[nodiscard]] std::size_t gpuBytes() const override;
@@ -53,12 +56,19 @@ class GlRenderDevice final : public RenderDevice {
   };
   void writeTexels(DataTexture& table, std::size_t firstTexel, const float* data, std::size_t texelCount);
   void flush(DataTexture& table);
+  struct ByteTexture {
+    unsigned texture = 0;
+    int rows = 0;                      // allocated rows
+    std::vector<std::uint8_t> shadow;  // rows × kTableWidth × 4 bytes
+    int dirtyFirstRow = -1, dirtyLastRow = -1;
+  };
+  void flush(ByteTexture& table);
 
   // The building program of one colour mode, and its uniforms' locations.
   struct BuildingProgram {
     unsigned program = 0;
-    int viewProjection = -1, origin = -1, buildings = -1, floors = -1, driftFullScale = -1, amplitude = -1,
-        sunDirection = -1, eye = -1, showModels = -1;
+    int viewProjection = -1, origin = -1, buildings = -1, floors = -1, series = -1, driftFullScale = -1, amplitude = -1,
+        time = -1, sunDirection = -1, eye = -1, showModels = -1;
   };
   /// The program for `mode`, built on first use; null when it failed (error() says why). The mode
   /// is a constant in it, not a uniform: a software renderer runs every branch of an if/else
@@ -71,6 +81,7 @@ class GlRenderDevice final : public RenderDevice {
   unsigned groundProgram_ = 0;
   unsigned groundVao_ = 0, groundBuffer_ = 0;
   DataTexture buildings_, floors_;
+  ByteTexture series_;
   std::unordered_map<std::uint32_t, Mesh> meshes_;
   std::uint32_t nextId_ = 1;
   std::uint64_t pendingUpload_ = 0;

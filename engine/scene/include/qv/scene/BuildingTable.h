@@ -5,8 +5,10 @@
 // flags), in ranges a tile reserves when it loads (one row per building, in the tile's BoxTree
 // order) and releases when it is evicted. The floor table has one FloorGpuRecord per floor level of
 // each animated building (its displacement this frame), in ranges reserved while it animates.
-// Edits mark building rows changed; upload() sends the changed span of the building table and the
-// used part of the floor table.
+// The series table holds the drift series (one byte a window) of the buildings and blocks of the
+// loaded tiles whose summaries carry them, in ranges reserved with the summary and released with
+// the tile. Edits mark building rows and series samples changed; upload() sends the changed span of
+// the building and series tables and the used part of the floor table.
 #pragma once
 
 #include <cstdint>
@@ -26,8 +28,11 @@ class BuildingTable {
   /// Capacities of the two index spaces (the device grows its textures on demand).
   static constexpr std::uint32_t kMaxBuildingRows = 1u << 21;
   static constexpr std::uint32_t kMaxFloorRows = 1u << 22;
+  /// 2048 x 2048 RGBA8 texels (the size every WebGL2 device has), four samples each: 16 MB.
+  static constexpr std::uint32_t kMaxSeriesSamples = 1u << 24;
 
-  BuildingTable(std::uint32_t maxBuildingRows = kMaxBuildingRows, std::uint32_t maxFloorRows = kMaxFloorRows);
+  BuildingTable(std::uint32_t maxBuildingRows = kMaxBuildingRows, std::uint32_t maxFloorRows = kMaxFloorRows,
+                std::uint32_t maxSeriesSamples = kMaxSeriesSamples);
   ~BuildingTable();
   BuildingTable(const BuildingTable&) = delete;
   BuildingTable& operator=(const BuildingTable&) = delete;
@@ -52,8 +57,19 @@ class BuildingTable {
   /// Floor rows [first, first + count) of reserved rows (written every frame by the animation).
   std::span<FloorGpuRecord> floors(std::uint32_t first, std::uint32_t count);
 
-  /// Sends the changed building rows (one span from the first to the last changed) and, when
-  /// `floorsInUse`, every floor row up to the highest reserved to `device`; then nothing is changed.
+  /// Reserves `count` (> 0) consecutive series samples; the first, or nullopt when full.
+  std::optional<std::uint32_t> reserveSeries(std::uint32_t count);
+  void releaseSeries(std::uint32_t first, std::uint32_t count);
+  /// Series samples [first, first + count) of reserved ones, marked changed.
+  std::span<std::uint8_t> editSeries(std::uint32_t first, std::uint32_t count);
+  /// Every series sample (reserved or not: read only where a row points).
+  [[nodiscard]] std::span<const std::uint8_t> series() const { return seriesCodes_; }
+  /// Series samples reserved now.
+  [[nodiscard]] std::uint64_t seriesInUse() const;
+
+  /// Sends the changed building rows and series samples (each one span from the first to the last
+  /// changed) and, when `floorsInUse`, every floor row up to the highest reserved to `device`; then
+  /// nothing is changed.
   void upload(RenderDevice& device, bool floorsInUse);
   /// The changed span [first, end) waiting for upload; first >= end when none.
   [[nodiscard]] std::pair<std::uint32_t, std::uint32_t> changedRange() const { return {changedFirst_, changedEnd_}; }
@@ -61,9 +77,13 @@ class BuildingTable {
  private:
   std::vector<BuildingGpuRecord> buildings_;
   std::vector<FloorGpuRecord> floorRows_;
+  std::vector<std::uint8_t> seriesCodes_;
   std::unique_ptr<RangeAllocator> buildingSlots_;
   std::unique_ptr<RangeAllocator> floorSlots_;
+  std::unique_ptr<RangeAllocator> seriesSlots_;
   std::uint32_t changedFirst_ = UINT32_MAX, changedEnd_ = 0;
+  std::uint32_t seriesChangedFirst_ = UINT32_MAX, seriesChangedEnd_ = 0;
+  std::uint64_t seriesInUse_ = 0;
 };
 
 }  // namespace qv

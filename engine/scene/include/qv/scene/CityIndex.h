@@ -26,6 +26,11 @@ namespace qv {
 /// Which buildings are shown at full strength; the others are dimmed.
 struct BuildingFilters {
   int minDamage = -1;  ///< -1: any; 0..4: damage state at least this (none .. complete)
+  /// The probabilistic damage filter: only buildings whose HAZUS probability of structural damage
+  /// at least `probabilityState` (1..4: slight .. complete; -1: off) is at least
+  /// `minProbabilityPercent` % (1..100). A building without probabilities does not pass.
+  int probabilityState = -1;
+  int minProbabilityPercent = 0;
   /// Empty: any; else one normalized use or several joined by '+' ("hospital+school+fire_station").
   std::string use;
   /// Only critical facilities: FacilityCategory Essential or SchoolShelter (kCriticalCategories).
@@ -33,17 +38,30 @@ struct BuildingFilters {
   /// Only these facility categories (facilityCategoryBit bits); 0: any. With criticalOnly, a
   /// building passes when its category is critical or in this set.
   unsigned categories = 0;
-  [[nodiscard]] bool active() const { return minDamage >= 0 || !use.empty() || criticalOnly || categories != 0; }
-  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r) const {
-    return passes(classifyFacility(a).category, a.use, r);
+  [[nodiscard]] bool probabilityActive() const {
+    return probabilityState >= 1 && probabilityState <= 4 && minProbabilityPercent > 0;
   }
-  [[nodiscard]] bool passes(FacilityCategory facility, std::string_view use, const BuildingResponse* r) const;
+  [[nodiscard]] bool active() const {
+    return minDamage >= 0 || probabilityActive() || !use.empty() || criticalOnly || categories != 0;
+  }
+  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r, const BuildingLoss* loss) const {
+    return passes(classifyFacility(a).category, a.use, r, loss);
+  }
+  /// `loss`: the building's HAZUS probabilities, nullptr without them (only the probability filter
+  /// reads it).
+  [[nodiscard]] bool passes(FacilityCategory facility, std::string_view use, const BuildingResponse* r,
+                            const BuildingLoss* loss = nullptr) const;
   /// Whether `buildingUse` is one of the uses (true when no use is chosen).
   [[nodiscard]] bool usePasses(std::string_view buildingUse) const;
   /// The category bits a building must match (criticalOnly folded in); 0: any.
   [[nodiscard]] unsigned categoryMask() const { return categories | (criticalOnly ? kCriticalCategories : 0u); }
   friend bool operator==(const BuildingFilters&, const BuildingFilters&) = default;
 };
+
+/// The probability the list sorts by and shows: P(structural damage >= the probability filter's
+/// state) when that filter is on, else P(>= the damage filter's state) when that one is (at least
+/// slight), else P(>= slight).
+[[nodiscard]] int listProbabilityState(const BuildingFilters& filters);
 
 /// One row of the city-wide list of (filtered) buildings.
 struct BuildingListEntry {
@@ -68,9 +86,11 @@ struct BuildingListEntry {
 std::string_view listName(const BuildingListEntry& entry);
 /// The text of one row of the on-screen list: name (listName), damage, use and facility
 /// category, and the distance from (fromX, fromY) (metres in the city frame, the camera target):
-/// "City Hospital | moderate 0.42 % | hospital (essential) | 1.2 km". Distances under 1 km in
-/// whole metres, else km with one decimal.
-std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY);
+/// "City Hospital | moderate 0.42 % | hospital (essential) | 1.2 km". With HAZUS probabilities the
+/// damage field also gives P(structural damage >= `probabilityState`) (listProbabilityState):
+/// "City Hospital | P(>= slight) 21 %, moderate 0.42 % | ...". Distances under 1 km in whole
+/// metres, else km with one decimal.
+std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY, int probabilityState = 1);
 
 class CityIndex {
  public:
@@ -110,8 +130,10 @@ class CityIndex {
   /// How many buildings of each use the city has, most first (then by name): the use filter's
   /// choices. Empty until the index loads.
   [[nodiscard]] std::vector<std::pair<std::string, std::size_t>> useCounts() const;
-  /// Buildings passing `filters`, most damaged first (then by peak drift, then index order), at
-  /// most `limit`; `total` receives how many pass in all.
+  /// Buildings passing `filters`, most likely damaged first, at most `limit`; `total` receives
+  /// how many pass in all. Buildings with HAZUS probabilities come first, by P(structural damage
+  /// >= listProbabilityState(filters)), then by their expected damage state; then those without,
+  /// by damage state; ties by peak drift, then index order.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(const BuildingFilters& filters, std::size_t limit,
                                                             std::size_t* total) const;
 
@@ -120,6 +142,8 @@ class CityIndex {
   void fetch(FileLoad& load, FileKind kind, const CityFile& file,
              std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept);
   [[nodiscard]] const BuildingResponse* response(std::uint32_t index) const;
+  /// The building's HAZUS probabilities and consequences; nullptr without a result or without them.
+  [[nodiscard]] const BuildingLoss* loss(std::uint32_t index) const;
   [[nodiscard]] BuildingListEntry listEntry(std::uint32_t index) const;
 
   FileLoader& loader_;

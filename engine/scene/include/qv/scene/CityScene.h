@@ -116,6 +116,9 @@ class CityScene {
   [[nodiscard]] const Tileset* tileset() const { return tileset_ ? &*tileset_ : nullptr; }
   /// Everything the current view needs has loaded or failed (and no work is queued).
   [[nodiscard]] bool settled() const { return settled_; }
+  /// Whether some loaded tile's buildings carry drift series (the response has them): every
+  /// building drawn then follows its response in the current-drift colours.
+  [[nodiscard]] bool hasDriftSeries() const;
   [[nodiscard]] TileCounts tileCounts() const;
   /// Length of the response histories in seconds (0 without a response).
   [[nodiscard]] double duration() const;
@@ -204,6 +207,12 @@ class CityScene {
   void requestSummary(std::uint32_t node);
   void requestHistory(std::uint32_t node);
   void applySummary(std::uint32_t node);
+  /// Its buildings' drift series into the series table and their rows (once per loaded tile).
+  void applySeries(std::uint32_t node);
+  /// The blocks' drift series of one block level from its members' rows (after their rows).
+  void refreshBlockSeries(BlockLevelRuntime& blocks, std::span<const BuildingGpuRecord> buildingRows);
+  /// Gives back the series samples of a loaded tile and its block levels.
+  void releaseSeries(LoadedTile& tile);
   void enforceMemoryBudget();           // evicts what this frame did not use, least recently used first
   void applyFlags(std::uint32_t node);  // selection and filter bits of one tile's rows
   void applyFlagsEverywhere();
@@ -286,6 +295,7 @@ class CityScene {
   std::vector<SampleWindow> windows_;      // of animated_, same order
   std::vector<AnimatedSampler> samplers_;  // of animated_, same order
   std::vector<float> samplerArena_;
+  std::uint32_t seriesInView_ = 0;             // buildings in view with a drift series (cull)
   std::uint32_t modelsAnimated_ = 0;           // of animated_, LOD2 models drawn skinned
   std::vector<float> modal_;                   // per animated building: 8 x then 8 y modal coordinates this frame
   std::vector<std::uint32_t> animationTiles_;  // this frame's tiles within the radius, histories loaded

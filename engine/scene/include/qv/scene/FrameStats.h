@@ -24,8 +24,12 @@ struct FrameCounts {
   std::uint64_t uploadBytes = 0;
   std::uint32_t buildingsLoaded = 0;
   std::uint32_t buildingsVisible = 0;
+  /// Buildings whose drawing follows their history this frame: moved floor by floor, and (in the
+  /// current-drift colours, Viewer::frame adds them) those coloured by their drift series.
   std::uint32_t buildingsAnimated = 0;
-  std::uint32_t modelsAnimated = 0;  ///< of them LOD2 models (skinned to their floor bones)
+  std::uint32_t modelsAnimated = 0;  ///< of the moving ones LOD2 models (skinned to their floor bones)
+  /// Buildings in view with a drift series that are not moved floor by floor (CityScene::update).
+  std::uint32_t buildingsSeriesOnly = 0;
 };
 
 /// Medians (and 95th percentiles) over the last N frames.

@@ -16,6 +16,7 @@ class NullRenderDevice final : public RenderDevice {
   [[nodiscard]] std::size_t meshTriangles(MeshHandle mesh) const override;
   void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) override;
   void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) override;
+  void writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) override;
   void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) override;
   [[nodiscard]] DeviceFrameStats lastFrameStats() const override { return last_; }
   [[nodiscard]] std::size_t gpuBytes() const override;
@@ -32,6 +33,7 @@ class NullRenderDevice final : public RenderDevice {
   std::uint32_t nextId_ = 1;
   std::size_t buildingRows_ = 0;
   std::size_t floorRows_ = 0;
+  std::size_t seriesSamples_ = 0;
   std::uint64_t pendingUpload_ = 0;
   DeviceFrameStats last_;
 };

@@ -29,7 +29,7 @@ inline constexpr int kGpuTableWidth = 2048;
 /// Bytes of one RGBA32F texel of the data textures.
 inline constexpr int kGpuTexelBytes = 16;
 
-/// Per-building row of the GPU building table (two RGBA32F texels). Slots index this table.
+/// Per-building row of the GPU building table (three RGBA32F texels). Slots index this table.
 struct BuildingGpuRecord {
   float storeyHeightMeters = 3.0f;  ///< height of one storey (floor level k sits at baseZ + k × this)
   float storeys = 1.0f;             ///< number of storeys
@@ -39,8 +39,15 @@ struct BuildingGpuRecord {
   float flags = 0.0f;               ///< BuildingFlag bits
   float baseZ = 0.0f;               ///< height of floor level 0 (the building's min height), metres
   float lossCode = -1.0f;           ///< packLossCode of its HAZUS probabilities, -1 without them
+  /// Its drift series (qv::DriftSeries) in the series table: the first sample's index, -1 without
+  /// one; the scene time of window 0; the number of windows; windows per second. The vertex shader
+  /// reads the largest storey drift at the current time from it (kSeriesFullScale at code 255).
+  float seriesBase = -1.0f;
+  float seriesStart = 0.0f;
+  float seriesCount = 0.0f;
+  float seriesRateHz = 0.0f;
 };
-static_assert(sizeof(BuildingGpuRecord) == 32);
+static_assert(sizeof(BuildingGpuRecord) == 48);
 /// Texels per building: slot s occupies texels [s × kBuildingTexels, (s + 1) × kBuildingTexels).
 inline constexpr int kBuildingTexels = static_cast<int>(sizeof(BuildingGpuRecord)) / kGpuTexelBytes;
 
@@ -63,6 +70,12 @@ struct FloorGpuRecord {
   float reserved = 0.0f;
 };
 static_assert(sizeof(FloorGpuRecord) == 16);
+
+/// The series table: one byte a sample (the quantized drift codes of qv::DriftSeries, on the
+/// square-root scale of driftSeriesCode with this full scale), four samples a texel of an RGBA8
+/// texture kGpuTableWidth texels wide: sample i is component i mod 4 of texel i div 4.
+inline constexpr float kSeriesFullScale = 0.05f;
+inline constexpr int kSeriesSamplesPerTexel = 4;
 
 /// The colour modes; values are stable (the page's URL and `setColorMode` use them).
 enum class ColorMode : int {
@@ -103,6 +116,7 @@ struct FrameUniforms {
   ColorMode colorMode = ColorMode::CurrentDrift;
   float amplitude = 1.0f;        ///< exaggeration applied to displayed displacements
   float driftFullScale = 0.02f;  ///< drift ratio shown as the top of the colour ramp (kDriftFullScale)
+  float timeSeconds = 0.0f;      ///< scene time the drift series are read at
   int viewportWidth = 1;
   int viewportHeight = 1;
   Rect ground;             ///< ground plane extent (empty: no ground)
@@ -146,6 +160,8 @@ class RenderDevice {
   virtual void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) = 0;
   /// Writes texels [first, first + records.size()) of the floor table, growing it as needed.
   virtual void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) = 0;
+  /// Writes samples [first, first + codes.size()) of the series table, growing it as needed.
+  virtual void writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) = 0;
 
   /// Draws one frame: clears, draws the ground and the items. Resets the frame statistics.
   virtual void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) = 0;

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "qv/quality/FrameGovernor.h"
+#include "qv/quality/QualityPreset.h"
 #include "qv/scene/Viewer.h"
 #include "qv/ui/Widgets.h"
 
@@ -23,9 +24,6 @@ class UiHost {
   /// Offers `content` to the user as a downloaded file.
   virtual void download(const std::string& filename, const std::string& mimeType, const std::string& content) = 0;
 };
-
-/// Quality presets for weak devices: draw budget, detail and animation radius.
-enum class QualityPreset : int { High = 0, Balanced = 1, Low = 2 };
 
 /// How the viewer adapts to the device, shared by the app (which decides) and the Performance
 /// panel (which shows it and lets the user override it). Owned by the app.
@@ -80,8 +78,7 @@ class ControlPanel {
   /// Exports the filtered list: "csv" or "geojson". Returns the text (also downloaded).
   std::string exportList(Viewer& viewer, const std::string& format, UiHost& host);
 
-  [[nodiscard]] static const char* qualityName(QualityPreset preset);
-  /// Sets the city's detail from the preset, lowered by `governorStep` steps (detailScaleForStep).
+  /// Sets the city's detail from the preset, lowered by `governorStep` steps (qualitySettings).
   static void applyQuality(Viewer& viewer, QualityPreset preset, int governorStep = 0);
   [[nodiscard]] QualityPreset quality() const { return quality_; }
   void setQuality(QualityPreset preset) { quality_ = preset; }

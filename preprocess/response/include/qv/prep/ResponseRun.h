@@ -59,7 +59,8 @@ struct ResponseRunReport {
   double solveSeconds = 0.0;   ///< CPU time in the solver (the encoder excluded), all threads
   double encodeSeconds = 0.0;  ///< CPU time of the history encoder, all threads
   std::uint64_t summaryBytes = 0, historyBytes = 0;
-  double worstRelativeError = 0.0;  ///< history vs full rate, / peak roof
+  std::uint64_t driftSeriesBytes = 0, driftSeriesBuildings = 0;  ///< the far view's series (ResponseWriteReport)
+  double worstRelativeError = 0.0;                               ///< history vs full rate, / peak roof
   double p99RelativeError = 0.0;
   double meanSampleRateHz = 0.0;
   std::uint64_t encodingAttempts = 0;  ///< history encodings tried, over all buildings

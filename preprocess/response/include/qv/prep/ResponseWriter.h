@@ -31,6 +31,9 @@ struct BuildingResult {
   std::vector<StoreySpread> storeySpread;  ///< empty, or summary.storeys values
   std::optional<BuildingLoss> loss;
   BuildingHistory history;  ///< floors == 0 when there is no history
+  /// The far view's drift series (DriftSeries, section DSER), made by writeLeaf from the history.
+  float driftStartSeconds = 0.0f;
+  std::vector<std::uint8_t> driftCodes;
   /// Without a result: the details of summary.noResultReason (e.g. why the model is invalid),
   /// kept in the response notes for `info --building`.
   std::string noResultDetail;
@@ -59,6 +62,10 @@ Result<ResponseNotes> loadResponseNotes(const std::string& cityDir, const Tilese
 
 struct ResponseWriteReport {
   std::uint64_t summaryBytes = 0;
+  /// Of summaryBytes, the far view's drift series (DSER) in the tile summaries, and how many
+  /// buildings' series they hold (a building counts once per tile that holds it).
+  std::uint64_t driftSeriesBytes = 0;
+  std::uint64_t driftSeriesBuildings = 0;
   std::uint64_t historyBytes = 0;
   std::uint64_t damage[6] = {0, 0, 0, 0, 0, 0};             ///< none … complete, no_result
   std::map<NoResultReason, std::uint64_t> noResultReasons;  ///< buildings without a result, by reason

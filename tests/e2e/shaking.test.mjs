@@ -1,0 +1,117 @@
+// The city shows its earthquake (issue 31): at the opening view, with default settings (on
+// SwiftShader or llvmpipe: the weak-device preset), every building in view follows its own
+// response (its drift series, no full-detail history needed), the picture changes from one moment
+// of strong shaking to another, and warm drift colours cover a good part of the city while it
+// shakes. Runs in Chromium and in Firefox ESR.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+import { launchBrowser, openPage, settle, waitReady } from './lib/browser.mjs';
+import { warmClassifier, warmPixels } from './lib/colours.mjs';
+import { changedFraction, decodePng } from './lib/pixels.mjs';
+import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
+
+const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
+const SYNTH = path.join(DATA, 'synth');
+
+let server;
+let manifest;
+before(async () => {
+  assert.ok(fs.existsSync(path.join(SYNTH, 'tileset.json')), `test city missing: ${SYNTH} (scripts/test.sh prepares it)`);
+  manifest = JSON.parse(fs.readFileSync(path.join(SYNTH, 'tileset.json'), 'utf8'));
+  server = await serveSite({ '/data': DATA });
+  fs.mkdirSync(ARTIFACTS, { recursive: true });
+});
+after(async () => {
+  if (server) await server.close();
+});
+
+// Pixels [x, y] of the canvas that belong to the city: they differ from the same view drawn
+// without buildings (the ground and the sky), in either of two pictures.
+function cityMask(background, a, b) {
+  const { width, height } = background;
+  const mask = new Uint8Array(width * height);
+  let count = 0;
+  for (let k = 0; k < width * height; ++k) {
+    const i = k * 4;
+    const differs = (img) => Math.abs(img.data[i] - background.data[i]) + Math.abs(img.data[i + 1] - background.data[i + 1]) +
+      Math.abs(img.data[i + 2] - background.data[i + 2]) > 24;
+    if (differs(a) || differs(b)) {
+      mask[k] = 1;
+      ++count;
+    }
+  }
+  return { mask, count };
+}
+
+test('at the opening view every building in view follows its response and the city changes with the shaking', async (t) => {
+  const { context, close, browser } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await settle(page);
+    await page.waitForTimeout(500);
+    // The opening view, untouched: the buildings in view follow their response.
+    const opening = await page.evaluate(() => window.quakeview.stats());
+    t.diagnostic(`${browser} opening view: ${JSON.stringify(opening.buildings)}, quality ${JSON.stringify(opening.quality)}`);
+    assert.ok(opening.buildings.visible > 500, `the city is in view: ${JSON.stringify(opening.buildings)}`);
+    assert.ok(opening.buildings.animated >= 0.95 * opening.buildings.visible,
+      `buildings following their response: ${opening.buildings.animated} of ${opening.buildings.visible} in view`);
+
+    // Paused moment by moment through the record: where is the shaking strongest on screen?
+    await page.evaluate(() => window.quakeview.pause());
+    const camera = await page.evaluate(() => window.quakeview.getCamera());
+    const [bx0, by0, bx1, by1] = manifest.bounds;
+    const warm = warmClassifier(camera.distance + Math.hypot(bx1 - bx0, by1 - by0, manifest.maxHeight));
+    // The panels (top left, the map overlay bottom right) are not the city.
+    const ui = (x, y, width, height) => (x < 560 && y < 720) || (x >= width - 380 && y >= height - 90);
+    const duration = await page.evaluate(() => window.quakeview.duration());
+    const moments = [];
+    for (let s = 0.5; s < duration; s += 1.5) {
+      await page.evaluate((time) => window.quakeview.setTime(time), s);
+      await page.waitForTimeout(350);
+      const shot = await page.screenshot();
+      const counts = warmPixels(decodePng(shot), warm.isWarm, ui);
+      moments.push({ s, warm: counts.warm, shot });
+    }
+    t.diagnostic(`warm pixels by moment: ${moments.map((m) => `${m.s}s ${m.warm}`).join(', ')}`);
+    const byWarmth = [...moments].sort((a, b) => b.warm - a.warm);
+    const strongest = byWarmth[0];
+    const second = byWarmth.find((m) => Math.abs(m.s - strongest.s) >= 1.4);
+    assert.ok(second, 'two moments of shaking');
+    fs.writeFileSync(path.join(ARTIFACTS, `shaking-${browser}-strongest.png`), strongest.shot);
+    fs.writeFileSync(path.join(ARTIFACTS, `shaking-${browser}-second.png`), second.shot);
+
+    // The same view without buildings: what is left is the ground and the sky.
+    await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: false, lod2: false }));
+    await page.waitForTimeout(500);
+    const background = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, `shaking-${browser}-ground.png`) }));
+    await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: true, lod2: true }));
+    const a = decodePng(strongest.shot);
+    const b = decodePng(second.shot);
+    const { mask, count } = cityMask(background, a, b);
+    let cityPixels = 0;
+    let changed = 0;
+    let warmCity = 0;
+    for (let k = 0; k < mask.length; ++k) {
+      const x = k % a.width;
+      const y = Math.floor(k / a.width);
+      if (!mask[k] || ui(x, y, a.width, a.height)) continue;
+      ++cityPixels;
+      const i = k * 4;
+      if (Math.abs(a.data[i] - b.data[i]) + Math.abs(a.data[i + 1] - b.data[i + 1]) + Math.abs(a.data[i + 2] - b.data[i + 2]) > 24) ++changed;
+      if (warm.isWarm([a.data[i] / 255, a.data[i + 1] / 255, a.data[i + 2] / 255])) ++warmCity;
+    }
+    t.diagnostic(`city pixels ${cityPixels} (of ${count} differing from the ground); between ${strongest.s} s and ` +
+      `${second.s} s ${changed} changed (${(100 * changed / cityPixels).toFixed(1)} %); warm at ${strongest.s} s ` +
+      `${warmCity} (${(100 * warmCity / cityPixels).toFixed(1)} %); whole-canvas change ` +
+      `${(100 * changedFraction(a, b)).toFixed(1)} %`);
+    assert.ok(cityPixels > 20000, `the city covers a good part of the canvas: ${cityPixels} pixels`);
+    assert.ok(changed >= 0.05 * cityPixels, `two moments of strong shaking differ in ${changed} of ${cityPixels} city pixels`);
+    assert.ok(warmCity >= 0.10 * cityPixels, `warm drift colours at the stronger moment: ${warmCity} of ${cityPixels}`);
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
