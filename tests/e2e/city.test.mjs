@@ -133,6 +133,9 @@ test('a corrupted tile and a missing tile are reported while the rest renders', 
     // the software renderers the tests run on, which otherwise start in the weak-device preset.
     const { page } = await openPage(context, `${server.url}/?data=/broken/tileset.json&quality=high`);
     assert.deepEqual(await waitReady(page), { ok: true });
+    // The panel folded (its title bar's arrow): the whole canvas shows the city.
+    await page.mouse.click(20, 19);
+    await page.waitForTimeout(300);
     const overview = await page.evaluate(() => window.quakeview.getCamera());
     // Close enough that every leaf is wanted.
     await page.evaluate((o) => window.quakeview.setCamera({ distance: o.distance * 0.35, pitchDeg: 70 }), overview);

@@ -7,7 +7,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, waitForFunction, waitReady } from './lib/browser.mjs';
 import { warmClassifier, warmPixels as warmPixelsOutside } from './lib/colours.mjs';
 import { decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
@@ -15,10 +15,15 @@ import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
 const SYNTH = path.join(DATA, 'synth');
 
-// The canvas without the panels: the collapsed control panel's title bar at the top and the map
-// overlay (north arrow, scale bar) at the bottom right.
-const excluded = (x, y, width, height) => y < 40 || (x >= width - 380 && y >= height - 90);
+// The canvas without the panels: the collapsed control panel's title bar at the top and the
+// map overlay (north arrow, scale bar, colour key) at the bottom right, as laid out now.
+let overlay = { x: 1280 - 380, y: 720 - 130, width: 380, height: 130 };
+const excluded = (x, y) => y < 40 || (x >= overlay.x - 2 && y >= overlay.y - 2);
 const warmPixels = (image, isWarm) => warmPixelsOutside(image, isWarm, excluded);
+async function findOverlay(page) {
+  const map = (await page.evaluate(() => window.quakeview.uiLayout())).windows.find((w) => w.title === 'Map');
+  if (map) overlay = map;
+}
 
 
 let server;
@@ -56,7 +61,10 @@ test('paused at t = 0 in the current-drift mode no building has a damage colour;
     assert.equal(await page.evaluate(() => window.quakeview.time()), 0);
     await settle(page, { animated: false });
 
-    // The legend says what the greys are and where the animation stops.
+    // The map overlay keys the colours; the legend (one click away) says that every building
+    // follows its response.
+    assert.match(await page.evaluate(() => window.quakeview.uiText()), /Colour: storey drift now: 0 0\.5 1 1\.5 2 %/);
+    await openSection(page, 'Damage and colours');
     const text = await page.evaluate(() => window.quakeview.uiText());
     assert.match(text, /Inter-storey drift \(now\), every building: its largest storey \(close by, each storey\):/);
     assert.doesNotMatch(text, /Not animated/);
@@ -74,6 +82,7 @@ test('paused at t = 0 in the current-drift mode no building has a damage colour;
     const warmNear = warmClassifier(700 + diagonal);
     t.diagnostic(`warm: hue ${warmFar.minHue.toFixed(1)} to ${warmFar.maxHue.toFixed(1)} deg, saturation at least ` +
       `${warmFar.minSat.toFixed(3)} (overview) or ${warmNear.minSat.toFixed(3)} (close)`);
+    await findOverlay(page);
     const overviewShot = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'colours-overview-t0.png') }));
     const atOverview = warmPixels(overviewShot, warmFar.isWarm);
     const statsOverview = await page.evaluate(() => window.quakeview.stats());

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, waitForFunction, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -64,8 +64,14 @@ test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool w
     assert.ok(Math.abs(c.view.repairCostUsd.expected - c.city.repairCostUsd.expected) <=
       1e-4 * Math.max(1, c.city.repairCostUsd.expected));
 
-    // The Consequences section of the panel (open by default) shows the same table; the suite's
-    // spread follows once the city-wide summary (loaded after the search index) is in.
+    // The Consequences section of the panel (open by default) leads with the headline numbers;
+    // one click opens all of them, the same table; the suite's spread follows once the city-wide
+    // summary (loaded after the search index) is in.
+    const headline = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(headline, /Red tags \(unsafe\) \| [\d.]+ \([\d.]+-[\d.]+\)/);
+    assert.match(headline, /Deaths \| [\d.]+ \([\d.]+-[\d.]+\)/);
+    assert.match(headline, /Repair cost \| \$/);
+    await openSection(page, 'All consequences: city, view, districts');
     await waitForFunction(page, () => /Record-to-record spread: peak drifts/.test(window.quakeview.uiText()), null,
       { timeout: 30000 });
     const panel = await page.evaluate(() => window.quakeview.uiText());

@@ -9,7 +9,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, settle, waitForFunction, waitReady } from './lib/browser.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
@@ -52,7 +52,30 @@ test('the critical filter from a link returns exactly the planted essential faci
   try {
     const { page, problems } = await openCity(context, 'f=,,1');
     assert.deepEqual(await page.evaluate(() => window.quakeview.filters()),
-      { minDamage: null, use: '', criticalOnly: true, categories: [] });
+      { minDamage: null, minProbability: null, use: '', criticalOnly: true, categories: [] });
+    // The kept facilities are marked on the map: a disc of a fixed size at each one's roof, one
+    // draw call of two triangles each, with the panel naming the one under the pointer.
+    await settle(page);
+    const kept = await page.evaluate(() => window.quakeview.filteredList(1000).buildings);
+    const marked = await page.evaluate(() => window.quakeview.stats());
+    await page.evaluate(() => window.quakeview.setFilters({ criticalOnly: false }));
+    await page.waitForTimeout(300);
+    const unmarked = await page.evaluate(() => window.quakeview.stats());
+    assert.equal(marked.lastFrame.triangles - unmarked.lastFrame.triangles, 2 * kept.length,
+      `two triangles a marker: ${marked.lastFrame.triangles} with, ${unmarked.lastFrame.triangles} without`);
+    assert.ok(await page.evaluate(() => window.quakeview.setFilters({ criticalOnly: true })));
+    await page.waitForTimeout(300);
+    // From 2 km, the pointer on one of them (its roof, where its marker is) names it.
+    const target = kept.find((b) => b.name) || kept[0];
+    await page.evaluate((b) => window.quakeview.setCamera({ x: b.x - 150, y: b.y, distance: 2000, headingDeg: 0, pitchDeg: 60 }), target);
+    await settle(page);
+    const roof = await page.evaluate((b) => {
+      const info = window.quakeview.building(b.id);
+      return window.quakeview.worldToScreen(b.x, b.y, info ? info.heightM : 0);
+    }, target);
+    assert.ok(roof && roof[0] > 560 && roof[1] > 40, `the facility is in view right of the panel: ${roof}`);
+    await page.mouse.move(roof[0], roof[1]);
+    await waitForFunction(page, (name) => window.quakeview.uiText().includes(name + ' ('), target.label, { timeout: 10000 });
     const list = await page.evaluate(() => window.quakeview.filteredList(1000));
     const wanted = planted.filter((p) => p.expect === 'essential' || p.expect === 'school_shelter');
     assert.ok(wanted.length >= 5, 'the city plants essential facilities and schools');

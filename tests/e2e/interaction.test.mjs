@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { test } from 'node:test';
-import { launchBrowser, openPage, waitForFunction, settle, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, settle, waitForFunction, waitReady } from './lib/browser.mjs';
 import { changedFraction, colourAt, colourDistance, decodePng } from './lib/pixels.mjs';
 import { ESB, MIDTOWN, URL_PATH, serveMidtown } from './lib/midtown.mjs';
 import { ARTIFACTS } from './lib/server.mjs';
@@ -245,7 +245,8 @@ test('the URL hash restores camera, time, selection and filters after a reload; 
     const defaultView = await plain.evaluate(() => window.quakeview.getCamera());
     for (const k of Object.keys(defaultView)) assert.ok(Math.abs(fallback[k] - defaultView[k]) < 1e-6, `${k}: ${fallback[k]} vs ${defaultView[k]}`);
     assert.equal(await broken.evaluate(() => window.quakeview.selection()), null);
-    assert.deepEqual(await broken.evaluate(() => window.quakeview.filters()), { minDamage: null, use: '', criticalOnly: false, categories: [] });
+    assert.deepEqual(await broken.evaluate(() => window.quakeview.filters()),
+      { minDamage: null, minProbability: null, use: '', criticalOnly: false, categories: [] });
     // The message is on screen too.
     assert.match(await broken.evaluate(() => window.quakeview.uiText()), /camera in the link/);
   } finally {
@@ -369,8 +370,11 @@ test('the panel and the inspection window are readable and leave the city centre
     const ui = (await page.evaluate(() => window.quakeview.stats())).lastFrame.ui;
     assert.ok(ui.vertices > 1000 && ui.triangles > 500 && ui.drawCalls >= 1 && ui.redraws >= 1, JSON.stringify(ui));
     assert.ok(ui.cached && ui.copiedPixels >= panel.width * panel.height * 0.9, JSON.stringify(ui));
+    // The legend with its thresholds (one click away: the map overlay keys the colours), the
+    // scenario, the model note and attribution are reachable.
+    assert.match(await page.evaluate(() => window.quakeview.uiText()), /Colour: storey drift now: /);
+    await openSection(page, 'Damage and colours');
     const text = await page.evaluate(() => window.quakeview.uiText());
-    // The legend with its thresholds, the scenario, the model note and attribution are reachable.
     assert.match(text, /HAZUS drift thresholds/);
     assert.match(text, /Earthquake: /);
     assert.match(text, /About these results/);

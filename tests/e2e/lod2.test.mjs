@@ -53,8 +53,10 @@ test('LOD2 models are drawn from their meshes, picked on them, described in the 
     const detailed = await page.evaluate((i) => window.quakeview.building(i), id);
     assert.equal(detailed.modelSource, 'cityjson');
     assert.ok(detailed.modelTriangles > 12, `a detailed model, not a box: ${detailed.modelTriangles} triangles`);
-    // The screen centre looks at its footprint centre: the pick meets the model.
-    const picked = await page.evaluate(() => window.quakeview.pick(640, 360));
+    // The view's centre (drawn in the middle of the canvas beside the panel) looks at its
+    // footprint centre: the pick meets the model.
+    const [cx, cy] = await page.evaluate((b) => window.quakeview.worldToScreen(b.x, b.y, 0), overview);
+    const picked = await page.evaluate(([x, y]) => window.quakeview.pick(x, y), [cx, cy]);
     assert.ok(picked, 'something is under the screen centre');
     assert.equal(picked.id, id);
     assert.ok(await page.evaluate((i) => window.quakeview.select(i), id));
@@ -69,7 +71,7 @@ test('LOD2 models are drawn from their meshes, picked on them, described in the 
     await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: true, lod2: false }));
     await page.waitForTimeout(500);
     assert.deepEqual(await page.evaluate(() => window.quakeview.lodVisibility()), { lod1: true, lod2: false });
-    const extruded = await page.evaluate(() => window.quakeview.pick(640, 360));
+    const extruded = await page.evaluate(([x, y]) => window.quakeview.pick(x, y), [cx, cy]);
     assert.ok(extruded && extruded.id === id, `the LOD1 extrusion is picked: ${JSON.stringify(extruded)}`);
     const boxed = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-as-lod1.png') }));
     const roof = { x: 560, y: 280, width: 160, height: 160 };  // the model's roofs, seen from above
@@ -78,7 +80,7 @@ test('LOD2 models are drawn from their meshes, picked on them, described in the 
     // LOD1 off too: nothing of it is drawn or picked.
     await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: false, lod2: false }));
     await page.waitForTimeout(500);
-    const again = await page.evaluate(() => window.quakeview.pick(640, 360));
+    const again = await page.evaluate(([x, y]) => window.quakeview.pick(x, y), [cx, cy]);
     assert.ok(!again || again.id !== id, 'a hidden building is not picked');
     const hidden = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-hidden.png') }));
     const centre = { x: 630, y: 350, width: 20, height: 20 };  // within the model's roof, seen from above

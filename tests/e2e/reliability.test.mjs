@@ -5,7 +5,7 @@ import fs from 'node:fs';
 import http from 'node:http';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, waitForFunction, waitReady } from './lib/browser.mjs';
 import { serveFaulty } from './lib/faulty-server.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
@@ -46,6 +46,8 @@ test('a failing tile server: failures are shown, the frame loop keeps going, and
     // ready settles (resolves) even though tiles fail: the page never hangs.
     assert.deepEqual(await waitReady(page, 120000), { ok: true });
     await page.evaluate(() => window.quakeview.pause());
+    // The legend (its "No result" count says when results are missing) in view.
+    await openSection(page, 'Damage and colours');
     const injected = Object.entries(server.faults).filter(([k, v]) => k !== 'none' && v > 0).map(([k]) => k);
     assert.ok(injected.length >= 3, `several kinds of fault were injected: ${JSON.stringify(server.faults)}`);
 

@@ -59,6 +59,17 @@ test('at the opening view every building in view follows its response and the ci
     assert.ok(opening.buildings.animated >= 0.95 * opening.buildings.visible,
       `buildings following their response: ${opening.buildings.animated} of ${opening.buildings.visible} in view`);
 
+    // The panel opens compact: the event and the headline numbers in under 30 % of the canvas.
+    const panel = (await page.evaluate(() => window.quakeview.uiLayout())).windows.find((w) => w.title === 'QuakeView');
+    const canvas = await page.evaluate(() => window.quakeview.stats().canvas);
+    const covered = (panel.width * panel.height) / (canvas.cssWidth * canvas.cssHeight);
+    t.diagnostic(`panel ${Math.round(panel.width)} x ${Math.round(panel.height)} px: ${(100 * covered).toFixed(1)} % of the canvas`);
+    assert.ok(covered <= 0.30, `the panel covers ${(100 * covered).toFixed(1)} % of the canvas`);
+    const text = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(text, /Shaking: SCENARIO/);
+    assert.match(text, /Red tags \(unsafe\) \| /);
+    assert.match(text, /Repair cost \| \$/);
+
     // Paused moment by moment through the record: where is the shaking strongest on screen?
     await page.evaluate(() => window.quakeview.pause());
     const camera = await page.evaluate(() => window.quakeview.getCamera());

@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, waitReady } from './lib/browser.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
@@ -38,6 +38,9 @@ test('a software renderer starts in the weak-device preset, says so, and the gov
     assert.ok(canvasPixels > 0, `canvas ${stats.canvas.width}x${stats.canvas.height}`);
     assert.equal(stats.pixels, canvasPixels, `pixels ${stats.pixels} of a ${stats.canvas.width}x${stats.canvas.height} canvas`);
     assert.equal(stats.samples, stats.pixels, 'no antialiasing: one sample a pixel');
+    // The panel says so in one line, and in the Performance section.
+    assert.match(await page.evaluate(() => window.quakeview.uiText()), /Software rendering: the weak-device preset is on \(Performance\)\./);
+    await openSection(page, 'Performance');
     const text = await page.evaluate(() => window.quakeview.uiText());
     assert.match(text, new RegExp(`triangles \\d+ · pixels ${stats.canvas.width}×${stats.canvas.height} \\(no MSAA\\)`));
     assert.match(text, /Software rendering detected \(.+\): weak-device preset\./);

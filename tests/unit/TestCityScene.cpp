@@ -22,6 +22,7 @@ class RecordingDevice final : public RenderDevice {
   std::map<std::uint32_t, BuildingGpuRecord> buildings;  // slot -> row
   std::vector<FloorGpuRecord> floors;
   std::vector<std::uint8_t> series;
+  std::vector<MapMarker> markers;                                           // the last frame's
   std::map<std::uint32_t, std::map<std::uint32_t, glm::vec2>> slotCentres;  // mesh -> slot -> local centre
   // mesh -> slot -> vertex counts: plain, LOD2 model, LOD1 fallback of a model
   std::map<std::uint32_t, std::map<std::uint32_t, std::array<int, 3>>> slotVertices;
@@ -86,6 +87,7 @@ class RecordingDevice final : public RenderDevice {
     counter.render(u, items);
     lastItems.assign(items.begin(), items.end());
     showModels = u.showModels;
+    markers.assign(u.markers.begin(), u.markers.end());
   }
   DeviceFrameStats lastFrameStats() const override { return counter.lastFrameStats(); }
   std::size_t gpuBytes() const override { return counter.gpuBytes(); }
@@ -942,5 +944,115 @@ TEST_CASE("Every drawn building and block follows its drift series, with no hist
             worst / 5.0f / MiniCity::kStoreyHeight - 0.12 * largest);
       CHECK(seriesDriftAt(rig.device.series, refOf(block), kSeriesFullScale, t) <= 1.03 * largest);
     }
+  }
+}
+
+TEST_CASE("Critical facilities kept by a filter and the selection are marked on the map at a fixed size",
+          "[scene][city][markers]") {
+  SceneRig rig;
+  // Plant hospitals in the served index: column i = 0 (8 buildings).
+  auto& bytes = rig.fetcher.files.at("city/search.qvi");
+  auto entries = decodeSearchIndex(bytes, "planted");
+  REQUIRE(entries.ok());
+  for (SearchEntry& e : *entries) {
+    for (int j = 0; j < MiniCity::kSide; ++j) {
+      if (e.id == MiniCity::idOf(0, j)) {
+        e.use = "hospital";
+        e.facility = FacilityCategory::Essential;
+      }
+    }
+  }
+  bytes = encodeSearchIndex(*entries);
+  rig.city.tileset.search->bytes = bytes.size();
+  rig.city.tileset.search->crc32 = crc32(bytes);
+  const std::string json = tilesetToJson(rig.city.tileset);
+  rig.fetcher.files["city/tileset.json"] = std::vector<std::uint8_t>(json.begin(), json.end());
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
+  viewer.setCamera(CameraState{0.0, 0.0, 2000.0, 0.0, 60.0, 45.0});
+  runFramesUntil(viewer, rig.clock, 10.0, [&] { return viewer.settled() && viewer.city()->searchIndexLoaded(); });
+  REQUIRE(viewer.city()->searchIndexLoaded());
+  runFrames(viewer, 2);
+  CHECK(rig.device.markers.empty());  // no facility filter: no markers
+  const std::uint64_t trianglesBefore = viewer.stats().latest.triangles;
+
+  BuildingFilters critical;
+  critical.criticalOnly = true;
+  viewer.city()->setFilters(critical);
+  runFrames(viewer, 2);
+  REQUIRE(rig.device.markers.size() == MiniCity::kSide);
+  for (const MapMarker& m : rig.device.markers) {
+    CHECK(m.radiusPixels == 7.0f);  // CSS and framebuffer pixels are one here
+    CHECK_FALSE(m.selected);
+    CHECK(m.position.x == Approx(MiniCity::centreX(0)));
+    CHECK(m.position.z == Approx(MiniCity::kStoreys * MiniCity::kStoreyHeight));  // on its roof
+    // Coloured by its damage state on the ramp (this city's results have no probabilities).
+    CHECK(m.color != glm::vec3(1.0f));
+  }
+  // Two triangles a marker, in one draw call.
+  CHECK(viewer.stats().latest.triangles == trianglesBefore + 2 * MiniCity::kSide);
+
+  // The selection gets its own, larger marker with a white ring.
+  viewer.city()->select(MiniCity::idOf(5, 5));
+  runFrames(viewer, 2);
+  REQUIRE(rig.device.markers.size() == MiniCity::kSide + 1);
+  const MapMarker& selected = rig.device.markers.back();
+  CHECK(selected.selected);
+  CHECK(selected.radiusPixels == 10.0f);
+  CHECK(selected.position.x == Approx(MiniCity::centreX(5)));
+  CHECK(selected.position.y == Approx(MiniCity::centreY(5)));
+  // Filters off, selection cleared: none.
+  viewer.city()->setFilters(BuildingFilters{});
+  viewer.city()->select("");
+  runFrames(viewer, 2);
+  CHECK(rig.device.markers.empty());
+}
+
+TEST_CASE("The first view plays from the shaking's arrival and frames the city beside the panel",
+          "[scene][city][opening]") {
+  // The city's shaking arrives 5 s into the record: every tile summary's series start later.
+  SceneRig rig(MiniCity(true, false, MiniCity::kSide * MiniCity::kSide, {}, true));
+  for (TileNode& n : rig.city.tileset.nodes) {
+    auto& bytes = rig.fetcher.files.at("city/" + n.response->summaryFile);
+    auto summary = decodeResponseSummary(bytes, n.response->summaryFile);
+    REQUIRE(summary.ok());
+    REQUIRE_FALSE(summary->driftSeries.empty());
+    for (DriftSpan& span : summary->driftSeries.spans) span.startSeconds += 5.0f;
+    bytes = encodeResponseSummary(*summary);
+    n.response->summaryBytes = bytes.size();
+    n.response->summaryCrc32 = crc32(bytes);
+  }
+  const std::string json = tilesetToJson(rig.city.tileset);
+  rig.fetcher.files["city/tileset.json"] = std::vector<std::uint8_t>(json.begin(), json.end());
+
+  SECTION("untouched, it opens a second before the shaking, beside a 400 px panel") {
+    rig.viewer.setFramingInsetCss(400.0);
+    rig.open(0.0f);
+    runFrames(rig.viewer, 20);
+    REQUIRE(rig.viewer.city()->firstShakingSeconds().has_value());
+    CHECK(*rig.viewer.city()->firstShakingSeconds() == Approx(5.0).margin(0.3));
+    // Playing since: 20 frames of 1/60 s after it was set.
+    CHECK(rig.viewer.time() == Approx(4.0).margin(0.5));
+    // The city's centre is in the middle of the canvas right of the panel.
+    const auto centre = rig.viewer.worldToScreen(0.0, 0.0, 0.0);
+    REQUIRE(centre.has_value());
+    CHECK(centre->x == Approx((400.0 + 1280.0) / 2.0).margin(40.0));
+    // The whole city is in view.
+    for (const double corner : {-160.0, 160.0}) {
+      const auto p = rig.viewer.worldToScreen(corner, corner, 0.0);
+      REQUIRE(p.has_value());
+      CHECK(p->x > 400.0);
+      CHECK(p->x < 1280.0);
+    }
+  }
+  SECTION("a time chosen before (a link) is kept") {
+    rig.open(0.0f);
+    rig.viewer.pause();
+    for (int i = 0; i < 10 && rig.viewer.duration() == 0.0; ++i) runFrames(rig.viewer, 1);  // the record's duration
+    REQUIRE(rig.viewer.duration() > 1.0);
+    REQUIRE(rig.viewer.setTime(0.5));
+    runFrames(rig.viewer, 20);
+    REQUIRE(rig.viewer.city()->firstShakingSeconds().has_value());
+    CHECK(rig.viewer.time() == Approx(0.5));
   }
 }

@@ -30,6 +30,7 @@ struct LegendSetup {
   explicit LegendSetup(bool withSeries = false)
       : city(true, false, test::MiniCity::kSide * test::MiniCity::kSide, {}, withSeries) {
     city.serve(fetcher);
+    panel.openSection("Damage and colours");  // folded at first: the map overlay has the colour key
     viewer.openCity("city/tileset.json", fetcher);
     viewer.setViewport(1280, 720, 1280.0, 720.0);
     viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
@@ -142,4 +143,12 @@ TEST_CASE("With drift series every building follows its response and the legend 
                                    "camera \\(at most 20000\\) each storey also moves by its own displacement\\.")));
   CHECK(std::stoul(m[1]) == setup.viewer.stats().latest.buildingsAnimated);
   CHECK(setup.viewer.stats().latest.buildingsAnimated == setup.viewer.stats().latest.buildingsVisible);
+  // The map overlay keys the colours whatever the panel's state, mode by mode.
+  CHECK(has(setup.draw(), "Colour: storey drift now: 0 0.5 1 1.5 2 %\n"));
+  setup.viewer.setColorMode(ColorMode::ModerateOrWorse);
+  CHECK(has(setup.draw(), "Colour: P(moderate damage or worse): 0 25 50 75 100 %\n"));
+  setup.viewer.setColorMode(ColorMode::InspectionTag);
+  CHECK(has(setup.draw(), "Colour: most likely inspection tag: green yellow red\n"));
+  setup.viewer.setColorMode(ColorMode::Neutral);
+  CHECK_FALSE(has(setup.draw(), "Colour:"));
 }

@@ -75,7 +75,7 @@ TEST_CASE("The control panel's text mirror shows what the panel says", "[ui]") {
   CHECK(text.find("== QuakeView ==") != std::string::npos);
   CHECK(text.find("FPS: 50.0") != std::string::npos);
   CHECK(text.find("[Pause (Space)]") != std::string::npos);
-  CHECK(text.find("v Animation") != std::string::npos);
+  CHECK(text.find("> Animation") != std::string::npos);    // folded: play/pause and the time are above it
   CHECK(text.find("> Performance") != std::string::npos);  // collapsed until opened
   CHECK(text.find("== Map ==") != std::string::npos);
   CHECK(text.find("North arrow: view heading 30°") != std::string::npos);
@@ -410,7 +410,7 @@ TEST_CASE("The Performance panel shows the frame's triangles and pixels, with th
   RecordingHost host;
   QualityState q;
   q.softwareRenderer = true;
-  q.weakStart = true;  // the weak-device preset: the Performance section starts open
+  q.weakStart = true;  // the weak-device preset: one line says so, the Performance section why
   q.antialias = false;
   q.pixelWidth = 1280;
   q.pixelHeight = 720;
@@ -418,6 +418,10 @@ TEST_CASE("The Performance panel shows the frame's triangles and pixels, with th
   panel.setQualityState(&q);
   const std::string triangles = ui::format("triangles %.0f · ", viewer.stats().triangles);
   std::string text = drawPanel(viewer, mirror, panel, host);
+  CHECK(text.find("Software rendering: the weak-device preset is on (Performance).") != std::string::npos);
+  CHECK(text.find("> Performance") != std::string::npos);  // folded: the panel opens compact
+  panel.openSection("Performance");
+  text = drawPanel(viewer, mirror, panel, host);
   CHECK(text.find("v Performance") != std::string::npos);
   CHECK(text.find(triangles + "pixels 1280×720 (no MSAA)\n") != std::string::npos);
   CHECK(q.pixels() == 1280u * 720u);
@@ -499,6 +503,10 @@ TEST_CASE("On a tablet in portrait the panel's bottom stays clear of the map ove
   // the overlay share columns; short enough for the panel to reach the bottom.
   CityPanel setup(760, 640);
   REQUIRE(setup.viewer.settled());
+  // Its sections opened, so that its content is taller than the screen.
+  for (const char* section : {"Animation", "Damage and colours", "Find and filter", "General", "Performance"}) {
+    setup.panel.openSection(section);
+  }
   for (int i = 0; i < 4; ++i) drawPanel(setup.viewer, setup.mirror, setup.panel, setup.host);
   ImGuiWindow* panel = ImGui::FindWindowByName("QuakeView");
   ImGuiWindow* overlay = ImGui::FindWindowByName("Map");

@@ -379,6 +379,8 @@ void App::frame() {
   dispatchInput();
   input_->setUiWantsKeyboard(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
 
+  // The city's first view is framed beside the panel as it was last drawn.
+  viewer_->setFramingInsetCss(panel_.panelRightCss());
   viewer_->frame(dt);
 
   // The shareable view's time and selection, once the city is there to apply them to.

@@ -40,7 +40,7 @@ bool sanitizeCamera(CameraState& s, const CameraState& f, const CameraLimits& l)
   return !changed;
 }
 
-CameraView::CameraView(const CameraState& s, int viewportWidth, int viewportHeight)
+CameraView::CameraView(const CameraState& s, int viewportWidth, int viewportHeight, float shiftNdcX)
     : width_(std::max(1, viewportWidth)), height_(std::max(1, viewportHeight)) {
   const double heading = s.headingDeg * kDegToRad;
   const double pitch = s.pitchDeg * kDegToRad;
@@ -64,6 +64,10 @@ CameraView::CameraView(const CameraState& s, int viewportWidth, int viewportHeig
   const float aspect = static_cast<float>(width_) / static_cast<float>(height_);
   const float fov = static_cast<float>(s.fovDeg * kDegToRad);
   projection_ = glm::perspective(fov, aspect, near_, far_);
+  if (std::isfinite(shiftNdcX) && shiftNdcX != 0.0f) {
+    projection_ =
+        glm::translate(glm::mat4(1.0f), glm::vec3(std::clamp(shiftNdcX, -1.0f, 1.0f), 0.0f, 0.0f)) * projection_;
+  }
   viewProjection_ = projection_ * view_;
   inverseViewProjection_ = glm::inverse(viewProjection_);
   frustum_ = Frustum(viewProjection_);

@@ -67,6 +67,13 @@ GlRenderDevice::GlRenderDevice() {
   }
   if (!ok()) return;
 
+  markerProgram_ = shaders::linkProgram(shaders::kMarkerVertex, shaders::kMarkerFragment, error_);
+  if (!ok()) return;
+  markerViewProjection_ = glGetUniformLocation(markerProgram_, "u_viewProjection");
+  markerViewport_ = glGetUniformLocation(markerProgram_, "u_viewport");
+  glGenVertexArrays(1, &markerVao_);
+  glGenBuffers(1, &markerBuffer_);
+
   g_.viewProjection = glGetUniformLocation(groundProgram_, "u_viewProjection");
   g_.rect = glGetUniformLocation(groundProgram_, "u_rect");
   g_.eye = glGetUniformLocation(groundProgram_, "u_eye");
@@ -106,6 +113,9 @@ GlRenderDevice::~GlRenderDevice() {
   glDeleteTextures(1, &series_.texture);
   glDeleteVertexArrays(1, &groundVao_);
   glDeleteBuffers(1, &groundBuffer_);
+  glDeleteVertexArrays(1, &markerVao_);
+  glDeleteBuffers(1, &markerBuffer_);
+  if (markerProgram_ != 0) glDeleteProgram(markerProgram_);
   for (const BuildingProgram& b : building_) {
     if (b.program != 0) glDeleteProgram(b.program);
   }
@@ -335,7 +345,48 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
   }
   glBindVertexArray(0);
   glDisable(GL_CULL_FACE);
+  drawMarkers(f, stats);
   last_ = stats;
+}
+
+void GlRenderDevice::drawMarkers(const FrameUniforms& f, DeviceFrameStats& stats) {
+  if (!ok() || f.markers.empty()) return;
+  // Per vertex: centre (3), corner (2), colour (3), radius and ring (2).
+  constexpr int kFloats = 10;
+  static constexpr float kCorners[6][2] = {{-1, -1}, {1, -1}, {1, 1}, {-1, -1}, {1, 1}, {-1, 1}};
+  markerVertices_.clear();
+  for (const MapMarker& m : f.markers) {
+    for (const auto& c : kCorners) {
+      markerVertices_.insert(markerVertices_.end(), {m.position.x, m.position.y, m.position.z, c[0], c[1], m.color.x,
+                                                     m.color.y, m.color.z, m.radiusPixels, m.selected ? 1.0f : 0.0f});
+    }
+  }
+  const auto bytes = markerVertices_.size() * sizeof(float);
+  glBindVertexArray(markerVao_);
+  glBindBuffer(GL_ARRAY_BUFFER, markerBuffer_);
+  if (bytes > markerBufferBytes_) {
+    markerBufferBytes_ = std::max(bytes, markerBufferBytes_ * 2);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(markerBufferBytes_), nullptr, GL_DYNAMIC_DRAW);
+  }
+  glBufferSubData(GL_ARRAY_BUFFER, 0, static_cast<GLsizeiptr>(bytes), markerVertices_.data());
+  constexpr auto stride = static_cast<GLsizei>(kFloats * sizeof(float));
+  const int sizes[4] = {3, 2, 3, 2};
+  std::size_t offset = 0;
+  for (unsigned a = 0; a < 4; ++a) {
+    glEnableVertexAttribArray(a);
+    glVertexAttribPointer(a, sizes[a], GL_FLOAT, GL_FALSE, stride, byteOffset(offset * sizeof(float)));
+    offset += static_cast<std::size_t>(sizes[a]);
+  }
+  glUseProgram(markerProgram_);
+  glUniformMatrix4fv(markerViewProjection_, 1, GL_FALSE, &f.viewProjection[0][0]);
+  glUniform2f(markerViewport_, static_cast<float>(f.viewportWidth), static_cast<float>(f.viewportHeight));
+  glDisable(GL_DEPTH_TEST);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(f.markers.size() * 6));
+  glEnable(GL_DEPTH_TEST);
+  glBindVertexArray(0);
+  pendingUpload_ += bytes;
+  stats.drawCalls += 1;
+  stats.triangles += 2 * f.markers.size();
 }
 
 std::size_t GlRenderDevice::gpuBytes() const {

@@ -193,6 +193,45 @@ void main() {
 }
 )";
 
+// Map markers (qv::MapMarker): each a quad of two triangles around its centre, a fixed number of
+// framebuffer pixels across whatever the distance; the fragment stage cuts a disc with a ring.
+const char* const kMarkerVertex = R"(#version 300 es
+precision highp float;
+layout(location = 0) in vec3 a_center;
+layout(location = 1) in vec2 a_corner;  // (-1, -1) .. (1, 1)
+layout(location = 2) in vec3 a_color;
+layout(location = 3) in vec2 a_radiusRing;  // radius in pixels, ring brightness (0 dark, 1 white)
+uniform mat4 u_viewProjection;
+uniform vec2 u_viewport;  // framebuffer pixels
+out vec2 v_corner;
+flat out vec3 v_color;
+flat out float v_ring;
+void main() {
+  vec4 clip = u_viewProjection * vec4(a_center, 1.0);
+  // Behind the eye: off screen.
+  if (clip.w <= 0.0) { gl_Position = vec4(2.0, 2.0, 2.0, 1.0); return; }
+  clip.xy += a_corner * a_radiusRing.x * 2.0 / u_viewport * clip.w;
+  gl_Position = vec4(clip.xy, 0.0, clip.w);
+  v_corner = a_corner;
+  v_color = a_color;
+  v_ring = a_radiusRing.y;
+}
+)";
+
+const char* const kMarkerFragment = R"(#version 300 es
+precision mediump float;
+in vec2 v_corner;
+flat in vec3 v_color;
+flat in float v_ring;
+out vec4 o_color;
+void main() {
+  float d = length(v_corner);
+  if (d > 1.0) discard;
+  vec3 ring = mix(vec3(0.08, 0.08, 0.10), vec3(1.0), v_ring);
+  o_color = vec4(d > 0.68 ? ring : v_color, 1.0);
+}
+)";
+
 // The panels (Dear ImGui's draw lists, drawn by GlImGuiRenderer): 2-D positions in framebuffer-
 // independent display units, the font atlas's coordinates and an 8-bit RGBA colour per vertex.
 const char* const kUiVertex = R"(#version 300 es

@@ -9,6 +9,8 @@ extern const char* const kBuildingVertex;
 extern const char* const kBuildingFragment;
 extern const char* const kGroundVertex;
 extern const char* const kGroundFragment;
+extern const char* const kMarkerVertex;
+extern const char* const kMarkerFragment;
 extern const char* const kUiVertex;
 extern const char* const kUiFragment;
 extern const char* const kUiCopyVertex;

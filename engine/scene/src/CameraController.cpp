@@ -18,7 +18,7 @@ void CameraController::setViewport(double widthCss, double heightCss) {
 }
 
 CameraView CameraController::view() const {
-  return CameraView(state_, static_cast<int>(std::lround(width_)), static_cast<int>(std::lround(height_)));
+  return CameraView(state_, static_cast<int>(std::lround(width_)), static_cast<int>(std::lround(height_)), shiftNdcX_);
 }
 
 void CameraController::pointerDown(int button, double x, double y, bool shift, bool ctrl) {

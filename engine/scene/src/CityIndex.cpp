@@ -208,6 +208,14 @@ const BuildingResponse* CityIndex::response(std::uint32_t index) const {
   return summary_ && index < summary_->buildings.size() ? &summary_->buildings[index] : nullptr;
 }
 
+std::optional<BuildingListEntry> CityIndex::listEntryOf(std::string_view id) const {
+  if (search_.state != TileState::Loaded) return std::nullopt;
+  for (std::uint32_t i = 0; i < entries_.size(); ++i) {
+    if (entries_[i].id == id) return listEntry(i);
+  }
+  return std::nullopt;
+}
+
 const BuildingLoss* CityIndex::loss(std::uint32_t index) const {
   const BuildingResponse* r = response(index);
   if (r == nullptr || r->source == ResponseSource::None || !summary_ || index >= summary_->losses.size())

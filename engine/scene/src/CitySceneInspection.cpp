@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "CitySceneState.h"
+#include "qv/scene/Palette.h"
 #include "qv/spatial/RayIntersection.h"
 
 namespace qv {
@@ -334,6 +335,47 @@ std::vector<BuildingListEntry> CityScene::search(std::string_view query, std::si
 std::vector<BuildingListEntry> CityScene::filteredList(std::size_t limit, std::size_t* total) {
   index_.request();
   return index_.filteredList(filters_, limit, total);
+}
+
+const std::vector<BuildingListEntry>& CityScene::markedBuildings() {
+  const std::uint64_t indexBytes = index_.loaded() ? index_.bytes() : 0;
+  if (filters_ == markedFilters_ && indexBytes == markedIndexBytes_) return marked_;
+  markedFilters_ = filters_;
+  markedIndexBytes_ = indexBytes;
+  marked_.clear();
+  if (filters_.categoryMask() != 0) marked_ = filteredList(kMaxMarkedBuildings);
+  return marked_;
+}
+
+const std::optional<BuildingListEntry>& CityScene::selectedListEntry() {
+  // Looked up again when the selection or what the index holds changes (a scan of the index).
+  const std::uint64_t indexBytes = index_.loaded() ? index_.bytes() : 0;
+  if (selected_ != markedSelection_ || indexBytes != markedSelectionIndexBytes_) {
+    markedSelection_ = selected_;
+    markedSelectionIndexBytes_ = indexBytes;
+    markedSelectionEntry_.reset();
+    if (!selected_.empty()) markedSelectionEntry_ = index_.listEntryOf(selected_);
+  }
+  return markedSelectionEntry_;
+}
+
+void CityScene::mapMarkers(float pixelRatio, std::vector<MapMarker>& out) {
+  auto colourOf = [](const BuildingListEntry& e) {
+    Rgb c = kNoResultColor;
+    if (e.loss) {
+      c = paletteRamp(e.loss->structuralAtLeast(2));
+    } else if (e.damage != DamageState::NoResult) {
+      c = paletteRamp(static_cast<float>(e.damage) / kDamageComplete);
+    }
+    return glm::vec3(c.r, c.g, c.b);
+  };
+  for (const BuildingListEntry& e : markedBuildings()) {
+    out.push_back({glm::vec3(e.x, e.y, e.heightM), 7.0f * pixelRatio, colourOf(e), false});
+  }
+  if (const std::optional<BuildingListEntry>& selected = selectedListEntry()) {
+    const BuildingListEntry& e = *selected;
+    out.push_back({glm::vec3(e.x, e.y, e.heightM), 10.0f * pixelRatio, colourOf(e), true});
+  }
 }
 
 bool CityScene::searchIndexSettled() const {

@@ -107,6 +107,18 @@ void CityScene::applySeries(std::uint32_t node) {
     if (valid) has[tile.positionOf[b]] = 1;
   }
   for (std::size_t p = 0; p < has.size(); ++p) tile.seriesBefore[p + 1] = tile.seriesBefore[p] + has[p];
+  // When the shaking arrives: the earliest window reaching a tenth of the tile's largest drift
+  // (codes are on a square-root scale: a tenth of the drift is 0.316 of the code).
+  const std::uint8_t top = *std::max_element(d.codes.begin(), d.codes.end());
+  const auto threshold = static_cast<std::uint8_t>(std::max(1.0, std::ceil(top * 0.316)));
+  for (const DriftSpan& span : d.spans) {
+    for (std::uint32_t i = 0; i < span.count && std::uint64_t{span.first} + i < d.codes.size(); ++i) {
+      if (d.codes[span.first + i] < threshold) continue;
+      const double at = static_cast<double>(span.startSeconds) + static_cast<double>(i) / d.rateHz;
+      if (!firstShaking_ || at < *firstShaking_) firstShaking_ = at;
+      break;
+    }
+  }
   table_.changed(tile.slotBase, tile.buildingCount());
   // The table holds them now.
   d.codes.clear();

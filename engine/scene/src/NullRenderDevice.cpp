@@ -60,6 +60,10 @@ void NullRenderDevice::render(const FrameUniforms& uniforms, std::span<const Dra
       stats.triangles += span.indexCount / 3 - (uniforms.showModels ? span.fallbackTriangles : span.modelTriangles);
     }
   }
+  if (!uniforms.markers.empty()) {
+    stats.drawCalls += 1;
+    stats.triangles += 2 * uniforms.markers.size();
+  }
   last_ = stats;
 }
 

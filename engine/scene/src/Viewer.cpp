@@ -64,6 +64,7 @@ void Viewer::setViewport(int widthPixels, int heightPixels, double widthCss, dou
   widthCss_ = std::max(1.0, widthCss);
   heightCss_ = std::max(1.0, heightCss);
   controller_.setViewport(widthCss, heightCss);
+  controller_.setLensShift(lensShift());
 }
 
 void Viewer::openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options) {
@@ -93,7 +94,19 @@ bool Viewer::setCamera(const CameraState& camera) {
 bool Viewer::setTime(double seconds) {
   if (!std::isfinite(seconds)) return false;
   time_ = std::clamp(seconds, 0.0, duration_);
+  timeChosen_ = true;
   return true;
+}
+
+void Viewer::setFramingInsetCss(double left) {
+  framingInsetCss_ = std::isfinite(left) ? std::max(left, 0.0) : 0.0;
+  controller_.setLensShift(lensShift());
+}
+
+float Viewer::lensShift() const {
+  // The centre of the part right of the panels: inset / width in normalized device units.
+  const double inset = std::min(framingInsetCss_, widthCss_ * 0.6);
+  return widthCss_ > 0.0 && inset > 0.0 ? static_cast<float>(inset / widthCss_) : 0.0f;
 }
 
 void Viewer::withdrawErrors(const std::string& key) {
@@ -120,7 +133,10 @@ void Viewer::frameCityOnce() {
   // The first frame with the manifest: the duration, and a camera that frames the whole city.
   cityFramed_ = true;
   duration_ = city_->duration();
-  const CameraState overview = city_->overviewCamera(camera_.fovDeg);
+  CameraState overview = city_->overviewCamera(camera_.fovDeg);
+  // The panels cover the left of the canvas: the lens shift (lensShift) puts the city's centre in
+  // the middle of the rest; seen from a little farther, it still fits there.
+  overview.distance *= 1.0 + 0.5 * static_cast<double>(lensShift());
   controller_.setHome(overview);
   if (!cameraSetByUser_) camera_ = overview;
   if (const Tileset* tileset = city_->tileset()) geo_ = GeoFrame(tileset->originLon, tileset->originLat);
@@ -199,17 +215,28 @@ void Viewer::frame(double dtSeconds) {
     time_ = std::fmod(time_ + std::max(0.0, dtSeconds) * speed_, duration_);
   }
 
-  const CameraView view(camera_, widthPixels_, heightPixels_);
+  const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
   std::vector<DrawItem> items;
   FrameUniforms uniforms;
 
   if (test_) frameTestScene(view, times, counts, items, uniforms);
   if (city_) {
+    // The first view plays from the moment the shaking arrives (a second before it), unless a
+    // link or the user chose the time.
+    if (!openingTimeSet_ && !timeChosen_) {
+      if (const std::optional<double> arrival = city_->firstShakingSeconds()) {
+        time_ = std::clamp(*arrival - 1.0, 0.0, duration_);
+        openingTimeSet_ = true;
+      }
+    }
     city_->update(view, time_, times, counts, items);
     // Drawn in the current-drift colours, the buildings with a drift series follow their history
     // too (coloured by their drift at this time), not only those moved floor by floor.
     if (colorMode_ == ColorMode::CurrentDrift) counts.buildingsAnimated += counts.buildingsSeriesOnly;
     uniforms.showModels = city_->showLod2();
+    markers_.clear();
+    city_->mapMarkers(widthCss_ > 0.0 ? static_cast<float>(widthPixels_ / widthCss_) : 1.0f, markers_);
+    uniforms.markers = markers_;
     if (const Tileset* t = city_->tileset()) {
       // Ground under the whole city with a margin.
       const float margin = std::max(t->bounds.width(), t->bounds.height()) * 0.5f + 2000.0f;
@@ -272,7 +299,7 @@ std::string Viewer::statsJson(const MemoryInfo& memory) const {
 
 std::optional<BuildingInfo> Viewer::pick(double cssX, double cssY) const {
   if (!city_) return std::nullopt;
-  const CameraView view(camera_, widthPixels_, heightPixels_);
+  const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
   glm::vec3 origin, direction;
   view.ray(cssX * widthPixels_ / widthCss_, cssY * heightPixels_ / heightCss_, origin, direction);
   const auto ref = city_->pick(origin, direction);
@@ -343,18 +370,18 @@ void Viewer::flyToPose(const CameraState& pose) {
 }
 
 std::optional<glm::dvec2> Viewer::groundAt(double cssX, double cssY) const {
-  const CameraView view(camera_, widthPixels_, heightPixels_);
+  const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
   return view.groundPoint(cssX * widthPixels_ / widthCss_, cssY * heightPixels_ / heightCss_);
 }
 
 double Viewer::metresPerCssPixel() const {
-  const CameraView view(camera_, widthPixels_, heightPixels_);
+  const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
   return static_cast<double>(widthPixels_) / widthCss_ /
          static_cast<double>(view.pixelsPerMeterAt(static_cast<float>(camera_.distance)));
 }
 
 std::optional<glm::dvec2> Viewer::worldToScreen(double x, double y, double z) const {
-  const CameraView view(camera_, widthPixels_, heightPixels_);
+  const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
   const auto p = view.project(glm::vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)));
   if (!p) return std::nullopt;
   return glm::dvec2(static_cast<double>(p->x) * widthCss_ / widthPixels_,

@@ -158,6 +158,7 @@ void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory
   drawInspection(viewer, w, host);
   drawOverlay(viewer, w);
   drawFilterChips(viewer, w);
+  drawMarkerLabels(viewer, w);
 
   if (!viewer.errors().empty()) {
     const ImVec2 display = ImGui::GetIO().DisplaySize;
@@ -260,26 +261,64 @@ void ControlPanel::drawBuildingLoss(const BuildingLoss& l, ui::Widgets& w) {
                                              static_cast<double>(l.repairTimeDays)));
 }
 
+float ControlPanel::overlayRoom() const {
+  // The overlay's height and margin as last drawn, never less than before it had a colour key.
+  const float display = ImGui::GetIO().DisplaySize.y;
+  return overlayTop_ >= 0.0f ? std::max(kOverlayRoomPx, display - overlayTop_ + 10.0f) : kOverlayRoomPx + 45.0f;
+}
+
+bool ControlPanel::section(ui::Widgets& w, const char* label, bool defaultOpen) {
+  if (openRequests_.erase(label) > 0) ImGui::SetNextItemOpen(true);
+  return w.collapsingHeader(label, defaultOpen);
+}
+
+void ControlPanel::openSection(const std::string& label) {
+  openRequests_.insert(label);
+}
+
 void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host) {
   CityScene* city = viewer.city();
   const Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
-  if (tileset == nullptr || !tileset->response || !w.collapsingHeader("Consequences", true)) return;
+  if (tileset == nullptr || !tileset->response || !section(w, "Consequences", true)) return;
   const ResponseInfo& r = *tileset->response;
-  // Provenance first: which shaking these numbers assume.
-  w.textColored(r.eventType == "ACTUAL" ? 0.80f : 0.55f, r.eventType == "ACTUAL" ? 0.05f : 0.25f, 0.0f,
-                r.eventType == "ACTUAL"     ? "ACTUAL EVENT"
-                : r.eventType == "SCENARIO" ? "SCENARIO (not a recorded event)"
-                                            : "NOT STATED whether a scenario or an actual event");
-  if (r.shakemap) {
-    w.textWrapped("ShakeMap " + r.shakemap->eventId + ", version " + r.shakemap->version + ", processed " +
-                  r.shakemap->processTimestamp);
-  }
   const seismic::ConsequenceTotals* file = city->consequences();
   if (file == nullptr) {
     w.textWrapped(r.consequences ? (city->consequencesFailed() ? "The consequences file could not be loaded."
                                                                : "Loading the consequences...")
                                  : "These results carry no damage probabilities or consequences (computed before "
                                    "they existed, or imported): run quakeview-prep response again.");
+    return;
+  }
+  auto cell = [](const seismic::Estimate& e, int decimals) {
+    // Whole numbers from a thousand up, so the city's and the view's columns fit the panel.
+    if (e.high >= 1000.0) decimals = 0;
+    return ui::format("%.*f (%.*f-%.*f)", decimals, e.expected, decimals, e.low, decimals, e.high);
+  };
+  auto money = [](const seismic::Estimate& e) {
+    // One unit for the three numbers, from the expected value: "$1.86 M (0.87-3.36)".
+    const double m = std::max({e.expected, e.high, 1.0});
+    const double unit = m >= 1e9 ? 1e9 : m >= 1e6 ? 1e6 : m >= 1e3 ? 1e3 : 1.0;
+    const char* name = m >= 1e9 ? " bn" : m >= 1e6 ? " M" : m >= 1e3 ? " k" : "";
+    return ui::format("$%.2f%s (%.2f-%.2f)", e.expected / unit, name, e.low / unit, e.high / unit);
+  };
+  const seismic::LossTotals& c = file->city;
+  // The headline: what an emergency manager acts on first, for the whole city, with its 90 %
+  // interval (the shaking they assume is stated right above the section).
+  {
+    std::vector<std::vector<std::string>> headline;
+    headline.push_back({"Red tags (unsafe)", cell(c.tags[2], 1)});
+    headline.push_back({"Yellow tags (restricted use)", cell(c.tags[1], 1)});
+    headline.push_back({"Injuries: minor", cell(c.injuries[0], 1)});
+    headline.push_back({"Injuries: hospital care", cell(c.injuries[1], 1)});
+    headline.push_back({"Deaths", cell(c.injuries[3], 2)});
+    headline.push_back({"Repair cost", money(c.repairCostUsd)});
+    w.table("##headline", {ui::format("HAZUS 5.1, occupants at %s", file->timeOfDay.c_str()), "City (90 % interval)"},
+            headline);
+  }
+  ImGui::Indent();
+  const bool full = section(w, "All consequences: city, view, districts", false);
+  if (!full) {
+    ImGui::Unindent();
     return;
   }
   const seismic::LossTotals view = city->consequencesInView();
@@ -295,19 +334,6 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
       ui::format("HAZUS 5.1, occupants at %s; expected value (90 %% interval). Occupants and values "
                  "are inferred from floor area and use unless the data gives them.",
                  file->timeOfDay.c_str()));
-  auto cell = [](const seismic::Estimate& e, int decimals) {
-    // Whole numbers from a thousand up, so the city's and the view's columns fit the panel.
-    if (e.high >= 1000.0) decimals = 0;
-    return ui::format("%.*f (%.*f-%.*f)", decimals, e.expected, decimals, e.low, decimals, e.high);
-  };
-  auto money = [](const seismic::Estimate& e) {
-    // One unit for the three numbers, from the expected value: "$1.86 M (0.87-3.36)".
-    const double m = std::max({e.expected, e.high, 1.0});
-    const double unit = m >= 1e9 ? 1e9 : m >= 1e6 ? 1e6 : m >= 1e3 ? 1e3 : 1.0;
-    const char* name = m >= 1e9 ? " bn" : m >= 1e6 ? " M" : m >= 1e3 ? " k" : "";
-    return ui::format("$%.2f%s (%.2f-%.2f)", e.expected / unit, name, e.low / unit, e.high / unit);
-  };
-  const seismic::LossTotals& c = file->city;
   std::vector<std::vector<std::string>> rows;
   rows.push_back({"Buildings (with a result)", ui::format("%llu", static_cast<unsigned long long>(c.buildings)),
                   ui::format("%llu", static_cast<unsigned long long>(view.buildings))});
@@ -344,6 +370,7 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
     host.download(exportFileName(*tileset, BuildingFilters{}, "consequences", "csv"), "text/csv",
                   exportConsequencesCsv(*file, &view, &provenance));
   }
+  ImGui::Unindent();
 }
 
 void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
@@ -360,14 +387,16 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   const float maxWidth = std::max(200.0f, std::min(520.0f, display.x - 20.0f));
   const float overlayLeft = overlayLeft_ >= 0.0f ? overlayLeft_ : display.x - kOverlayWidthGuessPx;
   const bool clearOverlay = narrow || 10.0f + maxWidth + 10.0f > overlayLeft;
-  const float maxHeight = std::max(200.0f, display.y - 20.0f - (clearOverlay ? kOverlayRoomPx : 0.0f));
+  const float maxHeight = std::max(200.0f, display.y - 20.0f - (clearOverlay ? overlayRoom() : 0.0f));
   ImGui::SetNextWindowSizeConstraints(ImVec2(std::min(260.0f, maxWidth), 0.0f), ImVec2(maxWidth, maxHeight));
   ImGui::SetNextWindowBgAlpha(0.90f);
   if (focusSearch_) ImGui::SetNextWindowCollapsed(false);  // '/' opens the panel, whatever its state
   if (!w.begin("QuakeView", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    panelRight_ = 0.0f;
     w.end();
     return;
   }
+  panelRight_ = narrow ? 0.0f : ImGui::GetWindowPos().x + ImGui::GetWindowSize().x;
   const StatsSummary s = viewer.stats();
   CityScene* city = viewer.city();
   const Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
@@ -391,20 +420,27 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     }
   }
 
+  // On a software renderer, one line says why the picture is coarser (details under Performance).
+  if (qualityState_ != nullptr && qualityState_->weakStart && !qualityState_->presetChosen) {
+    w.textWrapped("Software rendering: the weak-device preset is on (Performance).");
+  }
+
   // The decision numbers right under the shaking they assume.
   drawConsequences(viewer, w, host);
 
-  if (w.collapsingHeader("Animation")) {
-    if (w.button(viewer.playing() ? "Pause (Space)##transport" : "Play (Space)##transport")) {
-      if (viewer.playing())
-        viewer.pause();
-      else
-        viewer.play();
-    }
-    w.sameLine();
+  // The transport, always in view: play or pause and the time.
+  if (w.button(viewer.playing() ? "Pause (Space)##transport" : "Play (Space)##transport")) {
+    if (viewer.playing())
+      viewer.pause();
+    else
+      viewer.play();
+  }
+  w.sameLine();
+  double t = viewer.time();
+  if (w.sliderDouble("Time (s)", &t, 0.0, std::max(viewer.duration(), 0.01), "%.2f")) viewer.setTime(t);
+
+  if (section(w, "Animation", false)) {
     if (w.button("Reset view (R)")) viewer.controller().reset();
-    double t = viewer.time();
-    if (w.sliderDouble("Time (s)", &t, 0.0, std::max(viewer.duration(), 0.01), "%.2f")) viewer.setTime(t);
     float speed = static_cast<float>(viewer.speed());
     if (w.sliderFloat("Speed", &speed, 0.1f, 4.0f, "%.2fx")) viewer.setSpeed(speed);
     float amplitude = viewer.amplitude();
@@ -441,7 +477,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     }
   }
 
-  if (w.collapsingHeader("Damage and colours")) {
+  if (section(w, "Damage and colours", false)) {
     const ColorMode mode = viewer.colorMode();
     const bool byDamage = mode == ColorMode::DamageState;
     const bool probabilistic =
@@ -535,7 +571,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   // '/' opens this section (however it was left) and puts the keyboard in the search; Enter there
   // takes the first result, as a click on it does.
   if (focusSearch_) ImGui::SetNextItemOpen(true);
-  if (city != nullptr && w.collapsingHeader("Find and filter", false)) {
+  if (city != nullptr && section(w, "Find and filter", false)) {
     const bool focus = focusSearch_;
     focusSearch_ = false;
     bool entered = false;
@@ -652,7 +688,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
 
   focusSearch_ = false;  // also without a city (nothing to search)
 
-  if (w.collapsingHeader("General", false)) {
+  if (section(w, "General", false)) {
     if (city != nullptr) {
       CitySceneOptions& o = city->mutableOptions();
       bool animate = o.animationRadiusM > 0.0f;
@@ -673,7 +709,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
 
   // Open from the start when the device made the viewer start in the weak-device preset, so the
   // person sees why and how to get full quality back.
-  if (w.collapsingHeader("Performance", qualityState_ != nullptr && qualityState_->weakStart)) {
+  if (section(w, "Performance", false)) {
     int quality = static_cast<int>(quality_);
     static const char* const qualities[] = {qualityName(QualityPreset::High), qualityName(QualityPreset::Balanced),
                                             qualityName(QualityPreset::Low)};
@@ -710,7 +746,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     w.text("memory: " + megabytes(memory.heapBytes) + " live, " + megabytes(memory.heapReservedBytes) + " reserved");
   }
 
-  if (w.collapsingHeader("About these results", false)) {
+  if (section(w, "About these results", false)) {
     w.textWrapped(
         "Responses come from simplified models: every building is a shear building (one mass per floor, "
         "storey springs with Bouc-Wen hysteresis) sized from its footprint, height and a structural type "
@@ -718,9 +754,10 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
         "city, not a safety assessment of any one building.");
     if (tileset != nullptr && tileset->response) w.textWrapped("Method: " + tileset->response->method);
     w.textWrapped(
-        "Colours: in the current-drift mode only the animated buildings (within the animation radius of the "
-        "camera, up to the maximum animated) show their drift at the current time, from light grey through "
-        "yellow to dark red. Every other building shows its peak drift over the whole record in grey levels "
+        "Colours: in the current-drift mode every building shows its drift at the current time, from light "
+        "grey through yellow to dark red: its largest storey's from its drift series (four values a second) "
+        "and, within the animation radius of the camera, each storey's own as it moves. A building without a "
+        "drift series (results prepared before them) shows its peak drift over the whole record in grey levels "
         "(light to dark slate), never in the colours of damage, because that peak may not have happened yet: "
         "paused before the shaking arrives, no building is yellow, orange or red. The peak-drift and damage "
         "modes show every building's peak over the whole record in colour.");
@@ -763,6 +800,7 @@ void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
                                  ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav;
   if (w.begin("Map", nullptr, flags)) {
     overlayLeft_ = ImGui::GetWindowPos().x;
+    overlayTop_ = ImGui::GetWindowPos().y;
     // North arrow: north points up when the heading is 0 and turns against the view.
     // The "N" goes round the circle at radius + 9 px (its glyph about 7 px across): the arrow's
     // square leaves that much room on every side, so no heading puts it outside the window.
@@ -811,8 +849,54 @@ void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
       }
     }
     ImGui::EndGroup();
+    drawColourKey(viewer, w);
   }
   w.end();
+}
+
+void ControlPanel::drawColourKey(Viewer& viewer, ui::Widgets& w) {
+  // The colours' key, always in view (the panel's "Damage and colours" has the whole legend).
+  const ColorMode mode = viewer.colorMode();
+  if (mode == ColorMode::Neutral) return;
+  std::string title;
+  std::array<std::string, 5> labels;
+  std::vector<Rgb> colours(kDamagePalette.begin(), kDamagePalette.end());
+  switch (mode) {
+    case ColorMode::CurrentDrift:
+    case ColorMode::PeakDrift:
+      title = mode == ColorMode::CurrentDrift ? "Colour: storey drift now" : "Colour: peak storey drift";
+      labels = {"0", "0.5", "1", "1.5", "2 %"};
+      break;
+    case ColorMode::ModerateOrWorse:
+      title = "Colour: P(moderate damage or worse)";
+      labels = {"0", "25", "50", "75", "100 %"};
+      break;
+    case ColorMode::InspectionTag:
+      title = "Colour: most likely inspection tag";
+      colours.assign(kTagPalette.begin(), kTagPalette.end());
+      labels = {"green", "yellow", "red", "", ""};
+      break;
+    default:
+      title = mode == ColorMode::ExpectedDamage ? "Colour: expected damage state" : "Colour: damage state";
+      labels = {"none", "slight", "mod.", "ext.", "compl."};
+      break;
+  }
+  w.text(title);
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const float cell = 52.0f;
+  const ImVec2 p = ImGui::GetCursorScreenPos();
+  std::string mirrored = title + ":";
+  for (std::size_t k = 0; k < colours.size(); ++k) {
+    const Rgb c = colours[k];
+    const ImVec2 a(p.x + cell * static_cast<float>(k), p.y);
+    draw->AddRectFilled(a, ImVec2(a.x + cell - 4.0f, a.y + 10.0f),
+                        ImGui::ColorConvertFloat4ToU32(ImVec4(c.r, c.g, c.b, 1.0f)));
+    draw->AddRect(a, ImVec2(a.x + cell - 4.0f, a.y + 10.0f), IM_COL32(90, 90, 90, 255));
+    draw->AddText(ImVec2(a.x, a.y + 12.0f), IM_COL32(30, 30, 30, 255), labels[k].c_str());
+    mirrored += " " + labels[k];
+  }
+  ImGui::Dummy(ImVec2(cell * static_cast<float>(colours.size()), 28.0f));
+  w.mirror().line(mirrored);
 }
 
 }  // namespace qv

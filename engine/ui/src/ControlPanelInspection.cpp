@@ -196,7 +196,7 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
     ImGui::SetNextWindowPos(ImVec2(0.0f, display.y), ImGuiCond_Always, ImVec2(0.0f, 1.0f));
     ImGui::SetNextWindowSizeConstraints(ImVec2(display.x, 0.0f), ImVec2(display.x, display.y * kBottomSheetFraction));
   } else {
-    const float maxHeight = std::max(160.0f, display.y - 2.0f * kMarginPx - kOverlayRoomPx);
+    const float maxHeight = std::max(160.0f, display.y - 2.0f * kMarginPx - std::max(kOverlayRoomPx, overlayRoom()));
     ImGui::SetNextWindowPos(ImVec2(display.x - kInspectionWidth - kMarginPx, kMarginPx), ImGuiCond_Always);
     ImGui::SetNextWindowSizeConstraints(ImVec2(kInspectionWidth, 0.0f), ImVec2(kInspectionWidth, maxHeight));
   }
@@ -372,6 +372,65 @@ void ControlPanel::drawResponse(Viewer& viewer, const BuildingInfo& info, ui::Wi
              70.0f);
   w.mirror().line(
       ui::format("Plot axes: time 0 to %.1f s, the current time %.1f s marked", series->durationSeconds, now));
+}
+
+namespace {
+
+// What a map marker's label says: the building's name (or address, or id), its facility kind and
+// how likely it is damaged.
+std::string markerLabel(const BuildingListEntry& e) {
+  std::string label(listName(e));
+  if (e.facility != FacilityCategory::None) label += " (" + std::string(facilityCategoryLabel(e.facility)) + ")";
+  if (e.loss) {
+    label += ui::format(": P(moderate or worse) %.0f %%", static_cast<double>(e.loss->structuralAtLeast(2)) * 100.0);
+  } else if (e.damage != DamageState::NoResult) {
+    label += ": " + std::string(damageStateName(e.damage));
+  }
+  return label;
+}
+
+void labelAt(ui::Widgets& w, const char* id, glm::dvec2 at, const std::string& text) {
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(at.x) + 12.0f, static_cast<float>(at.y) - 12.0f), ImGuiCond_Always,
+                          ImVec2(0.0f, 1.0f));
+  ImGui::SetNextWindowBgAlpha(0.85f);
+  const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
+                                 ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
+                                 ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoNav;
+  if (w.begin(id, nullptr, flags)) w.text(text);
+  w.end();
+}
+
+}  // namespace
+
+void ControlPanel::drawMarkerLabels(Viewer& viewer, ui::Widgets& w) {
+  CityScene* city = viewer.city();
+  if (city == nullptr) return;
+  // The marked building under the pointer (within its 7 px disc, a little more), unless a window is.
+  const ImVec2 mouse = ImGui::GetIO().MousePos;
+  const BuildingListEntry* hovered = nullptr;
+  glm::dvec2 hoveredAt{};
+  double nearest = 10.0 * 10.0;
+  if (!ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow) && mouse.x > -1e6f) {
+    for (const BuildingListEntry& e : city->markedBuildings()) {
+      const auto p = viewer.worldToScreen(e.x, e.y, e.heightM);
+      if (!p) continue;
+      const double d2 = (p->x - mouse.x) * (p->x - mouse.x) + (p->y - mouse.y) * (p->y - mouse.y);
+      if (d2 < nearest) {
+        nearest = d2;
+        hovered = &e;
+        hoveredAt = *p;
+      }
+    }
+  }
+  if (hovered != nullptr) labelAt(w, "Building under the pointer##markerHover", hoveredAt, markerLabel(*hovered));
+  // The selected building carries its name on the map.
+  if (const auto selected = city->selectedListEntry()) {
+    if (hovered == nullptr || hovered->id != selected->id) {
+      if (const auto p = viewer.worldToScreen(selected->x, selected->y, selected->heightM)) {
+        labelAt(w, "Selected building on the map##markerSelected", *p, markerLabel(*selected));
+      }
+    }
+  }
 }
 
 }  // namespace qv

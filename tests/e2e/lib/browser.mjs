@@ -313,6 +313,20 @@ export async function settle(page) {
   }, null, { timeout: 60000, polling: 250 });
 }
 
+/// Opens the control panel's section `label` ("Performance", "Damage and colours", ...) with a
+/// click on its header, as a person would (the panel opens compact: most sections are folded), and
+/// waits until the panel shows it open. Does nothing when it is open already.
+export async function openSection(page, label) {
+  const escaped = label.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
+  const isOpen = (l) => new RegExp(`^v ${l}$`, 'm').test(window.quakeview.uiText());
+  if (await page.evaluate(isOpen, escaped)) return;
+  const header = (await page.evaluate(() => window.quakeview.uiLayout())).items
+    .find((i) => i.window === 'QuakeView' && i.label === label);
+  if (!header) throw new Error(`no section header "${label}" in the panel`);
+  await page.mouse.click(header.x + 40, header.y + header.height / 2);
+  await waitForFunction(page, isOpen, escaped, { timeout: 10000, polling: 100 });
+}
+
 /// Waits for quakeview.ready; resolves to {ok: true} or {ok: false, message}.
 export async function waitReady(page, timeoutMs = 90000) {
   return page.evaluate(async (ms) => {

@@ -39,7 +39,11 @@ bool sanitizeCamera(CameraState& state, const CameraState& fallback, const Camer
 /// Matrices and derived quantities of a camera state for a viewport of the given size (pixels).
 class CameraView {
  public:
-  CameraView(const CameraState& state, int viewportWidth, int viewportHeight);
+  /// `shiftNdcX`: the lens moved sideways, in normalized device units (the viewport is 2 wide):
+  /// the looked-at point appears shiftNdcX × width / 2 pixels right of the viewport's centre (the
+  /// centre of the canvas part the panels leave free; MapLibre's "padding"). Rays, projection and
+  /// the frustum all follow it.
+  CameraView(const CameraState& state, int viewportWidth, int viewportHeight, float shiftNdcX = 0.0f);
 
   [[nodiscard]] const glm::mat4& view() const { return view_; }
   [[nodiscard]] const glm::mat4& projection() const { return projection_; }

@@ -92,6 +92,12 @@ class GlRenderDevice final : public RenderDevice {
   struct GroundUniforms {
     int viewProjection = -1, rect = -1, eye = -1;
   } g_;
+  // Map markers: one program, one buffer rewritten each frame they are drawn.
+  void drawMarkers(const FrameUniforms& uniforms, DeviceFrameStats& stats);
+  unsigned markerProgram_ = 0, markerVao_ = 0, markerBuffer_ = 0;
+  std::size_t markerBufferBytes_ = 0;
+  int markerViewProjection_ = -1, markerViewport_ = -1;
+  std::vector<float> markerVertices_;
 };
 
 }  // namespace qv

@@ -44,6 +44,8 @@ class CameraController {
   CameraController(CameraState& state, const CameraLimits& limits = {});
 
   void setViewport(double widthCss, double heightCss);
+  /// The lens shift of the view (CameraView's shiftNdcX): gestures act on the picture as shown.
+  void setLensShift(float shiftNdcX) { shiftNdcX_ = shiftNdcX; }
   void setHome(const CameraState& home) { home_ = home; }
   [[nodiscard]] const CameraState& home() const { return home_; }
 
@@ -79,6 +81,7 @@ class CameraController {
   CameraLimits limits_;
   double width_ = 1.0;
   double height_ = 1.0;
+  float shiftNdcX_ = 0.0f;
   Mode mode_ = Mode::None;
   int dragButton_ = -1;
   double lastX_ = 0.0, lastY_ = 0.0, downX_ = 0.0, downY_ = 0.0;

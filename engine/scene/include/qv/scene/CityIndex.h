@@ -125,6 +125,8 @@ class CityIndex {
 
   /// The building's entry (nullptr while the index is not loaded, or for an unknown id).
   [[nodiscard]] const SearchEntry* entry(std::string_view id) const;
+  /// The list row of building `id` (with its response), nullopt when the index has none.
+  [[nodiscard]] std::optional<BuildingListEntry> listEntryOf(std::string_view id) const;
   /// Buildings whose id, name or address contain every word of `query`: at most `limit`, index order.
   [[nodiscard]] std::vector<BuildingListEntry> search(std::string_view query, std::size_t limit) const;
   /// How many buildings of each use the city has, most first (then by name): the use filter's

@@ -119,6 +119,10 @@ class CityScene {
   /// Whether some loaded tile's buildings carry drift series (the response has them): every
   /// building drawn then follows its response in the current-drift colours.
   [[nodiscard]] bool hasDriftSeries() const;
+  /// When the shaking first reaches the city, as far as the drift series loaded so far say (the
+  /// earliest window in which a building's drift reaches a tenth of its tile's largest); nullopt
+  /// before any series.
+  [[nodiscard]] std::optional<double> firstShakingSeconds() const { return firstShaking_; }
   [[nodiscard]] TileCounts tileCounts() const;
   /// Length of the response histories in seconds (0 without a response).
   [[nodiscard]] double duration() const;
@@ -165,6 +169,19 @@ class CityScene {
   /// Buildings passing the filters, most damaged first (then by peak drift), at most `limit`;
   /// `total` receives how many pass in all.
   [[nodiscard]] std::vector<BuildingListEntry> filteredList(std::size_t limit, std::size_t* total = nullptr);
+  /// The buildings marked on the map: with a facility filter on (critical facilities or facility
+  /// categories) those it keeps, at most kMaxMarkedBuildings, most likely damaged first; else
+  /// none. Made again only when the filters or the city index change.
+  const std::vector<BuildingListEntry>& markedBuildings();
+  static constexpr std::size_t kMaxMarkedBuildings = 2000;
+  /// Appends the markers of markedBuildings() and of the selected building (MapMarker: discs of
+  /// 7 and 10 CSS pixels at their roofs, coloured by P(damage >= moderate) on the drift ramp, or by
+  /// the damage state without probabilities) to `out`; `pixelRatio`: framebuffer pixels per CSS
+  /// pixel.
+  void mapMarkers(float pixelRatio, std::vector<MapMarker>& out);
+  /// The selected building's list row (for its marker and label), nullopt without a selection or
+  /// before the city index has it.
+  [[nodiscard]] const std::optional<BuildingListEntry>& selectedListEntry();
   /// How many buildings of each use the city has, most first (CityIndex::useCounts).
   [[nodiscard]] std::vector<std::pair<std::string, std::size_t>> useCounts() const { return index_.useCounts(); }
   [[nodiscard]] bool searchIndexLoaded() const { return index_.loaded(); }
@@ -295,6 +312,13 @@ class CityScene {
   std::vector<SampleWindow> windows_;      // of animated_, same order
   std::vector<AnimatedSampler> samplers_;  // of animated_, same order
   std::vector<float> samplerArena_;
+  std::vector<BuildingListEntry> marked_;  // markedBuildings(), for markedFilters_ and markedIndexBytes_
+  BuildingFilters markedFilters_;
+  std::uint64_t markedIndexBytes_ = UINT64_MAX;
+  std::string markedSelection_;  // the selection's list entry, for its marker
+  std::optional<BuildingListEntry> markedSelectionEntry_;
+  std::uint64_t markedSelectionIndexBytes_ = UINT64_MAX;
+  std::optional<double> firstShaking_;         // firstShakingSeconds()
   std::uint32_t seriesInView_ = 0;             // buildings in view with a drift series (cull)
   std::uint32_t modelsAnimated_ = 0;           // of animated_, LOD2 models drawn skinned
   std::vector<float> modal_;                   // per animated building: 8 x then 8 y modal coordinates this frame

@@ -6,10 +6,11 @@
 // the common colour-vision deficiencies (it runs along the yellow-red axis that deuteranopes and
 // protanopes still see as a lightness ramp). Buildings without a result are blue-grey and hatched.
 //
-// In the current-drift mode only the animated buildings (within the animation radius, up to the
-// cap, in full-detail tiles) have a drift "now". The others show their peak drift over the whole
-// record, and so that it is never mistaken for damage that has already happened, they use cool
-// grey levels instead of the warm ramp (kNotAnimatedPalette), with their own legend entry.
+// In the current-drift mode a building has a drift "now" when it is animated floor by floor
+// (within the animation radius, up to the cap, in full-detail tiles) or has a drift series (the
+// far view's, in the tile summaries). A building with neither shows its peak drift over the whole
+// record, and so that it is never mistaken for damage that has already happened, it uses cool grey
+// levels instead of the warm ramp (kNotAnimatedPalette), with their own legend entry.
 #pragma once
 
 #include <array>

@@ -109,6 +109,18 @@ inline float packLossCode(float moderateOrWorse, float expectedState, int mostLi
                             kLossCodeTagFactor * tag);
 }
 
+/// A marker over the city: a disc of a fixed size on screen whatever the distance, so that a
+/// critical facility kept by a filter, or the selected building, can be pointed at from any view.
+/// Centred at `position` (city frame, metres; its roof), `radiusPixels` framebuffer pixels, filled
+/// with `color` inside a dark ring (a white one when `selected`); drawn after the buildings,
+/// without the depth test.
+struct MapMarker {
+  glm::vec3 position{0.0f};
+  float radiusPixels = 8.0f;
+  glm::vec3 color{1.0f};
+  bool selected = false;
+};
+
 struct FrameUniforms {
   glm::mat4 viewProjection{1.0f};
   glm::vec3 eye{0.0f};
@@ -121,6 +133,7 @@ struct FrameUniforms {
   int viewportHeight = 1;
   Rect ground;             ///< ground plane extent (empty: no ground)
   bool showModels = true;  ///< LOD2 models drawn (kKindModel vertices), else their LOD1 extrusions (kKindFallback)
+  std::span<const MapMarker> markers;  ///< drawn last (two triangles and one draw call for all)
 };
 
 /// A run of a mesh's indices, [firstIndex, firstIndex + indexCount), with how many of its

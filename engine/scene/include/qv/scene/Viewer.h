@@ -46,6 +46,12 @@ class Viewer {
 
   /// Drawing-buffer size in device pixels, and the canvas size in CSS pixels (input coordinates).
   void setViewport(int widthPixels, int heightPixels, double widthCss, double heightCss);
+  /// How much of the canvas's left side the panels cover (CSS px, from the left edge; 0: none):
+  /// the view's centre (the looked-at point) is drawn in the middle of the rest, and the city's
+  /// first view (and home, R) is framed to fit there.
+  void setFramingInsetCss(double left);
+  /// The view's lens shift from the inset (CameraView's shiftNdcX).
+  [[nodiscard]] float lensShift() const;
 
   [[nodiscard]] CameraState& camera() { return camera_; }
   [[nodiscard]] const CameraState& camera() const { return camera_; }
@@ -133,11 +139,15 @@ class Viewer {
   int widthPixels_ = 1, heightPixels_ = 1;
   double widthCss_ = 1.0, heightCss_ = 1.0;
   double time_ = 0.0;
+  bool timeChosen_ = false;      // setTime() was called (a link, the user): the opening time stays
+  bool openingTimeSet_ = false;  // the first view was moved to the shaking's arrival
+  double framingInsetCss_ = 0.0;
   double duration_ = 0.0;
   double speed_ = 1.0;
   float amplitude_ = 1.0f;
   bool playing_ = true;
   ColorMode colorMode_ = ColorMode::CurrentDrift;
+  std::vector<MapMarker> markers_;  // this frame's (FrameUniforms::markers points here)
   bool settled_ = false;
   std::vector<std::string> errors_;
   std::vector<std::string> errorKeys_;  // of errors_, same order (errors() hands out the messages)

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,11 @@ class ControlPanel {
   /// Sets the city's detail from the preset, lowered by `governorStep` steps (qualitySettings).
   static void applyQuality(Viewer& viewer, QualityPreset preset, int governorStep = 0);
   [[nodiscard]] QualityPreset quality() const { return quality_; }
+  /// The right edge of the control panel as last drawn (CSS px from the canvas's left), 0 when it
+  /// is folded or on a narrow screen (then it covers none of the city's first view).
+  [[nodiscard]] float panelRightCss() const { return panelRight_; }
+  /// Opens the panel's section `label` ("Damage and colours", "Performance", ...) at the next draw.
+  void openSection(const std::string& label);
   void setQuality(QualityPreset preset) { quality_ = preset; }
   /// The app's quality state shown in the Performance panel (nullptr: none); not owned.
   void setQualityState(QualityState* state) { qualityState_ = state; }
@@ -96,6 +102,13 @@ class ControlPanel {
   void drawOverlay(Viewer& viewer, ui::Widgets& w);
   /// The active filters as a strip at the top of the canvas, whatever the panel's state.
   void drawFilterChips(Viewer& viewer, ui::Widgets& w);
+  /// The colour mode's key in the map overlay: its five stops (three tags) with their values.
+  void drawColourKey(Viewer& viewer, ui::Widgets& w);
+  /// A section header of the panel (closed until opened unless `defaultOpen`), opened now when
+  /// openSection asked for it.
+  bool section(ui::Widgets& w, const char* label, bool defaultOpen);
+  /// The name of the map marker under the pointer, and of the selected building, beside its marker.
+  void drawMarkerLabels(Viewer& viewer, ui::Widgets& w);
   /// SCENARIO or ACTUAL (prominent), the ShakeMap, the earthquake, the record(s) and their scaling.
   static void drawShakingProvenance(const ResponseInfo& response, ui::Widgets& w);
   /// The building's Sa(T1) scaling and its spread across the record suite.
@@ -109,9 +122,14 @@ class ControlPanel {
   std::optional<std::pair<double, double>> cursor_;
   bool focusSearch_ = false;
   std::string search_;
-  std::string inspected_;      // the building the inspection window showed last frame
+  std::string inspected_;     // the building the inspection window showed last frame
+  float overlayTop_ = -1.0f;  // its top edge last frame (px); -1 before it was drawn
+  /// Room the panels leave at the bottom for the map overlay (px): its height and margin.
+  [[nodiscard]] float overlayRoom() const;
   float overlayLeft_ = -1.0f;  // the map overlay's left edge last frame (px); -1 before it was drawn
   QualityPreset quality_ = QualityPreset::High;
+  float panelRight_ = 0.0f;
+  std::set<std::string> openRequests_;  // openSection's, until drawn
   QualityState* qualityState_ = nullptr;
 };
 
