@@ -65,13 +65,16 @@ function cityCentre(dir) {
 
 const pixelsText = (s) => `${s.canvas.width}×${s.canvas.height} (${s.pixels}${s.samples !== s.pixels ? `, ${s.samples} samples` : ''})`;
 
-// Frames for `ms` and at least `minFrames` intervals (or, given `until`, a function evaluated in
-// the page, until it returns true), at most 10 minutes, measured in the page: {frames, fps:
-// {median, atP95FrameTime}, frameMs: {median, p95}, triangles: {median, p95}, drawCalls: {median}}.
-async function measureFrames(page, ms, minFrames = 6, until = null) {
-  return page.evaluate(({ ms, minFrames, until }) => new Promise((resolve) => {
-    const done = until ? new Function(`return (${until})();`) : null;
-    const times = [], triangles = [], drawCalls = [];
+// Frames for `ms` and at least `minFrames` intervals (or, with `untilBench`, until the ?bench
+// flight has its result), at most 10 minutes, measured in the page: {frames, fps: {median,
+// atP95FrameTime}, frameMs: {median, p95}, triangles: {median, p95}, drawCalls: {median},
+// responding: {median, min}} (responding: the share of the buildings in view that follow their
+// response, stats().buildings.animated / visible). Nothing is compiled from a string in the page
+// (the site's CSP forbids it).
+async function measureFrames(page, ms, minFrames = 6, untilBench = false) {
+  return page.evaluate(({ ms, minFrames, untilBench }) => new Promise((resolve) => {
+    const done = untilBench ? () => window.quakeview.benchResult !== null : null;
+    const times = [], triangles = [], drawCalls = [], responding = [];
     const start = performance.now();
     const q = (v, p) => {
       const s = [...v].sort((a, b) => a - b);
@@ -82,6 +85,7 @@ async function measureFrames(page, ms, minFrames = 6, until = null) {
       const s = window.quakeview.stats();
       triangles.push(s.lastFrame.triangles);
       drawCalls.push(s.lastFrame.drawCalls);
+      if (s.buildings.visible > 0) responding.push(s.buildings.animated / s.buildings.visible);
       const elapsed = t - start;
       const more = done ? !done() : elapsed < ms || times.length <= minFrames;
       if (more && elapsed < 600000) {
@@ -95,10 +99,11 @@ async function measureFrames(page, ms, minFrames = 6, until = null) {
         frameMs: { median: q(intervals, 0.5), p95: q(intervals, 0.95) },
         triangles: { median: q(triangles, 0.5), p95: q(triangles, 0.95) },
         drawCalls: { median: q(drawCalls, 0.5) },
+        responding: { median: q(responding, 0.5), min: responding.length ? Math.min(...responding) : NaN },
       });
     };
     requestAnimationFrame(tick);
-  }), { ms, minFrames, until: until ? until.toString() : null });
+  }), { ms, minFrames, untilBench });
 }
 
 const mounts = { '/reference': path.join(path.dirname(new URL(import.meta.url).pathname), 'bench') };
@@ -122,7 +127,7 @@ try {
         const stats = await page.evaluate(() => window.quakeview.stats());
         // The flight starts at the frame that resolves ready; its frames measured in the page too
         // (requestAnimationFrame intervals: the engine's benchResult has no percentile of them).
-        const frames = await measureFrames(page, 0, 0, () => window.quakeview.benchResult !== null);
+        const frames = await measureFrames(page, 0, 0, true);
         const result = await page.evaluate(() => window.quakeview.benchDone);
         const after = await page.evaluate(() => window.quakeview.stats());
         flightRows.push({ name: city.name, buildings: stats.buildings.loaded, openMs, result, frames, stats: after });
@@ -185,8 +190,8 @@ const rendererOf = (rows) => [...new Set(rows.map((r) => r.stats.renderer))].joi
 if (flightRows.length > 0) {
   console.log(`\nViewer in headless ${BROWSER_NAME} (${rendererOf(flightRows)}), 1280x720, ${seconds} s flight while playing` +
     `${params ? `, ?${params}` : ''}\n`);
-  console.log('| city | browser | buildings | open to first full frame s | FPS median | FPS at p95 frame time | frame ms median | frame ms p95 | engine CPU ms (cull+lod+animate) | upload ms | draw calls | triangles median | triangles p95 | pixels per frame | quality (step) |');
-  console.log('| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |');
+  console.log('| city | browser | buildings | open to first full frame s | FPS median | FPS at p95 frame time | frame ms median | frame ms p95 | engine CPU ms (cull+lod+animate) | upload ms | draw calls | triangles median | triangles p95 | in view responding, median (min) | pixels per frame | quality (step) |');
+  console.log('| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- |');
   for (const r of flightRows) {
     const f = r.result.frameMs;
     const engine = f.cull.median + f.lod.median + f.animate.median;
@@ -194,7 +199,8 @@ if (flightRows.length > 0) {
     console.log(`| ${r.name} | ${BROWSER_NAME} | ${r.buildings} | ${(r.openMs / 1000).toFixed(2)} | ${m.fps.median.toFixed(1)} | ` +
       `${m.fps.atP95FrameTime.toFixed(1)} | ${m.frameMs.median.toFixed(1)} | ${m.frameMs.p95.toFixed(1)} | ${engine.toFixed(2)} | ` +
       `${f.upload.median.toFixed(2)} | ${r.result.drawCalls.median} | ${Math.round(r.result.triangles.median)} | ` +
-      `${Math.round(r.result.triangles.p95)} | ${pixelsText(r.stats)} | ${r.stats.quality} (${r.stats.qualityStep}) |`);
+      `${Math.round(r.result.triangles.p95)} | ${(100 * m.responding.median).toFixed(0)} % (${(100 * m.responding.min).toFixed(0)} %) | ` +
+      `${pixelsText(r.stats)} | ${r.stats.quality} (${r.stats.qualityStep}) |`);
   }
   console.log('\n(FPS and frame ms from the page\'s requestAnimationFrame intervals over the flight; engine CPU, ' +
     'draw calls and triangles from its benchResult; quality: the preset and governor step at the end.)');

@@ -74,7 +74,8 @@ test('LOD2 models are drawn from their meshes, picked on them, described in the 
     const extruded = await page.evaluate(([x, y]) => window.quakeview.pick(x, y), [cx, cy]);
     assert.ok(extruded && extruded.id === id, `the LOD1 extrusion is picked: ${JSON.stringify(extruded)}`);
     const boxed = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-as-lod1.png') }));
-    const roof = { x: 560, y: 280, width: 160, height: 160 };  // the model's roofs, seen from above
+    // The model's roofs, seen from above, around the view's centre (drawn beside the panel).
+    const roof = { x: Math.round(cx) - 80, y: Math.round(cy) - 80, width: 160, height: 160 };
     assert.ok(changedFraction(shown, boxed, 24, roof) > 0.05, 'the model gives way to its extrusion');
 
     // LOD1 off too: nothing of it is drawn or picked.
@@ -83,7 +84,7 @@ test('LOD2 models are drawn from their meshes, picked on them, described in the 
     const again = await page.evaluate(([x, y]) => window.quakeview.pick(x, y), [cx, cy]);
     assert.ok(!again || again.id !== id, 'a hidden building is not picked');
     const hidden = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'lod2-hidden.png') }));
-    const centre = { x: 630, y: 350, width: 20, height: 20 };  // within the model's roof, seen from above
+    const centre = { x: Math.round(cx) - 10, y: Math.round(cy) - 10, width: 20, height: 20 };  // within its roof
     assert.ok(changedFraction(boxed, hidden, 24, centre) > 0.5, 'hiding every building uncovers the ground at the centre');
     assert.deepEqual(problems, []);
   } finally {

@@ -80,6 +80,7 @@ test('a failing tile server: failures are shown, the frame loop keeps going, and
     const { page: healthy } = await openPage(context, `${server.url}/?data=/city/tileset.json&quality=high${hash}`);
     assert.deepEqual(await waitReady(healthy), { ok: true });
     await healthy.evaluate(() => { window.quakeview.pause(); window.quakeview.setTime(6); });
+    await openSection(healthy, 'Damage and colours');  // the same panel, so the same view beside it
     await calm(healthy);
     await healthy.waitForTimeout(500);
     const healthyStats = await healthy.evaluate(() => window.quakeview.stats());

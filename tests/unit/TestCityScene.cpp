@@ -375,6 +375,16 @@ TEST_CASE("A corrupt tile and a missing tile are reported while the rest renders
   const std::size_t count = errors.size();
   runFrames(viewer, 30);
   CHECK(viewer.errors().size() == count);
+
+  // Looking away (far off, the leaves no longer used), the failures are forgotten and their
+  // messages withdrawn; looking back, they are asked for again and reported again.
+  viewer.setCamera(CameraState{20000.0, 20000.0, 300.0, 0.0, 60.0, 45.0});
+  runFramesUntil(viewer, rig.clock, 5.0, [&] { return viewer.city()->tileCounts().failed == 0; });
+  CHECK(viewer.city()->tileCounts().failed == 0);
+  for (const std::string& e : viewer.errors()) CHECK(e.find("Tile 1/") == std::string::npos);
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  runFramesUntil(viewer, rig.clock, 60.0, [&] { return viewer.city()->tileCounts().failed == 2; });
+  CHECK(viewer.city()->tileCounts().failed == 2);
 }
 
 TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed", "[scene][city][memory]") {

@@ -313,6 +313,12 @@ void CityScene::selectAndRequest(const CameraView& view) {
     if (!loader_.hasRoom()) break;
     if (tiles_[i]->tile.state == TileState::Failed) request(i);  // once its backoff has passed
   }
+  // A failed tile the view no longer uses (nor the selection) is forgotten, its message withdrawn:
+  // what is not shown has not failed; it is asked for again when wanted.
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
+    TileRuntime& t = *tiles_[i];
+    if (t.tile.state == TileState::Failed && t.lastUsed != frame_) loader_.forget(t.tile, tileSpec(i));
+  }
 }
 
 std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& items) {

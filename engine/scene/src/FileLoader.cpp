@@ -146,6 +146,15 @@ void FileLoader::failed(FileLoad& load, const FileSpec& spec, std::string messag
   onError_(LoadError{spec.kind, spec.url, std::move(message)});
 }
 
+void FileLoader::forget(FileLoad& load, const FileSpec& spec) {
+  if (load.state != TileState::Failed) return;
+  load.state = TileState::Unloaded;
+  if (load.errorShown) {
+    load.errorShown = false;
+    if (onResolved_) onResolved_(spec.url);
+  }
+}
+
 void FileLoader::cancel(FileLoad& load) {
   if (load.request == 0) return;
   fetcher_.cancel(load.request);

@@ -319,12 +319,21 @@ export async function settle(page) {
 export async function openSection(page, label) {
   const escaped = label.replace(/[.*+?^${}()|[\]\\]/g, '\\$&');
   const isOpen = (l) => new RegExp(`^v ${l}$`, 'm').test(window.quakeview.uiText());
-  if (await page.evaluate(isOpen, escaped)) return;
-  const header = (await page.evaluate(() => window.quakeview.uiLayout())).items
-    .find((i) => i.window === 'QuakeView' && i.label === label);
-  if (!header) throw new Error(`no section header "${label}" in the panel`);
-  await page.mouse.click(header.x + 40, header.y + header.height / 2);
-  await waitForFunction(page, isOpen, escaped, { timeout: 10000, polling: 100 });
+  // The panel's content may still be moving (results arriving): a click that missed is tried again
+  // where the header is then.
+  for (let attempt = 0; ; ++attempt) {
+    if (await page.evaluate(isOpen, escaped)) return;
+    const header = (await page.evaluate(() => window.quakeview.uiLayout())).items
+      .find((i) => i.window === 'QuakeView' && i.label === label);
+    if (!header) throw new Error(`no section header "${label}" in the panel`);
+    await page.mouse.click(header.x + 40, header.y + header.height / 2);
+    try {
+      await waitForFunction(page, isOpen, escaped, { timeout: 3000, polling: 100 });
+      return;
+    } catch (e) {
+      if (attempt >= 3) throw new Error(`the section "${label}" did not open after ${attempt + 1} clicks: ${e.message}`);
+    }
+  }
 }
 
 /// Waits for quakeview.ready; resolves to {ok: true} or {ok: false, message}.

@@ -119,6 +119,9 @@ class FileLoader {
   void fail(FileLoad& load, const FileSpec& spec, const std::string& problem, bool transient);
   /// Drops the completion of the request in flight for `load`, if any.
   void cancel(FileLoad& load);
+  /// A failed file no longer needed: back to Unloaded (its backoff kept: `failures` stays), its
+  /// error withdrawn; requested again when needed, and reported again if it fails again.
+  void forget(FileLoad& load, const FileSpec& spec);
   /// A plain request counted in flight (the manifest, whose failures the caller reports).
   Fetcher::RequestId fetch(const std::string& url, Fetcher::Done done, std::uint32_t timeoutMs);
 
