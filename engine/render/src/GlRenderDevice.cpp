@@ -240,6 +240,11 @@ void GlRenderDevice::writeSeries(std::uint32_t first, std::span<const std::uint8
   t.dirtyLastRow = std::max(t.dirtyLastRow, lastRow);
 }
 
+std::uint32_t GlRenderDevice::maxSeriesSamples() const {
+  const auto rows = static_cast<std::uint32_t>(std::clamp(maxTextureSize_, 1, 8192));
+  return static_cast<std::uint32_t>(kTableWidth) * 4u * rows;
+}
+
 void GlRenderDevice::flush(ByteTexture& t) {
   if (t.dirtyFirstRow < 0) return;
   const int rows = t.dirtyLastRow - t.dirtyFirstRow + 1;

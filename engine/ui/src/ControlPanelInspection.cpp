@@ -389,9 +389,13 @@ std::string markerLabel(const BuildingListEntry& e) {
   return label;
 }
 
-void labelAt(ui::Widgets& w, const char* id, glm::dvec2 at, const std::string& text) {
-  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(at.x) + 12.0f, static_cast<float>(at.y) - 12.0f), ImGuiCond_Always,
-                          ImVec2(0.0f, 1.0f));
+// `rightLimit`: where the free part of the canvas ends (the inspection window's left edge, or the
+// canvas's): a label that would reach beyond it goes to the marker's left instead.
+void labelAt(ui::Widgets& w, const char* id, glm::dvec2 at, const std::string& text, float rightLimit) {
+  const float width = ImGui::CalcTextSize(text.c_str()).x + 2.0f * ImGui::GetStyle().WindowPadding.x;
+  const bool left = static_cast<float>(at.x) + 12.0f + width > rightLimit;
+  ImGui::SetNextWindowPos(ImVec2(static_cast<float>(at.x) + (left ? -12.0f : 12.0f), static_cast<float>(at.y) - 12.0f),
+                          ImGuiCond_Always, ImVec2(left ? 1.0f : 0.0f, 1.0f));
   ImGui::SetNextWindowBgAlpha(0.85f);
   const ImGuiWindowFlags flags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
                                  ImGuiWindowFlags_NoInputs | ImGuiWindowFlags_NoFocusOnAppearing |
@@ -422,12 +426,18 @@ void ControlPanel::drawMarkerLabels(Viewer& viewer, ui::Widgets& w) {
       }
     }
   }
-  if (hovered != nullptr) labelAt(w, "Building under the pointer##markerHover", hoveredAt, markerLabel(*hovered));
+  const ImVec2 display = ImGui::GetIO().DisplaySize;
+  const float rightLimit = !viewer.selection().empty() && !narrowLayout(display.x)
+                               ? display.x - kInspectionWidth - 2.0f * kMarginPx
+                               : display.x - kMarginPx;
+  if (hovered != nullptr) {
+    labelAt(w, "Building under the pointer##markerHover", hoveredAt, markerLabel(*hovered), rightLimit);
+  }
   // The selected building carries its name on the map.
   if (const auto selected = city->selectedListEntry()) {
     if (hovered == nullptr || hovered->id != selected->id) {
       if (const auto p = viewer.worldToScreen(selected->x, selected->y, selected->heightM)) {
-        labelAt(w, "Selected building on the map##markerSelected", *p, markerLabel(*selected));
+        labelAt(w, "Selected building on the map##markerSelected", *p, markerLabel(*selected), rightLimit);
       }
     }
   }

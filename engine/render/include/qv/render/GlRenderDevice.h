@@ -34,6 +34,8 @@ class GlRenderDevice final : public RenderDevice {
   void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) override;
   void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) override;
   void writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) override;
+  /// kTableWidth x MAX_TEXTURE_SIZE RGBA8 texels (up to 8192 rows: 64 MB), four samples each.
+  [[nodiscard]] std::uint32_t maxSeriesSamples() const override;
   void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) override;
   [[nodiscard]] DeviceFrameStats lastFrameStats() const override { return last_; }
   [[nodiscard]] std::size_t gpuBytes() const override;

@@ -28,7 +28,8 @@ class BuildingTable {
   /// Capacities of the two index spaces (the device grows its textures on demand).
   static constexpr std::uint32_t kMaxBuildingRows = 1u << 21;
   static constexpr std::uint32_t kMaxFloorRows = 1u << 22;
-  /// 2048 x 2048 RGBA8 texels (the size every WebGL2 device has), four samples each: 16 MB.
+  /// 2048 x 2048 RGBA8 texels (the size every WebGL2 device has), four samples each: 16 MB; the
+  /// scene asks its device (RenderDevice::maxSeriesSamples) for what it can hold.
   static constexpr std::uint32_t kMaxSeriesSamples = 1u << 24;
 
   BuildingTable(std::uint32_t maxBuildingRows = kMaxBuildingRows, std::uint32_t maxFloorRows = kMaxFloorRows,

@@ -300,7 +300,7 @@ class CityScene {
   [[nodiscard]] std::uint64_t tileBytes(std::uint32_t node) const;  // a loaded tile's resident bytes
 
   // GPU tables and their CPU mirrors.
-  BuildingTable table_;
+  BuildingTable table_{BuildingTable::kMaxBuildingRows, BuildingTable::kMaxFloorRows, device_.maxSeriesSamples()};
   std::vector<std::unique_ptr<Animated>> animated_;
   /// What sampling one animated building needs, packed when the buildings are chosen (the
   /// pointers stay valid until the next choice: any change of residency triggers one first).

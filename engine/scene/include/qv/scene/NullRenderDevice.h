@@ -17,6 +17,8 @@ class NullRenderDevice final : public RenderDevice {
   void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) override;
   void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) override;
   void writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) override;
+  /// As a device with 8192-row textures (most GPUs and the software renderers: 64 MB).
+  [[nodiscard]] std::uint32_t maxSeriesSamples() const override { return 1u << 26; }
   void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) override;
   [[nodiscard]] DeviceFrameStats lastFrameStats() const override { return last_; }
   [[nodiscard]] std::size_t gpuBytes() const override;

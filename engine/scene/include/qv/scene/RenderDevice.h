@@ -175,6 +175,9 @@ class RenderDevice {
   virtual void writeFloors(std::uint32_t first, std::span<const FloorGpuRecord> records) = 0;
   /// Writes samples [first, first + codes.size()) of the series table, growing it as needed.
   virtual void writeSeries(std::uint32_t first, std::span<const std::uint8_t> codes) = 0;
+  /// How many series samples the device's table can hold (the 2048 x 2048 texels every WebGL2
+  /// device has, four samples each, unless the device says more).
+  [[nodiscard]] virtual std::uint32_t maxSeriesSamples() const { return 1u << 24; }
 
   /// Draws one frame: clears, draws the ground and the items. Resets the frame statistics.
   virtual void render(const FrameUniforms& uniforms, std::span<const DrawItem> items) = 0;
