@@ -282,11 +282,19 @@ TEST_CASE("City totals: expected values are sums, the interval holds them and re
   CHECK(t.occupants.expected == Approx(occupants));
   CHECK(t.tags[2].expected == Approx(red));
   CHECK(t.tags[0].expected + t.tags[1].expected + t.tags[2].expected == Approx(400));
+  // Damaged (moderate or worse): the states' sum, with its own interval (narrower than the sum of
+  // the three states' half-widths: the states of one building exclude each other).
+  CHECK(t.damaged.expected == Approx(states[2] + states[3] + states[4]));
+  CHECK(t.damaged.high - t.damaged.low > 5);
+  CHECK(t.damaged.high - t.damaged.low < (t.damageStates[2].high - t.damageStates[2].low) +
+                                             (t.damageStates[3].high - t.damageStates[3].low) +
+                                             (t.damageStates[4].high - t.damageStates[4].low));
 
   auto contains = [](const Estimate& e) { return e.low <= e.expected && e.expected <= e.high; };
   for (const Estimate& e : t.damageStates) CHECK(contains(e));
   for (const Estimate& e : t.injuries) CHECK(contains(e));
   for (const Estimate& e : t.tags) CHECK(contains(e));
+  CHECK(contains(t.damaged));
   CHECK(contains(t.repairCostUsd));
   CHECK(contains(t.collapsed));
   // The interval is a real spread where outcomes vary: hundreds of uncertain buildings.
@@ -348,6 +356,7 @@ TEST_CASE("The consequences file round-trips the totals and refuses what it cann
   totals.city.repairCostUsd = {1.5e6, 2.5e5, 4.0e6};
   totals.city.injuries[3] = {0.125, 0.0, 1.0};
   totals.city.tags[2] = {2.5, 0.0, 5.0};
+  totals.city.damaged = {4.75, 2.0, 8.0};
   totals.districts.push_back({"Lower \"East\" Side", totals.city});
   const std::string json = consequencesToJson(totals);
   CHECK(json.find("\"deaths\":{\"expected\":0.125") != std::string::npos);
@@ -361,6 +370,19 @@ TEST_CASE("The consequences file round-trips the totals and refuses what it cann
   REQUIRE(parsed->districts.size() == 1);
   CHECK(parsed->districts[0].name == "Lower \"East\" Side");
   CHECK(parsed->districts[0].totals.tags[2].high == 5.0);
+  CHECK(parsed->city.damaged.expected == 4.75);
+  CHECK(parsed->city.damaged.high == 8.0);
+  // A file written before "moderate_or_worse" existed: the states' sum, its interval unknown.
+  std::string older = json;
+  for (std::size_t at = older.find("\"moderate_or_worse\""); at != std::string::npos;
+       at = older.find("\"moderate_or_worse\"")) {
+    older.erase(at, older.find('}', at) + 2 - at);  // the member and its comma
+  }
+  const auto read = parseConsequences(older, "consequences.json");
+  REQUIRE(read.ok());
+  CHECK(read->city.damaged.expected == Approx(3.25));
+  CHECK(std::isnan(read->city.damaged.low));
+  CHECK(std::isnan(read->city.damaged.high));
   std::string broken = json;
   broken.replace(broken.find("\"repair_cost_usd\""), 17, "\"repair_cost_eur\"");
   const auto refused = parseConsequences(broken, "consequences.json");

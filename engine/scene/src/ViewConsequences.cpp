@@ -25,6 +25,8 @@ void ConsequenceSums::add(const BuildingLoss& loss) {
     const double p = loss.structural[k];
     states_[k].add(p, bernoulli(p));
   }
+  const double damaged = loss.structural[2] + loss.structural[3] + loss.structural[4];
+  damaged_.add(damaged, bernoulli(damaged));
   collapsed_.add(loss.collapse, bernoulli(loss.collapse));
   for (std::size_t k = 0; k < 3; ++k) tags_[k].add(loss.tag[k], bernoulli(loss.tag[k]));
   cost_.add(loss.repairCostUsd, static_cast<double>(loss.repairCostStdUsd) * loss.repairCostStdUsd);
@@ -39,6 +41,7 @@ seismic::LossTotals ConsequenceSums::totals() const {
   t.buildings = buildings_;
   const auto n = static_cast<double>(buildings_);
   for (std::size_t k = 0; k < 5; ++k) t.damageStates[k] = estimate(states_[k].mean, states_[k].variance, n);
+  t.damaged = estimate(damaged_.mean, damaged_.variance, n);
   t.collapsed = estimate(collapsed_.mean, collapsed_.variance, n);
   for (std::size_t k = 0; k < 3; ++k) t.tags[k] = estimate(tags_[k].mean, tags_[k].variance, n);
   t.repairCostUsd = estimate(cost_.mean, cost_.variance, HUGE_VAL);
@@ -61,6 +64,7 @@ void writeTotals(JsonWriter& w, const seismic::LossTotals& t) {
   w.key("damageStates").beginObject();
   for (std::size_t k = 0; k < 5; ++k) writeEstimate(w, states[k], t.damageStates[k]);
   w.endObject();
+  writeEstimate(w, "moderateOrWorse", t.damaged);
   writeEstimate(w, "collapsed", t.collapsed);
   writeEstimate(w, "occupants", t.occupants);
   w.key("injuries").beginObject();

@@ -52,6 +52,16 @@ Result<LossTotals> readTotals(object o, const std::string& where) {
     if (!e.ok()) return Error{e.error()};
     t.tags[static_cast<std::size_t>(k)] = *e;
   }
+  // Written since the panel's headline shows it; older files lack it: the expected value is the
+  // states' sum, its interval unknown (NaN).
+  if (o["moderate_or_worse"].error() == simdjson::SUCCESS) {
+    auto damaged = readEstimate(o, "moderate_or_worse", where);
+    if (!damaged.ok()) return Error{damaged.error()};
+    t.damaged = *damaged;
+  } else {
+    t.damaged = {t.damageStates[2].expected + t.damageStates[3].expected + t.damageStates[4].expected, std::nan(""),
+                 std::nan("")};
+  }
   auto collapsed = readEstimate(o, "collapsed", where);
   auto occupants = readEstimate(o, "occupants", where);
   auto cost = readEstimate(o, "repair_cost_usd", where);
@@ -71,6 +81,7 @@ void writeLossTotals(JsonWriter& w, const LossTotals& t) {
   w.key("damage_states").beginObject();
   for (int k = 0; k < 5; ++k) writeEstimate(w, kStateKeys[k], t.damageStates[static_cast<std::size_t>(k)]);
   w.endObject();
+  writeEstimate(w, "moderate_or_worse", t.damaged);
   writeEstimate(w, "collapsed", t.collapsed);
   writeEstimate(w, "occupants", t.occupants);
   w.key("injuries").beginObject();

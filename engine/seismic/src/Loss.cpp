@@ -338,6 +338,7 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
   double occupants = 0;
   for (const BuildingLoss& b : buildings) {
     for (std::size_t k = 0; k < 5; ++k) totals.damageStates[k].expected += b.structural.p[k];
+    totals.damaged.expected += b.structural.p[2] + b.structural.p[3] + b.structural.p[4];
     totals.collapsed.expected += b.collapse;
     occupants += b.occupantsPresent;
     totals.repairCostUsd.expected += b.repairCostUsd;
@@ -383,6 +384,8 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
     totals.damageStates[k] =
         estimateOf([k](const double* row) { return row[kState0 + k]; }, totals.damageStates[k].expected);
   }
+  totals.damaged = estimateOf([](const double* row) { return row[kState0 + 2] + row[kState0 + 3] + row[kState0 + 4]; },
+                              totals.damaged.expected);
   totals.collapsed = estimateOf([](const double* row) { return row[kCollapsed]; }, totals.collapsed.expected);
   totals.repairCostUsd = estimateOf([](const double* row) { return row[kCost]; }, totals.repairCostUsd.expected);
   for (std::size_t s = 0; s < 4; ++s) {

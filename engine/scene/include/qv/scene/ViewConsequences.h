@@ -40,7 +40,7 @@ class ConsequenceSums {
   };
   std::uint64_t buildings_ = 0;
   std::array<Sum, 5> states_{};
-  Sum collapsed_, cost_;
+  Sum collapsed_, damaged_, cost_;
   std::array<Sum, 4> injuries_{};
   std::array<Sum, 3> tags_{};
   double occupants_ = 0.0;

@@ -30,8 +30,10 @@ std::string consequencesToJson(const ConsequenceTotals& totals);
 Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::string& name);
 
 /// The members of one totals object: "buildings", "damage_states" ({"none": {"expected", "low",
-/// "high"}, ... "complete"}), "collapsed", "occupants", "injuries" ({"severity_1" .. "severity_4"}),
-/// "deaths" (= severity 4), "repair_cost_usd", "tags" ({"green", "yellow", "red"}). Every estimate is
+/// "high"}, ... "complete"}), "moderate_or_worse" (buildings with moderate damage or worse; optional
+/// when read: files before it give the states' sum with NaN bounds), "collapsed", "occupants", "injuries"
+/// ({"severity_1" .. "severity_4"}), "deaths" (= severity 4), "repair_cost_usd", "tags" ({"green", "yellow", "red"}).
+/// Every estimate is
 /// {"expected", "low", "high"}: the expected value and the 5th and 95th percentiles.
 void writeLossTotals(JsonWriter& w, const LossTotals& totals);
 

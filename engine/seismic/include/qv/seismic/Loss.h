@@ -215,6 +215,9 @@ struct Estimate {
 struct LossTotals {
   std::uint64_t buildings = 0;
   std::array<Estimate, 5> damageStates;  ///< expected building counts none..complete (sum of P)
+  /// Buildings with moderate damage or worse (the "damaged" headline: a yellow or red tag). Its
+  /// bounds are NaN when read from a consequences file written before it existed.
+  Estimate damaged;
   Estimate collapsed, occupants, repairCostUsd;
   std::array<Estimate, 4> injuries;  ///< severity 1..4
   std::array<Estimate, 3> tags;      ///< green, yellow, red building counts
