@@ -93,6 +93,17 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
    ! "$prep" $QV_DEMO_CITY_RECIPE --out "$e2e_data/demo" >/dev/null; then
   failures+=("e2e data")
 fi
+# The cities a user meets first, for the shaking test (shaking.test.mjs): the README demo with its
+# earthquake (made once and kept, shared with scripts/demo.sh: two to three minutes), and the city
+# built from the shared Manhattan OpenStreetMap file under the shared NYC ShakeMap (README "Your
+# own city"; about a minute and a half).
+demo_data="$root/build/demo-data/default"
+if ! qv_demo_prepare "$prep" "$demo_data" "[test]" ||
+   ! "$prep" city --input ../shared/data/osm/nyc-manhattan-south-buildings.osm.pbf --out "$e2e_data/manhattan" >/dev/null ||
+   ! "$prep" response --city "$e2e_data/manhattan" --shakemap ../shared/data/shakemap/nyc-m5.8-scenario-grid.xml \
+       --motion ../shared/data/ground-motions/elCentro.AT2 ../shared/data/ground-motions/TAK000.AT2 >/dev/null; then
+  failures+=("e2e data (demo, Manhattan)")
+fi
 
 stage "WebAssembly build (release, -Werror)"
 if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release -j "$jobs"; then
@@ -102,7 +113,7 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
   stage "browser end-to-end tests (headless Chromium)"
   log=$(mktemp)
   (cd tests/e2e && QUAKEVIEW_SITE="$root/build/wasm-release/site" QUAKEVIEW_E2E_DATA="$e2e_data" \
-    node --test --test-reporter=tap ./*.test.mjs) 2>&1 | tee "$log"
+    QUAKEVIEW_DEMO_DATA="$demo_data" node --test --test-reporter=tap ./*.test.mjs) 2>&1 | tee "$log"
   e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)
   e2e_fail=$(sed -nE 's/^# fail ([0-9]+)/\1/p' "$log" | tail -n 1)
   counts[e2e]="${e2e_pass:-0}"
@@ -117,7 +128,7 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
   stage "browser end-to-end tests (headless Firefox ESR)"
   log=$(mktemp)
   (cd tests/e2e && QUAKEVIEW_BROWSER=firefox QUAKEVIEW_SITE="$root/build/wasm-release/site" \
-    QUAKEVIEW_E2E_DATA="$e2e_data" \
+    QUAKEVIEW_E2E_DATA="$e2e_data" QUAKEVIEW_DEMO_DATA="$demo_data" \
     node --test --test-reporter=tap first-light.test.mjs city.test.mjs interaction.test.mjs weak-device.test.mjs touch.test.mjs \
       shaking.test.mjs) 2>&1 | tee "$log"
   e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)

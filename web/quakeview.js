@@ -35,7 +35,7 @@
 //              essential facilities, schools and shelters; categories: an array of 'essential',
 //              'school_shelter', 'high_occupancy', 'hazardous' (a building passes with any).
 //   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
-//   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), search(query), filteredList(limit),
+//   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), shownColorMode(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
 //              render, total}, drawCalls, triangles}, each but seconds/frames as {median, p95};
@@ -222,6 +222,9 @@
       return !!engine && mode >= 0 && engine._qv_set_color_mode(mode) === 1;
     },
     colorMode() { return engine ? COLOR_MODES[engine._qv_color_mode()] || null : null; },
+    // The mode the city is drawn in now: colorMode(), except 'p-moderate' once the shaking is over
+    // (at the end of the record, in the 'drift' mode, for results with damage probabilities).
+    shownColorMode() { return engine ? COLOR_MODES[engine._qv_shown_color_mode()] || null : null; },
     // LOD1 (extruded footprints) and LOD2 (detailed models) shown or hidden; either key may be left out.
     setLodVisibility(v) {
       if (!engine || !v || typeof v !== 'object') return false;

@@ -63,7 +63,7 @@ test('paused at t = 0 in the current-drift mode no building has a damage colour;
 
     // The map overlay keys the colours; the legend (one click away) says that every building
     // follows its response.
-    assert.match(await page.evaluate(() => window.quakeview.uiText()), /Colour: storey drift now: 0 0\.5 1 1\.5 2 %/);
+    assert.match(await page.evaluate(() => window.quakeview.uiText()), /Colour: storey drift now: 0 0\.1 0\.5 1 2 %/);
     await openSection(page, 'Damage and colours');
     const text = await page.evaluate(() => window.quakeview.uiText());
     assert.match(text, /Inter-storey drift \(now\), every building: its largest storey \(close by, each storey\):/);

@@ -2,7 +2,10 @@
 // SwiftShader or llvmpipe: the weak-device preset), every building in view follows its own
 // response (its drift series, no full-detail history needed), the picture changes from one moment
 // of strong shaking to another, and warm drift colours cover a good part of the city while it
-// shakes. Runs in Chromium and in Firefox ESR.
+// shakes. Runs in Chromium and in Firefox ESR, on three cities: the 3,000-building test city, the
+// README's demo (100,000 buildings, M6.8; scripts/test.sh prepares it with the demo's own recipe
+// in QUAKEVIEW_DEMO_DATA) and the city built from the shared Manhattan OpenStreetMap file under
+// the shared NYC M5.8 ShakeMap (QUAKEVIEW_E2E_DATA/manhattan).
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -13,14 +16,23 @@ import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
-const SYNTH = path.join(DATA, 'synth');
+const DEMO = process.env.QUAKEVIEW_DEMO_DATA || path.join(REPO, 'build/demo-data/default');
+// Each city: where its files are, its URL on the test server, and whether the warm-colour share is
+// asserted (the demo's M6.8 close by; the Manhattan scenario's drifts are mostly small, so its warm
+// share is reported, not asserted).
+const CITIES = [
+  { name: 'synth', dir: path.join(DATA, 'synth'), url: '/data/synth/tileset.json', warm: true },
+  { name: 'demo', dir: DEMO, url: '/demo/tileset.json', warm: true },
+  { name: 'manhattan', dir: path.join(DATA, 'manhattan'), url: '/data/manhattan/tileset.json', warm: false },
+];
 
 let server;
-let manifest;
 before(async () => {
-  assert.ok(fs.existsSync(path.join(SYNTH, 'tileset.json')), `test city missing: ${SYNTH} (scripts/test.sh prepares it)`);
-  manifest = JSON.parse(fs.readFileSync(path.join(SYNTH, 'tileset.json'), 'utf8'));
-  server = await serveSite({ '/data': DATA });
+  for (const city of CITIES) {
+    assert.ok(fs.existsSync(path.join(city.dir, 'tileset.json')), `test city missing: ${city.dir} (scripts/test.sh prepares it)`);
+    assert.ok(fs.readdirSync(city.dir).some((f) => f.startsWith('response-')), `test city without its earthquake: ${city.dir}`);
+  }
+  server = await serveSite({ '/data': DATA, '/demo': DEMO });
   fs.mkdirSync(ARTIFACTS, { recursive: true });
 });
 after(async () => {
@@ -45,10 +57,12 @@ function cityMask(background, a, b) {
   return { mask, count };
 }
 
-test('at the opening view every building in view follows its response and the city changes with the shaking', async (t) => {
+for (const city of CITIES) {
+test(`${city.name}: at the opening view every building in view follows its response and the city changes with the shaking`, async (t) => {
+  const manifest = JSON.parse(fs.readFileSync(path.join(city.dir, 'tileset.json'), 'utf8'));
   const { context, close, browser } = await launchBrowser();
   try {
-    const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
+    const { page, problems } = await openPage(context, `${server.url}/?data=${city.url}`);
     assert.deepEqual(await waitReady(page), { ok: true });
     await settle(page);
     await page.waitForTimeout(500);
@@ -75,8 +89,10 @@ test('at the opening view every building in view follows its response and the ci
     const camera = await page.evaluate(() => window.quakeview.getCamera());
     const [bx0, by0, bx1, by1] = manifest.bounds;
     const warm = warmClassifier(camera.distance + Math.hypot(bx1 - bx0, by1 - by0, manifest.maxHeight));
-    // The panels (top left, the map overlay bottom right) are not the city.
-    const ui = (x, y, width, height) => (x < 560 && y < 720) || (x >= width - 380 && y >= height - 90);
+    // The panels (every window the page lays out: the control panel, the map overlay) are not the city.
+    const windows = (await page.evaluate(() => window.quakeview.uiLayout())).windows;
+    t.diagnostic(`windows: ${windows.map((w) => `${w.title} ${Math.round(w.x)},${Math.round(w.y)} ${Math.round(w.width)}x${Math.round(w.height)}`).join('; ')}`);
+    const ui = (x, y) => windows.some((w) => x >= w.x - 2 && x < w.x + w.width + 2 && y >= w.y - 2 && y < w.y + w.height + 2);
     const duration = await page.evaluate(() => window.quakeview.duration());
     const moments = [];
     for (let s = 0.5; s < duration; s += 1.5) {
@@ -91,13 +107,13 @@ test('at the opening view every building in view follows its response and the ci
     const strongest = byWarmth[0];
     const second = byWarmth.find((m) => Math.abs(m.s - strongest.s) >= 1.4);
     assert.ok(second, 'two moments of shaking');
-    fs.writeFileSync(path.join(ARTIFACTS, `shaking-${browser}-strongest.png`), strongest.shot);
-    fs.writeFileSync(path.join(ARTIFACTS, `shaking-${browser}-second.png`), second.shot);
+    fs.writeFileSync(path.join(ARTIFACTS, `shaking-${city.name}-${browser}-strongest.png`), strongest.shot);
+    fs.writeFileSync(path.join(ARTIFACTS, `shaking-${city.name}-${browser}-second.png`), second.shot);
 
     // The same view without buildings: what is left is the ground and the sky.
     await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: false, lod2: false }));
     await page.waitForTimeout(500);
-    const background = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, `shaking-${browser}-ground.png`) }));
+    const background = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, `shaking-${city.name}-${browser}-ground.png`) }));
     await page.evaluate(() => window.quakeview.setLodVisibility({ lod1: true, lod2: true }));
     const a = decodePng(strongest.shot);
     const b = decodePng(second.shot);
@@ -108,7 +124,7 @@ test('at the opening view every building in view follows its response and the ci
     for (let k = 0; k < mask.length; ++k) {
       const x = k % a.width;
       const y = Math.floor(k / a.width);
-      if (!mask[k] || ui(x, y, a.width, a.height)) continue;
+      if (!mask[k] || ui(x, y)) continue;
       ++cityPixels;
       const i = k * 4;
       if (Math.abs(a.data[i] - b.data[i]) + Math.abs(a.data[i + 1] - b.data[i + 1]) + Math.abs(a.data[i + 2] - b.data[i + 2]) > 24) ++changed;
@@ -120,9 +136,10 @@ test('at the opening view every building in view follows its response and the ci
       `${(100 * changedFraction(a, b)).toFixed(1)} %`);
     assert.ok(cityPixels > 20000, `the city covers a good part of the canvas: ${cityPixels} pixels`);
     assert.ok(changed >= 0.05 * cityPixels, `two moments of strong shaking differ in ${changed} of ${cityPixels} city pixels`);
-    assert.ok(warmCity >= 0.10 * cityPixels, `warm drift colours at the stronger moment: ${warmCity} of ${cityPixels}`);
+    if (city.warm) assert.ok(warmCity >= 0.10 * cityPixels, `warm drift colours at the stronger moment: ${warmCity} of ${cityPixels}`);
     assert.deepEqual(problems, []);
   } finally {
     await close();
   }
 });
+}

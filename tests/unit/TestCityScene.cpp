@@ -145,9 +145,11 @@ struct SceneRig {
   FakeClock clock;  // the scene's time: only runFramesUntil moves it
   Viewer viewer{device};
   explicit SceneRig(MiniCity c = MiniCity()) : city(std::move(c)) { city.serve(fetcher); }
-  /// Opens the city in a 1280 x 720 viewport, animating within `animationRadiusM` of the eye.
-  void open(float animationRadiusM, CitySceneOptions options = {}) {
+  /// Opens the city in a 1280 x 720 viewport, animating within `animationRadiusM` of the eye
+  /// (every building there: swayPixels 0, unless `options` says otherwise).
+  void open(float animationRadiusM, CitySceneOptions options = {}, bool everySway = true) {
     options.animationRadiusM = animationRadiusM;
+    if (everySway) options.swayPixels = 0.0f;
     options.clock = &clock;
     viewer.openCity("city/tileset.json", fetcher, options);
     viewer.setViewport(1280, 720, 1280.0, 720.0);
@@ -275,6 +277,67 @@ TEST_CASE("Far away a far-view tile is drawn as blocks: a box per cell, its wors
   CHECK(rig.device.drawnSlots().size() == viewer.stats().latest.buildingsVisible);
 }
 
+TEST_CASE("The buildings whose sway shows on screen move floor by floor, most visible first", "[scene][city][anim]") {
+  SceneRig rig;
+  CitySceneOptions options;
+  rig.open(1000.0f, options, false);  // the default: a sway of a pixel
+  Viewer& viewer = rig.viewer;
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  viewer.pause();
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  REQUIRE(viewer.stats().latest.buildingsVisible == 64);
+  // True scale: the test city's sways (5 to 15 cm) are under a pixel from 500 m: none is moved.
+  CHECK(viewer.stats().latest.buildingsAnimated == 0);
+
+  // The sway of each drawn building on screen, exaggerated by `amplitude`, and whether it moves.
+  auto sways = [&](float amplitude) {
+    const CameraView view(viewer.camera(), 1280, 720);
+    std::vector<std::pair<float, bool>> out;
+    for (const auto& [slot, centre] : rig.device.drawnSlots()) {
+      const auto [i, j] = cellOf(centre);
+      const glm::vec3 axis(static_cast<float>(MiniCity::centreX(i)), static_cast<float>(MiniCity::centreY(j)),
+                           0.5f * MiniCity::kStoreys * MiniCity::kStoreyHeight);
+      const float pixels = static_cast<float>(MiniCity::amplitude(i, j)) * amplitude *
+                           view.pixelsPerMeterAt(glm::length(axis - view.eye()));
+      out.emplace_back(pixels, rig.device.buildings.at(slot).floorBase >= 0.0f);
+    }
+    return out;
+  };
+  // Exaggerated 50 times every sway shows (4 to 13 pixels): all 64 move.
+  viewer.setAmplitude(50.0f);
+  runFrames(viewer, 20);
+  CHECK(viewer.stats().latest.buildingsAnimated == 64);
+  // Exaggerated 8 times, only the larger sways reach a pixel: exactly those move.
+  viewer.setAmplitude(8.0f);
+  runFrames(viewer, 20);
+  int moving = 0;
+  for (const auto& [pixels, moves] : sways(8.0f)) {
+    INFO("sway " << pixels << " px");
+    if (std::abs(pixels - 1.0f) > 0.02f) CHECK(moves == (pixels >= 1.0f));
+    moving += moves ? 1 : 0;
+  }
+  CHECK(moving > 0);
+  CHECK(moving < 64);
+  CHECK(static_cast<int>(viewer.stats().latest.buildingsAnimated) == moving);
+  // With a cap, the most visible sways are the ones kept.
+  viewer.setAmplitude(50.0f);
+  viewer.city()->mutableOptions().maxAnimatedBuildings = 10;
+  runFrames(viewer, 20);
+  float slowestMoving = 1e9f, fastestStill = 0.0f;
+  moving = 0;
+  for (const auto& [pixels, moves] : sways(50.0f)) {
+    if (moves) {
+      slowestMoving = std::min(slowestMoving, pixels);
+      ++moving;
+    } else {
+      fastestStill = std::max(fastestStill, pixels);
+    }
+  }
+  CHECK(moving == 10);
+  CHECK(slowestMoving >= fastestStill * 0.999f);
+}
+
 TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {
   SceneRig rig;
   rig.open(1000.0f);
@@ -385,6 +448,32 @@ TEST_CASE("A corrupt tile and a missing tile are reported while the rest renders
   viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
   runFramesUntil(viewer, rig.clock, 60.0, [&] { return viewer.city()->tileCounts().failed == 2; });
   CHECK(viewer.city()->tileCounts().failed == 2);
+}
+
+TEST_CASE("A failed history no one asks for any more is forgotten, its message withdrawn", "[scene][city][errors]") {
+  SceneRig rig;
+  rig.fetcher.files.erase("city/response/1-0-0.qvh");  // missing
+  CitySceneOptions options;
+  rig.open(1000.0f, options, false);  // sways of a pixel, as in the viewer
+  Viewer& viewer = rig.viewer;
+  viewer.setAmplitude(50.0f);  // every building's sway shows from 500 m
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  auto historyError = [&viewer] {
+    for (const std::string& e : viewer.errors()) {
+      if (e.find("1-0-0.qvh") != std::string::npos) return true;
+    }
+    return false;
+  };
+  runFramesUntil(viewer, rig.clock, 5.0, historyError);
+  REQUIRE(historyError());
+  // True scale: no sway shows from here, nothing needs the history: its failure is withdrawn.
+  viewer.setAmplitude(1.0f);
+  runFramesUntil(viewer, rig.clock, 5.0, [&] { return !historyError(); });
+  CHECK_FALSE(historyError());
+  // Wanted again, it is asked for again and its failure reported again.
+  viewer.setAmplitude(50.0f);
+  runFramesUntil(viewer, rig.clock, 60.0, historyError);
+  CHECK(historyError());
 }
 
 TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed", "[scene][city][memory]") {

@@ -149,3 +149,57 @@ TEST_CASE("The shader's palette is the legend's palette", "[scene][palette][gpu]
   // The two functions differ (a generator writing one ramp twice would fail here).
   CHECK(deltaE(evaluateGlslRamp(glsl, "notAnimatedGrey", 0.5f), evaluateGlslRamp(glsl, "ramp", 0.5f)) > 30.0);
 }
+
+namespace {
+
+// Evaluates the generated `float driftPosition(float d)` as a GPU would: its ifs in order.
+float evaluateGlslDriftPosition(const std::string& glsl, float d) {
+  const std::size_t begin = glsl.find("float driftPosition(float d) {");
+  REQUIRE(begin != std::string::npos);
+  const std::string body = glsl.substr(begin, glsl.find("\n}\n", begin) - begin);
+  const std::string number = "(-?[0-9.]+)";
+  const std::regex segment("if \\(d < " + number + "\\) return \\(" + number + " \\+ \\(d - " + number + "\\) / " +
+                           number + "\\) \\* 0\\.25;");
+  for (auto it = std::sregex_iterator(body.begin(), body.end(), segment); it != std::sregex_iterator(); ++it) {
+    const std::smatch& m = *it;
+    if (!(static_cast<double>(d) < std::stod(m[1]))) continue;
+    return static_cast<float>((std::stod(m[2]) + (static_cast<double>(d) - std::stod(m[3])) / std::stod(m[4])) * 0.25);
+  }
+  REQUIRE(body.find("\n  return 1.0;") != std::string::npos);
+  return 1.0f;
+}
+
+}  // namespace
+
+TEST_CASE("Drift ratios map onto the ramp at the legend's stops: 0, 0.1, 0.5, 1 and 2 %", "[scene][palette]") {
+  // The legend's values are the stops: each drift there gets exactly that stop's colour.
+  const std::array<float, 5> positions = {0.0f, 0.25f, 0.5f, 0.75f, 1.0f};
+  for (std::size_t k = 0; k < kDriftStops.size(); ++k) {
+    INFO("stop " << k);
+    CHECK(driftRampPosition(kDriftStops[k]) == Approx(positions[k]).margin(1e-6));
+  }
+  CHECK(kDriftStops[1] == Approx(0.001f));
+  CHECK(kDriftFullScale == Approx(0.02f));
+  // Between stops, linear; beyond the ends, clamped; no drift (or NaN) is the first stop.
+  CHECK(driftRampPosition(0.0005f) == Approx(0.125f));
+  CHECK(driftRampPosition(0.003f) == Approx(0.375f));
+  CHECK(driftRampPosition(0.015f) == Approx(0.875f));
+  CHECK(driftRampPosition(0.5f) == 1.0f);
+  CHECK(driftRampPosition(-0.01f) == 0.0f);
+  CHECK(driftRampPosition(std::nanf("")) == 0.0f);
+  // A moderate earthquake's drift of 0.05 % is already visibly off white (a colour difference a
+  // person sees at a glance), and larger drifts are always darker.
+  CHECK(deltaE(paletteRamp(driftRampPosition(0.0005f)), kDamagePalette[0]) > 10.0);
+  double previous = 101.0;
+  for (float t : samples(200)) {
+    const double l = toLab(paletteRamp(driftRampPosition(t * 0.025f))).l;
+    CHECK(l <= previous);
+    previous = l;
+  }
+  // The shader's twin gives the same positions.
+  const std::string glsl = paletteGlsl();
+  for (float d : {0.0f, 0.0002f, 0.001f, 0.0031f, 0.0072f, 0.0123f, 0.02f, 0.3f}) {
+    INFO("drift " << d);
+    CHECK(evaluateGlslDriftPosition(glsl, d) == Approx(driftRampPosition(d)).margin(1e-5));
+  }
+}

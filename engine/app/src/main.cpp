@@ -174,6 +174,11 @@ EMSCRIPTEN_KEEPALIVE int qv_color_mode() {
   return gApp != nullptr ? static_cast<int>(gApp->viewer().colorMode()) : -1;
 }
 
+/// The mode the city is drawn in now (qv::Viewer::shownColorMode).
+EMSCRIPTEN_KEEPALIVE int qv_shown_color_mode() {
+  return gApp != nullptr ? static_cast<int>(gApp->viewer().shownColorMode()) : -1;
+}
+
 /// LOD1 and LOD2 buildings shown (1) or hidden (0), as the General panel's switches. Returns 0
 /// when there is no city.
 EMSCRIPTEN_KEEPALIVE int qv_set_lod_visibility(int lod1, int lod2) {

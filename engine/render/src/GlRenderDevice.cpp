@@ -52,7 +52,6 @@ const GlRenderDevice::BuildingProgram* GlRenderDevice::buildingProgram(ColorMode
   b.floors = glGetUniformLocation(p, "u_floors");
   b.series = glGetUniformLocation(p, "u_series");
   b.time = glGetUniformLocation(p, "u_time");
-  b.driftFullScale = glGetUniformLocation(p, "u_driftFullScale");
   b.amplitude = glGetUniformLocation(p, "u_amplitude");
   b.sunDirection = glGetUniformLocation(p, "u_sunDirection");
   b.eye = glGetUniformLocation(p, "u_eye");
@@ -296,7 +295,6 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
     glCullFace(GL_BACK);
     glUseProgram(u.program);
     glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, &f.viewProjection[0][0]);
-    glUniform1f(u.driftFullScale, f.driftFullScale);
     glUniform1f(u.amplitude, f.amplitude);
     glUniform3f(u.sunDirection, f.sunDirection.x, f.sunDirection.y, f.sunDirection.z);
     glUniform3f(u.eye, f.eye.x, f.eye.y, f.eye.z);

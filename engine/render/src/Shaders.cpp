@@ -24,7 +24,6 @@ uniform float u_time;  // scene time, seconds: where the drift series are read
 // The colour mode (qv::ColorMode) is a constant of each program: GlRenderDevice defines
 // QV_COLOR_MODE after the #version line.
 const int colorMode = QV_COLOR_MODE;
-uniform float u_driftFullScale;
 uniform float u_amplitude;
 uniform bool u_showModels;  // LOD2 models (kind bit kKindModel) or, instead, their extrusions (kKindFallback)
 
@@ -90,9 +89,9 @@ void main() {
   // damage (Palette.h).
   if (colorMode == kModeCurrentDrift) {
     float now = floorBase >= 0 ? drift : seriesDrift(b, u_time);
-    color = now >= 0.0 ? ramp(now / u_driftFullScale) : notAnimatedGrey(peakValue / u_driftFullScale);
+    color = now >= 0.0 ? ramp(driftPosition(now)) : notAnimatedGrey(driftPosition(peakValue));
   }
-  else if (colorMode == kModePeakDrift) color = ramp(peakStorey / u_driftFullScale);
+  else if (colorMode == kModePeakDrift) color = ramp(driftPosition(peakStorey));
   else if (colorMode == kModeDamageState) color = damage < kDamageNoResult + 0.5 ? kNoResult : ramp(damage / kDamageComplete);
   else if (colorMode >= kModeModerateOrWorse) {
     // Probabilistic modes: P(>= moderate), expected damage state / 4, the most likely inspection tag.

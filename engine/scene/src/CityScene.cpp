@@ -232,7 +232,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   times.cull += msSince(clock_, t0);
 
   t0 = clock_.nowSeconds();
-  animate(view.eye(), timeSeconds, counts);
+  animate(view, timeSeconds, counts);
   times.animate += msSince(clock_, t0);
   t0 = clock_.nowSeconds();
   enforceMemoryBudget();
@@ -315,9 +315,14 @@ void CityScene::selectAndRequest(const CameraView& view) {
   }
   // A failed tile the view no longer uses (nor the selection) is forgotten, its message withdrawn:
   // what is not shown has not failed; it is asked for again when wanted.
+  // The same for a failed history that neither the animation nor the inspection asked for in the
+  // last frame (e.g. its tile's sways turned out too small to show once its summary came).
   for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
     TileRuntime& t = *tiles_[i];
     if (t.tile.state == TileState::Failed && t.lastUsed != frame_) loader_.forget(t.tile, tileSpec(i));
+    if (t.historyLoad.state == TileState::Failed && t.historyUsed + 1 < frame_) {
+      loader_.forget(t.historyLoad, historySpec(i));
+    }
   }
 }
 

@@ -1,5 +1,6 @@
-// CityScene's animation: which buildings move (nearest first within the radius, up to the cap)
-// and their floors' displacements every frame, sampled from their response histories.
+// CityScene's animation: which buildings move floor by floor (those whose sway shows on screen,
+// within the radius, most visible first, up to the cap) and their floors' displacements every
+// frame, sampled from their response histories.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -21,12 +22,12 @@ void CityScene::reindexAnimated() {
   }
 }
 
-void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts) {
-  const std::uint64_t signature = findAnimationTiles(eye);
+void CityScene::animate(const CameraView& view, double timeSeconds, FrameCounts& counts) {
+  const std::uint64_t signature = findAnimationTiles(view);
   if (signature != animationSignature_ || animated_.empty() != animationTiles_.empty() ||
       samplers_.size() != animated_.size()) {
     animationSignature_ = signature;
-    chooseAnimated(eye, animationTiles_);
+    chooseAnimated(view, animationTiles_);
   }
   sampleFloors(timeSeconds);
   counts.buildingsAnimated += static_cast<std::uint32_t>(animated_.size());
@@ -38,11 +39,13 @@ void CityScene::animate(const glm::vec3& eye, double timeSeconds, FrameCounts& c
   counts.modelsAnimated += modelsAnimated_;
 }
 
-std::uint64_t CityScene::findAnimationTiles(const glm::vec3& eye) {
+std::uint64_t CityScene::findAnimationTiles(const CameraView& view) {
+  const glm::vec3 eye = view.eye();
   const float radius = options_.animationRadiusM;
-  // The tiles within the radius keep (or fetch) their histories this frame. What they animate is
-  // chosen again only when something it depends on changed: the eye, the radius, the cap, a
-  // tile's residency or visible set. A still camera while playing costs only the sampling below.
+  // The tiles within the radius where a building's sway can show keep (or fetch) their histories
+  // this frame. What they animate is chosen again only when something it depends on changed: the
+  // eye, the radius, the cap, the amplitude, a tile's residency or visible set. A still camera
+  // while playing costs only the sampling below.
   std::uint64_t signature = 1469598103934665603ull;  // FNV-1a over the inputs of the choice
   auto mix = [&signature](std::uint64_t v) {
     signature ^= v;
@@ -57,6 +60,8 @@ std::uint64_t CityScene::findAnimationTiles(const glm::vec3& eye) {
   mix(bitsOf(eye.y));
   mix(bitsOf(eye.z));
   mix(bitsOf(radius));
+  mix(bitsOf(swayAmplitude_));
+  mix(bitsOf(options_.swayPixels));
   mix(options_.maxAnimatedBuildings);
   mix(residencyGeneration_);
   mix(viewSignature_);  // the visible sets (culling) of every drawn tile
@@ -72,6 +77,11 @@ std::uint64_t CityScene::findAnimationTiles(const glm::vec3& eye) {
                                     std::max({n.bounds.minY - eye.y, 0.0f, eye.y - n.bounds.maxY}),
                                     std::max(eye.z - n.maxHeightM, 0.0f)));
       if (static_cast<double>(tileDistance) > static_cast<double>(radius)) continue;
+      // No building of the tile sways a pixel from here (known once its summary is there).
+      if (t.maxRoofM >= 0.0f &&
+          t.maxRoofM * swayAmplitude_ * view.pixelsPerMeterAt(std::max(tileDistance, 1.0f)) < options_.swayPixels) {
+        continue;
+      }
       requestHistory(i);
       t.historyUsed = frame_;
       if (t.historyLoad.state != TileState::Loaded) continue;
@@ -129,20 +139,22 @@ void CityScene::sampleFloors(double timeSeconds) {
   }
 }
 
-void CityScene::chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles) {
-  keepAnimated(animationCandidates(eye, tiles));
+void CityScene::chooseAnimated(const CameraView& view, const std::vector<std::uint32_t>& tiles) {
+  keepAnimated(animationCandidates(view, tiles));
   packSamplers();
 }
 
 std::vector<CityScene::AnimationCandidate> CityScene::animationCandidates(
-    const glm::vec3& eye, const std::vector<std::uint32_t>& tiles) const {
+    const CameraView& view, const std::vector<std::uint32_t>& tiles) const {
   using Candidate = AnimationCandidate;
+  const glm::vec3 eye = view.eye();
   const float radius = options_.animationRadiusM;
   std::vector<Candidate> candidates;
   const double r2 = static_cast<double>(radius) * radius;
   for (std::uint32_t i : tiles) {
     const TileRuntime& t = *tiles_[i];
     const LoadedTile& tile = *t.loaded;
+    const bool summary = t.summary && t.summary->buildings.size() == tile.data.buildings.size();
     for (const IndexRange& range : t.visible) {
       for (std::uint32_t p = range.begin; p < range.end; ++p) {
         const std::uint32_t b = tile.tree.order()[p];
@@ -152,16 +164,20 @@ std::vector<CityScene::AnimationCandidate> CityScene::animationCandidates(
         const double cy = a.centroidY + tile.data.originY - static_cast<double>(eye.y);
         const double cz = 0.5 * static_cast<double>(a.heightM + a.minHeightM) - static_cast<double>(eye.z);
         const double d2 = cx * cx + cy * cy + cz * cz;
-        if (d2 <= r2 && t.history->buildings[b].floors == a.storeys) {
-          candidates.push_back({static_cast<float>(d2), i, b, p});
-        }
+        if (d2 > r2 || t.history->buildings[b].floors != a.storeys) continue;
+        // Its sway on screen: the peak roof displacement, exaggerated, at its distance (without
+        // a summary yet, as if it showed: the nearest then come first).
+        const auto d = static_cast<float>(std::sqrt(d2));
+        const float roof = summary ? t.summary->buildings[b].peakRoofDisplacementM : 1.0f;
+        const float pixels = roof * swayAmplitude_ * view.pixelsPerMeterAt(std::max(d, 1.0f));
+        if (pixels >= options_.swayPixels) candidates.push_back({pixels, i, b, p});
       }
     }
   }
   if (candidates.size() > options_.maxAnimatedBuildings) {
     std::nth_element(candidates.begin(),
                      candidates.begin() + static_cast<std::ptrdiff_t>(options_.maxAnimatedBuildings), candidates.end(),
-                     [](const Candidate& a, const Candidate& b) { return a.distance2 < b.distance2; });
+                     [](const Candidate& a, const Candidate& b) { return a.swayPixels > b.swayPixels; });
     candidates.resize(options_.maxAnimatedBuildings);
   }
   return candidates;

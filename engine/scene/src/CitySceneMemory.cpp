@@ -86,6 +86,7 @@ void CityScene::evict(std::uint32_t node) {
     t.loaded.reset();
   }
   t.summary.reset();
+  t.maxRoofM = -1.0f;
   t.summaryLoad.state = TileState::Unloaded;
   t.history.reset();
   t.historyBytes = 0;

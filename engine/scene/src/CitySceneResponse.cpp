@@ -35,6 +35,10 @@ void CityScene::requestSummary(std::uint32_t node) {
           return Verdict::rejected(url + ": building count differs from the city tile", false);
         }
         tiles_[node]->summary = std::make_unique<ResponseSummaryTile>(std::move(decoded).value());
+        float maxRoof = 0.0f;
+        for (const BuildingResponse& b : tiles_[node]->summary->buildings)
+          maxRoof = std::max(maxRoof, b.peakRoofDisplacementM);
+        tiles_[node]->maxRoofM = maxRoof;
         applySummary(node);
         return Verdict::loaded();
       },

@@ -69,6 +69,7 @@ struct CityScene::TileRuntime {
   std::unique_ptr<ResponseHistoryTile> history;
   std::uint64_t historyBytes = 0;
   std::uint64_t historyUsed = 0;
+  float maxRoofM = -1.0f;  // largest peak roof displacement of its buildings (summary), -1 not yet known
   /// Per building of the loaded tile: its index in animated_, or kNotAnimated.
   std::vector<std::uint32_t> animatedIndex;
   std::uint32_t animatedCount = 0;  // of its buildings in animated_

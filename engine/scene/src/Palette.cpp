@@ -46,6 +46,16 @@ Rgb notAnimatedGrey(float t) {
   return fiveStopRamp(kNotAnimatedPalette, t);
 }
 
+float driftRampPosition(float drift) {
+  if (!(drift > kDriftStops[0])) return 0.0f;  // also NaN
+  for (std::size_t i = 0; i + 1 < kDriftStops.size(); ++i) {
+    if (drift < kDriftStops[i + 1]) {
+      return (static_cast<float>(i) + (drift - kDriftStops[i]) / (kDriftStops[i + 1] - kDriftStops[i])) / 4.0f;
+    }
+  }
+  return 1.0f;
+}
+
 std::string paletteGlsl() {
   std::string s = "const vec3 kNoResult = " + glslVec3(kNoResultColor) + ";\n";
   s += "const vec3 kSelected = " + glslVec3(kSelectedColor) + ";\n";
@@ -55,6 +65,16 @@ std::string paletteGlsl() {
   s += "const vec3 kTagRed = " + glslVec3(kTagPalette[2]) + ";\n";
   s += glslFiveStopRamp("ramp", kDamagePalette);
   s += glslFiveStopRamp("notAnimatedGrey", kNotAnimatedPalette);
+  // The GLSL twin of driftRampPosition.
+  s += "float driftPosition(float d) {\n";
+  for (std::size_t i = 0; i + 1 < kDriftStops.size(); ++i) {
+    char line[160];
+    std::snprintf(line, sizeof line, "  if (d < %.6f) return (%zu.0 + (d - %.6f) / %.6f) * 0.25;\n",
+                  static_cast<double>(kDriftStops[i + 1]), i, static_cast<double>(kDriftStops[i]),
+                  static_cast<double>(kDriftStops[i + 1] - kDriftStops[i]));
+    s += line;
+  }
+  s += "  return 1.0;\n}\n";
   return s;
 }
 

@@ -53,6 +53,7 @@ void Viewer::showTestScene() {
   device_.writeBuildings(0, records);
   duration_ = 20.0;
   time_ = 0.0;
+  loop_ = true;  // the test prisms sway on and on
   // A three-quarter view from the south-west that shows every prism.
   camera_ = CameraState{0.0, -5.0, 420.0, 30.0, 35.0, 45.0};
   controller_.setHome(camera_);
@@ -78,6 +79,7 @@ void Viewer::openCity(const std::string& manifestUrl, Fetcher& fetcher, const Ci
 
 void Viewer::startBench(double seconds) {
   benchSeconds_ = std::clamp(seconds, 1.0, 3600.0);
+  loop_ = true;  // a flight longer than the record keeps measuring a moving city
   bench_.reset();
   benchResult_.clear();
 }
@@ -89,6 +91,22 @@ bool Viewer::setCamera(const CameraState& camera) {
   const bool valid = sanitizeCamera(next, camera_);
   camera_ = next;
   return valid;
+}
+
+void Viewer::play() {
+  if (ended()) {
+    // Again from the opening moment: a second before the shaking arrives.
+    const std::optional<double> arrival = city_ ? city_->firstShakingSeconds() : std::nullopt;
+    time_ = arrival ? std::clamp(*arrival - 1.0, 0.0, duration_) : 0.0;
+  }
+  playing_ = true;
+}
+
+ColorMode Viewer::shownColorMode() const {
+  if (colorMode_ != ColorMode::CurrentDrift || !damageAfterShaking_ || !ended() || !city_) return colorMode_;
+  const Tileset* tileset = city_->tileset();
+  const bool probabilities = tileset != nullptr && tileset->response && tileset->response->consequences;
+  return probabilities ? ColorMode::ModerateOrWorse : colorMode_;
 }
 
 bool Viewer::setTime(double seconds) {
@@ -212,7 +230,15 @@ void Viewer::frame(double dtSeconds) {
   controller_.update(dtSeconds);
   sanitizeCamera(camera_, controller_.home());
   if (playing_ && duration_ > 0.0 && std::isfinite(dtSeconds)) {
-    time_ = std::fmod(time_ + std::max(0.0, dtSeconds) * speed_, duration_);
+    time_ += std::max(0.0, dtSeconds) * speed_;
+    if (time_ >= duration_) {
+      if (loop_) {
+        time_ = std::fmod(time_, duration_);
+      } else {
+        time_ = duration_;  // the end: the shaking is over, the city shows its damage
+        playing_ = false;
+      }
+    }
   }
 
   const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
@@ -229,10 +255,11 @@ void Viewer::frame(double dtSeconds) {
         openingTimeSet_ = true;
       }
     }
+    city_->setSwayAmplitude(amplitude_);
     city_->update(view, time_, times, counts, items);
     // Drawn in the current-drift colours, the buildings with a drift series follow their history
     // too (coloured by their drift at this time), not only those moved floor by floor.
-    if (colorMode_ == ColorMode::CurrentDrift) counts.buildingsAnimated += counts.buildingsSeriesOnly;
+    if (shownColorMode() == ColorMode::CurrentDrift) counts.buildingsAnimated += counts.buildingsSeriesOnly;
     uniforms.showModels = city_->showLod2();
     markers_.clear();
     city_->mapMarkers(widthCss_ > 0.0 ? static_cast<float>(widthPixels_ / widthCss_) : 1.0f, markers_);
@@ -249,7 +276,7 @@ void Viewer::frame(double dtSeconds) {
   const auto t0 = Clock::now();
   uniforms.viewProjection = view.viewProjection();
   uniforms.eye = view.eye();
-  uniforms.colorMode = colorMode_;
+  uniforms.colorMode = shownColorMode();
   uniforms.amplitude = amplitude_;
   uniforms.timeSeconds = static_cast<float>(time_);
   uniforms.viewportWidth = widthPixels_;

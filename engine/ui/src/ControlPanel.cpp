@@ -291,7 +291,8 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   }
   auto cell = [](const seismic::Estimate& e, int decimals) {
     // Whole numbers from a thousand up, so the city's and the view's columns fit the panel.
-    if (e.high >= 1000.0) decimals = 0;
+    if (e.high >= 1000.0 || e.expected >= 1000.0) decimals = 0;
+    if (std::isnan(e.low) || std::isnan(e.high)) return ui::format("%.*f (interval unknown)", decimals, e.expected);
     return ui::format("%.*f (%.*f-%.*f)", decimals, e.expected, decimals, e.low, decimals, e.high);
   };
   auto money = [](const seismic::Estimate& e) {
@@ -306,6 +307,7 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   // interval (the shaking they assume is stated right above the section).
   {
     std::vector<std::vector<std::string>> headline;
+    headline.push_back({"Damaged: moderate or worse", cell(c.damaged, 1)});
     headline.push_back({"Red tags (unsafe)", cell(c.tags[2], 1)});
     headline.push_back({"Yellow tags (restricted use)", cell(c.tags[1], 1)});
     headline.push_back({"Injuries: minor", cell(c.injuries[0], 1)});
@@ -478,7 +480,14 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   }
 
   if (section(w, "Damage and colours", false)) {
-    const ColorMode mode = viewer.colorMode();
+    const ColorMode mode = viewer.shownColorMode();
+    if (viewer.showingDamageAfterShaking()) {
+      w.textWrapped(
+          "The shaking is over: each building shows its probability of moderate damage or worse "
+          "(Play shows the shaking again).");
+    }
+    bool after = viewer.damageAfterShaking();
+    if (w.checkbox("After the shaking, show the damage probabilities", &after)) viewer.setDamageAfterShaking(after);
     const bool byDamage = mode == ColorMode::DamageState;
     const bool probabilistic =
         mode == ColorMode::ModerateOrWorse || mode == ColorMode::ExpectedDamage || mode == ColorMode::InspectionTag;
@@ -518,8 +527,8 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
           label +=
               ui::format(", %llu in view", static_cast<unsigned long long>((*inView)[static_cast<std::size_t>(k)]));
       } else {
-        label = k < 4 ? ui::format("%.1f %% drift", static_cast<double>(kDriftFullScale) * 25.0 * k)
-                      : ui::format("%.1f %% drift or more", static_cast<double>(kDriftFullScale) * 100.0);
+        const double drift = 100.0 * static_cast<double>(kDriftStops[static_cast<std::size_t>(k)]);
+        label = k < 4 ? ui::format("%g %% drift", drift) : ui::format("%g %% drift or more", drift);
       }
       w.swatch(c.r, c.g, c.b, label);
     }
@@ -528,25 +537,28 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       const CitySceneOptions& o = city->options();
       w.textWrapped(
           ui::format("%u buildings in view follow their response now; within %s of the camera "
-                     "(at most %u) each storey also moves by its own displacement.",
+                     "(at most %u) each storey also moves by its own displacement where the sway (times the "
+                     "amplitude) reaches a pixel on screen: %u now.",
                      s.latest.buildingsAnimated, lengthText(viewer, static_cast<double>(o.animationRadiusM)).c_str(),
-                     o.maxAnimatedBuildings));
+                     o.maxAnimatedBuildings,
+                     s.latest.buildingsAnimated - std::min(s.latest.buildingsAnimated, s.latest.buildingsSeriesOnly)));
     } else if (mode == ColorMode::CurrentDrift && city != nullptr && tileset != nullptr) {
       // Only animated buildings have a drift now; the others show their peak, in greys that no one
       // can take for damage that has already happened (qv/scene/Palette.h).
       w.textWrapped("Not animated (beyond the animation radius): peak drift over the whole record");
       for (std::size_t k = 0; k < kNotAnimatedPalette.size(); ++k) {
         const Rgb c = kNotAnimatedPalette[k];
-        const double drift = static_cast<double>(kDriftFullScale) * 25.0 * static_cast<double>(k);
+        const double drift = 100.0 * static_cast<double>(kDriftStops[k]);
         w.swatch(c.r, c.g, c.b,
-                 k + 1 < kNotAnimatedPalette.size() ? ui::format("%.1f %% peak drift", drift)
-                                                    : ui::format("%.1f %% peak drift or more", drift));
+                 k + 1 < kNotAnimatedPalette.size() ? ui::format("%g %% peak drift", drift)
+                                                    : ui::format("%g %% peak drift or more", drift));
       }
       const CitySceneOptions& o = city->options();
       if (o.animationRadiusM > 0.0f && o.maxAnimatedBuildings > 0) {
         w.textWrapped(
-            ui::format("Animated: the buildings within %s of the camera, at most %u (Performance panel), "
-                       "%u now; farther ones and the far-view tiles are grey.",
+            ui::format("Animated: the buildings within %s of the camera whose sway (times the amplitude) "
+                       "reaches a pixel on screen, at most %u (Performance panel), %u now; the others and the "
+                       "far-view tiles are grey.",
                        lengthText(viewer, static_cast<double>(o.animationRadiusM)).c_str(), o.maxAnimatedBuildings,
                        s.latest.buildingsAnimated));
       } else {
@@ -856,7 +868,7 @@ void ControlPanel::drawOverlay(Viewer& viewer, ui::Widgets& w) {
 
 void ControlPanel::drawColourKey(Viewer& viewer, ui::Widgets& w) {
   // The colours' key, always in view (the panel's "Damage and colours" has the whole legend).
-  const ColorMode mode = viewer.colorMode();
+  const ColorMode mode = viewer.shownColorMode();
   if (mode == ColorMode::Neutral) return;
   std::string title;
   std::array<std::string, 5> labels;
@@ -865,10 +877,14 @@ void ControlPanel::drawColourKey(Viewer& viewer, ui::Widgets& w) {
     case ColorMode::CurrentDrift:
     case ColorMode::PeakDrift:
       title = mode == ColorMode::CurrentDrift ? "Colour: storey drift now" : "Colour: peak storey drift";
-      labels = {"0", "0.5", "1", "1.5", "2 %"};
+      for (std::size_t k = 0; k < labels.size(); ++k) {
+        labels[k] =
+            ui::format("%g", 100.0 * static_cast<double>(kDriftStops[k])) + (k + 1 == labels.size() ? " %" : "");
+      }
       break;
     case ColorMode::ModerateOrWorse:
-      title = "Colour: P(moderate damage or worse)";
+      title = viewer.showingDamageAfterShaking() ? "Colour: P(moderate damage or worse), after the shaking"
+                                                 : "Colour: P(moderate damage or worse)";
       labels = {"0", "25", "50", "75", "100 %"};
       break;
     case ColorMode::InspectionTag:

@@ -323,15 +323,26 @@ export async function openSection(page, label) {
   // where the header is then.
   for (let attempt = 0; ; ++attempt) {
     if (await page.evaluate(isOpen, escaped)) return;
-    const header = (await page.evaluate(() => window.quakeview.uiLayout())).items
-      .find((i) => i.window === 'QuakeView' && i.label === label);
+    const layout = await page.evaluate(() => window.quakeview.uiLayout());
+    const header = layout.items.find((i) => i.window === 'QuakeView' && i.label === label);
     if (!header) throw new Error(`no section header "${label}" in the panel`);
-    await page.mouse.click(header.x + 40, header.y + header.height / 2);
+    // Scrolled out of the panel (its content taller than the window, e.g. while messages show):
+    // the wheel over the panel brings it in, as a person would scroll.
+    const panel = layout.windows.find((w) => w.title === 'QuakeView');
+    const centreY = header.y + header.height / 2;
+    if (panel && (centreY < panel.y + 20 || centreY > panel.y + panel.height - 10)) {
+      if (attempt >= 6) throw new Error(`the section header "${label}" stays outside the panel (at y ${Math.round(centreY)})`);
+      await page.mouse.move(panel.x + panel.width / 2, panel.y + panel.height / 2);
+      await page.mouse.wheel(0, centreY - (panel.y + panel.height / 2));
+      await page.waitForTimeout(300);
+      continue;
+    }
+    await page.mouse.click(header.x + 40, centreY);
     try {
       await waitForFunction(page, isOpen, escaped, { timeout: 3000, polling: 100 });
       return;
     } catch (e) {
-      if (attempt >= 3) throw new Error(`the section "${label}" did not open after ${attempt + 1} clicks: ${e.message}`);
+      if (attempt >= 8) throw new Error(`the section "${label}" did not open after ${attempt + 1} attempts: ${e.message}`);
     }
   }
 }

@@ -69,8 +69,8 @@ class GlRenderDevice final : public RenderDevice {
   // The building program of one colour mode, and its uniforms' locations.
   struct BuildingProgram {
     unsigned program = 0;
-    int viewProjection = -1, origin = -1, buildings = -1, floors = -1, series = -1, driftFullScale = -1, amplitude = -1,
-        time = -1, sunDirection = -1, eye = -1, showModels = -1;
+    int viewProjection = -1, origin = -1, buildings = -1, floors = -1, series = -1, amplitude = -1, time = -1,
+        sunDirection = -1, eye = -1, showModels = -1;
   };
   /// The program for `mode`, built on first use; null when it failed (error() says why). The mode
   /// is a constant in it, not a uniform: a software renderer runs every branch of an if/else

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -59,8 +60,14 @@ struct CitySceneOptions {
   /// download on the page's thread, between frames).
   std::uint32_t requestTimeoutMs = 20000;
   std::uint32_t slowestBytesPerSecond = 256u << 10;
-  float animationRadiusM = 1000.0f;  ///< around the eye (metres); 0 animates nothing
+  /// Sway floor by floor: the buildings whose sway shows, i.e. whose peak roof displacement times
+  /// the amplitude exaggeration (setSwayAmplitude) reaches `swayPixels` on screen, within
+  /// `animationRadiusM` of the eye (the full-detail distance, which bounds the work), at most
+  /// `maxAnimatedBuildings`, those whose sway shows most first. Every other building with a
+  /// response still follows it in colour (its drift series). 0 m animates nothing.
+  float animationRadiusM = 1000.0f;
   std::uint32_t maxAnimatedBuildings = 20000;
+  float swayPixels = 1.0f;
   std::uint64_t memoryBudgetBytes = 512ull << 20;  ///< decoded tiles + GPU meshes + histories
   double workBudgetMs = 12.0;                      ///< decoding and meshing per frame
   /// The deployment's data origin policy: a city from an origin it does not allow is refused
@@ -161,6 +168,11 @@ class CityScene {
   /// With LOD2 off, LOD2 buildings are drawn (and picked) as their LOD1 extrusions, shown or
   /// hidden with the LOD1 buildings.
   void setLodVisibility(bool lod1, bool lod2);
+  /// The exaggeration the displacements are drawn with (Viewer::amplitude): which sways show
+  /// (CitySceneOptions::swayPixels). Non-finite or non-positive values count as 1.
+  void setSwayAmplitude(float amplitude) {
+    swayAmplitude_ = std::isfinite(amplitude) && amplitude > 0.0f ? amplitude : 1.0f;
+  }
   [[nodiscard]] bool showLod1() const { return showLod1_; }
   [[nodiscard]] bool showLod2() const { return showLod2_; }
   /// Buildings whose id, name or address contain every word of `query` (the search index is
@@ -250,19 +262,20 @@ class CityScene {
   void countDamageInView();                                                  // when the visible sets changed
   [[nodiscard]] std::uint64_t loadedBuildings() const;
   [[nodiscard]] bool responsesReady() const;  // no summary of a drawn tile, no history on its way
-  void animate(const glm::vec3& eye, double timeSeconds, FrameCounts& counts);
+  void animate(const CameraView& view, double timeSeconds, FrameCounts& counts);
   /// Chooses the animated buildings (nearest first, up to the cap) among the visible buildings of
   /// `tiles` (within the radius, histories loaded), keeping the floor rows of those that stay.
-  void chooseAnimated(const glm::vec3& eye, const std::vector<std::uint32_t>& tiles);
+  void chooseAnimated(const CameraView& view, const std::vector<std::uint32_t>& tiles);
   /// The drawn leaves within the radius whose histories are loaded (requesting the others) into
   /// animationTiles_; returns the signature of what the choice of animated buildings depends on.
-  std::uint64_t findAnimationTiles(const glm::vec3& eye);
+  std::uint64_t findAnimationTiles(const CameraView& view);
   struct AnimationCandidate {
-    float distance2;  // from the eye, m²
+    float swayPixels;  // peak roof displacement × amplitude on screen at its distance
     std::uint32_t node, index, position;
   };
-  /// Visible buildings of `tiles` within the radius, the nearest up to the cap.
-  [[nodiscard]] std::vector<AnimationCandidate> animationCandidates(const glm::vec3& eye,
+  /// Visible buildings of `tiles` within the radius whose sway reaches options_.swayPixels, those
+  /// whose sway shows most first, up to the cap.
+  [[nodiscard]] std::vector<AnimationCandidate> animationCandidates(const CameraView& view,
                                                                     const std::vector<std::uint32_t>& tiles) const;
   /// Makes `candidates` the animated buildings: keeps the floor rows of those that stay.
   void keepAnimated(const std::vector<AnimationCandidate>& candidates);
@@ -275,6 +288,7 @@ class CityScene {
   Fetcher& fetcher_;
   std::string manifestUrl_;
   CitySceneOptions options_;
+  float swayAmplitude_ = 1.0f;
   ErrorSink onError_;
   Fetcher::RequestId manifestRequest_ = 0;
   std::optional<Tileset> tileset_;

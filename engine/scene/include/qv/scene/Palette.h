@@ -37,8 +37,8 @@ inline constexpr std::array<Rgb, 3> kTagPalette = {
 inline constexpr Rgb kSelectedColor = {0.10f, 0.75f, 1.00f};
 inline constexpr Rgb kDimmedColor = {0.90f, 0.91f, 0.92f};
 
-/// Not animated, in the current-drift mode: peak drift over the whole record at 0, ¼, ½, ¾ and 1 of
-/// kDriftFullScale, from light grey to dark slate (about L* 75, 63, 51, 40, 27; CIE chroma below
+/// Not animated, in the current-drift mode: peak drift over the whole record at the drifts of
+/// kDriftStops, from light grey to dark slate (about L* 75, 63, 51, 40, 27; CIE chroma below
 /// 9, a faint blue cast). The lightest level stays clearly darker than ramp(0) and kDimmedColor,
 /// every level apart from kNoResultColor (bluer, and hatched) by CIE76 ΔE*ab 17 or more, and far
 /// from the warm stops (ΔE*ab over 45).
@@ -48,8 +48,18 @@ inline constexpr std::array<Rgb, 5> kNotAnimatedPalette = {{{0.70f, 0.72f, 0.75f
                                                             {0.35f, 0.37f, 0.42f},
                                                             {0.23f, 0.25f, 0.30f}}};
 
-/// Drift ratio shown at the top of the ramp (2 %: beyond most buildings' extensive damage).
-inline constexpr float kDriftFullScale = 0.02f;
+/// The drift ratios at the ramp's five stops: 0, 0.1 %, 0.5 %, 1 % and 2 % (piecewise linear in
+/// between). The first coloured stop is low so that a moderate earthquake's shaking shows (0.1 %:
+/// felt and visible motion, below most building types' slight-damage drift in HAZUS, 0.2–0.5 %);
+/// orange at 0.5 % is about slight to moderate damage, red at 1 % moderate to extensive, dark red at
+/// 2 % beyond most buildings' extensive damage. The legend prints these values.
+inline constexpr std::array<float, 5> kDriftStops = {0.0f, 0.001f, 0.005f, 0.01f, 0.02f};
+/// Drift ratio shown at the top of the ramp.
+inline constexpr float kDriftFullScale = kDriftStops[4];
+
+/// Where a drift ratio sits on the ramp: 0, ¼, ½, ¾ or 1 at the stops of kDriftStops, linear in
+/// between, clamped to [0, 1] (so paletteRamp(driftRampPosition(d)) is the colour of drift d).
+float driftRampPosition(float drift);
 
 /// The ramp at t in [0, 1] (clamped), piecewise linear through the five stops.
 Rgb paletteRamp(float t);
@@ -60,7 +70,8 @@ Rgb notAnimatedGrey(float t);
 /// The palette as GLSL ES 3.00, inserted by the render layer at the `@PALETTE@` marker of its
 /// building shader: `const vec3 kNoResult`, `kSelected`, `kDimmed`, `kTagGreen`, `kTagYellow`,
 /// `kTagRed`; `vec3 ramp(float t)` (paletteRamp) and `vec3 notAnimatedGrey(float t)`
-/// (notAnimatedGrey), each with t clamped to [0, 1]. Colours are written with 4 decimals.
+/// (notAnimatedGrey), each with t clamped to [0, 1]; `float driftPosition(float drift)`
+/// (driftRampPosition). Colours are written with 4 decimals.
 std::string paletteGlsl();
 
 }  // namespace qv

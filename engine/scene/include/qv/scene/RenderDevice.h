@@ -126,9 +126,8 @@ struct FrameUniforms {
   glm::vec3 eye{0.0f};
   glm::vec3 sunDirection{-0.4f, -0.6f, -0.7f};  ///< direction the light travels (towards ground)
   ColorMode colorMode = ColorMode::CurrentDrift;
-  float amplitude = 1.0f;        ///< exaggeration applied to displayed displacements
-  float driftFullScale = 0.02f;  ///< drift ratio shown as the top of the colour ramp (kDriftFullScale)
-  float timeSeconds = 0.0f;      ///< scene time the drift series are read at
+  float amplitude = 1.0f;    ///< exaggeration applied to displayed displacements
+  float timeSeconds = 0.0f;  ///< scene time the drift series are read at
   int viewportWidth = 1;
   int viewportHeight = 1;
   Rect ground;             ///< ground plane extent (empty: no ground)

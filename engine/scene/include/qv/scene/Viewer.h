@@ -59,10 +59,18 @@ class Viewer {
   /// Sets the camera, clamping invalid fields to the current values; false if any was invalid.
   bool setCamera(const CameraState& camera);
 
-  // Playback of simulation time.
-  void play() { playing_ = true; }
+  // Playback of simulation time. Playing runs to the end of the record and stops there (the city
+  // then shows its damage: shownColorMode), unless looping; play() at the end starts again from
+  // the opening moment (a second before the shaking arrives).
+  void play();
   void pause() { playing_ = false; }
   [[nodiscard]] bool playing() const { return playing_; }
+  /// At the end of the record (time() == duration() > 0).
+  [[nodiscard]] bool ended() const { return duration_ > 0.0 && time_ >= duration_; }
+  /// Playback starts again from 0 at the end instead of stopping (off by default; the ?bench
+  /// flight and the test scene loop).
+  void setLoop(bool loop) { loop_ = loop; }
+  [[nodiscard]] bool loop() const { return loop_; }
   /// Clamped into [0, duration()]; non-finite values are ignored (returns false).
   bool setTime(double seconds);
   [[nodiscard]] double time() const { return time_; }
@@ -72,7 +80,18 @@ class Viewer {
   void setAmplitude(float amplitude) { amplitude_ = amplitude; }
   [[nodiscard]] float amplitude() const { return amplitude_; }
   void setColorMode(ColorMode mode) { colorMode_ = mode; }
+  /// The mode chosen (the panel's combo, setColorMode).
   [[nodiscard]] ColorMode colorMode() const { return colorMode_; }
+  /// The mode the city is drawn in: the chosen one, except that in the current-drift mode, once the
+  /// shaking is over (at the end of the record) and when the results carry damage probabilities,
+  /// each building shows its probability of moderate damage or worse (the Consequences table's
+  /// numbers, per building) unless setDamageAfterShaking(false). Paused during the shaking, the
+  /// drift of that moment stays.
+  [[nodiscard]] ColorMode shownColorMode() const;
+  /// True while shownColorMode() differs from colorMode() because the shaking is over.
+  [[nodiscard]] bool showingDamageAfterShaking() const { return shownColorMode() != colorMode_; }
+  void setDamageAfterShaking(bool on) { damageAfterShaking_ = on; }
+  [[nodiscard]] bool damageAfterShaking() const { return damageAfterShaking_; }
 
   /// Advances the clock by dtSeconds of wall time (× speed while playing) and draws a frame.
   void frame(double dtSeconds);
@@ -146,6 +165,8 @@ class Viewer {
   double speed_ = 1.0;
   float amplitude_ = 1.0f;
   bool playing_ = true;
+  bool loop_ = false;
+  bool damageAfterShaking_ = true;
   ColorMode colorMode_ = ColorMode::CurrentDrift;
   std::vector<MapMarker> markers_;  // this frame's (FrameUniforms::markers points here)
   bool settled_ = false;
