@@ -70,8 +70,10 @@ class App {
   void keepSelectionAboveSheet(double cssWidth, double cssHeight);
   /// Draws the panels through their cached picture (redrawn when PanelRefresh says so).
   void drawPanels(double nowSeconds);
-  /// Feeds the frame time to the governor and applies the panel's quality requests.
-  void adaptQuality(double frameMs);
+  /// Applies the panel's quality requests and, when `judgeFrame`, feeds the frame time to the governor.
+  void adaptQuality(double frameMs, bool judgeFrame);
+  /// True when this animation frame is skipped: the first view is loading (see the definition).
+  [[nodiscard]] bool pacedForFirstView(double now) const;
 
   std::unique_ptr<GlRenderDevice> device_;
   std::unique_ptr<GlImGuiRenderer> uiRenderer_;
@@ -87,6 +89,7 @@ class App {
   std::string pendingSelect_;
   std::optional<std::pair<double, double>> cursor_;
   double lastFrameSeconds_ = 0.0;
+  double startSeconds_ = 0.0;  // the app's start (browser::nowSeconds)
   bool readySent_ = false;
   bool cameraOwnsPointer_ = false;
   // Frames the keys after '/' still wait for the search field (dispatchInput).

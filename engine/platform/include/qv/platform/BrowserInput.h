@@ -32,6 +32,8 @@ class BrowserInput {
 
   /// Moves the queued events out (oldest first).
   std::vector<InputEvent> drain();
+  /// Events wait to be drained.
+  [[nodiscard]] bool pending() const { return !queue_.empty(); }
 
   /// Set each frame by the app: when true, keys are left to the UI (e.g. a text field has focus)
   /// and not prevented from reaching the page.
