@@ -156,6 +156,18 @@ struct SceneRig {
   }
 };
 
+// Opens the city animating within 1 km (every sway when `everySway`, else those reaching a pixel),
+// paused, settled, looking at its centre from 500 m.
+Viewer& openPausedAtCentre(SceneRig& rig, bool everySway) {
+  rig.open(1000.0f, CitySceneOptions{}, everySway);
+  Viewer& viewer = rig.viewer;
+  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
+  viewer.pause();
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  return viewer;
+}
+
 // The grid cell (i, j) whose building has its centre at `world`.
 std::pair<int, int> cellOf(glm::vec2 world) {
   const int i = static_cast<int>(std::lround(world.x / 40.0 - 0.5 + MiniCity::kSide / 2));
@@ -279,13 +291,7 @@ TEST_CASE("Far away a far-view tile is drawn as blocks: a box per cell, its wors
 
 TEST_CASE("The buildings whose sway shows on screen move floor by floor, most visible first", "[scene][city][anim]") {
   SceneRig rig;
-  CitySceneOptions options;
-  rig.open(1000.0f, options, false);  // the default: a sway of a pixel
-  Viewer& viewer = rig.viewer;
-  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
-  viewer.pause();
-  runFrames(viewer, 20);
-  REQUIRE(viewer.settled());
+  Viewer& viewer = openPausedAtCentre(rig, false);  // the default: a sway of a pixel
   REQUIRE(viewer.stats().latest.buildingsVisible == 64);
   // True scale: the test city's sways (5 to 15 cm) are under a pixel from 500 m: none is moved.
   CHECK(viewer.stats().latest.buildingsAnimated == 0);
@@ -340,12 +346,7 @@ TEST_CASE("The buildings whose sway shows on screen move floor by floor, most vi
 
 TEST_CASE("Each animated building moves by its own history", "[scene][city][anim]") {
   SceneRig rig;
-  rig.open(1000.0f);
-  Viewer& viewer = rig.viewer;
-  viewer.setCamera(CameraState{0.0, 0.0, 500.0, 0.0, 60.0, 45.0});
-  viewer.pause();
-  runFrames(viewer, 20);
-  REQUIRE(viewer.settled());
+  Viewer& viewer = openPausedAtCentre(rig, true);
   CHECK(viewer.stats().latest.buildingsAnimated == 64);
   CHECK(viewer.duration() == 10.0);
 
