@@ -87,6 +87,7 @@ std::uint64_t CityScene::findAnimationTiles(const CameraView& view) {
       if (t.historyLoad.state != TileState::Loaded) continue;
       inRadius.push_back(i);
       mix(i);
+      mix(bitsOf(t.maxRoofM));  // its summary's arrival changes whose sway shows
     }
   }
   return signature;
