@@ -1144,6 +1144,18 @@ TEST_CASE("The first view plays from the shaking's arrival and frames the city b
       CHECK(p->x > 400.0);
       CHECK(p->x < 1280.0);
     }
+    // The panel growing with its content (numbers arriving) does not move the city under the
+    // user; another layout does.
+    const float shift = rig.viewer.lensShift();
+    rig.viewer.setFramingInsetCss(400.0 + Viewer::kFramingInsetStepCss * 0.8);
+    runFrames(rig.viewer, 2);
+    CHECK(rig.viewer.lensShift() == shift);
+    const auto still = rig.viewer.worldToScreen(0.0, 0.0, 0.0);
+    REQUIRE(still.has_value());
+    CHECK(still->x == Approx(centre->x).margin(0.5));
+    rig.viewer.setFramingInsetCss(0.0);
+    runFrames(rig.viewer, 2);
+    CHECK(rig.viewer.lensShift() == 0.0f);
   }
   SECTION("a time chosen before (a link) is kept") {
     rig.open(0.0f);

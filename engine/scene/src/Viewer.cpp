@@ -117,7 +117,12 @@ bool Viewer::setTime(double seconds) {
 }
 
 void Viewer::setFramingInsetCss(double left) {
-  framingInsetCss_ = std::isfinite(left) ? std::max(left, 0.0) : 0.0;
+  const double inset = std::isfinite(left) ? std::max(left, 0.0) : 0.0;
+  // The panel's width follows its content (the consequences arriving, a section opened): once the
+  // city is framed the view keeps its place unless the inset changes by more than
+  // kFramingInsetStepCss (another layout), so the city does not slide sideways under the user.
+  if (cityFramed_ && std::abs(inset - framingInsetCss_) <= kFramingInsetStepCss) return;
+  framingInsetCss_ = inset;
   controller_.setLensShift(lensShift());
 }
 

@@ -48,8 +48,10 @@ class Viewer {
   void setViewport(int widthPixels, int heightPixels, double widthCss, double heightCss);
   /// How much of the canvas's left side the panels cover (CSS px, from the left edge; 0: none):
   /// the view's centre (the looked-at point) is drawn in the middle of the rest, and the city's
-  /// first view (and home, R) is framed to fit there.
+  /// first view (and home, R) is framed to fit there. Once the city is framed, changes of at most
+  /// kFramingInsetStepCss are ignored (the panel's width follows its content; the view stays put).
   void setFramingInsetCss(double left);
+  static constexpr double kFramingInsetStepCss = 120.0;
   /// The view's lens shift from the inset (CameraView's shiftNdcX).
   [[nodiscard]] float lensShift() const;
 
