@@ -143,3 +143,48 @@ test(`${city.name}: at the opening view every building in view follows its respo
   }
 });
 }
+
+// Beyond the full-detail distance no history is loaded, yet the buildings sway: from their drift
+// series, at their own first-mode periods (qv::seriesSwayAt). Seen in the neutral colours (so only
+// motion changes the picture), paused: still before the shaking arrives, moving during it, and by
+// the amplitude exaggeration (true scale is under a pixel at this distance).
+test('synth: buildings far from the camera sway from their drift series, by the amplitude', async (t) => {
+  const { context, close, browser } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await settle(page);
+    await page.evaluate(() => {
+      window.quakeview.pause();
+      window.quakeview.setColorMode('neutral');
+      window.quakeview.setCamera({ distance: 1500, pitchDeg: 35 });
+    });
+    await page.waitForTimeout(1500);
+    const change = async (amplitude, [s0, s1]) => {
+      assert.equal(await page.evaluate((a) => window.quakeview.setAmplitude(a), amplitude), true);
+      const shots = [];
+      for (const s of [s0, s1]) {
+        await page.evaluate((time) => window.quakeview.setTime(time), s);
+        await page.waitForTimeout(500);
+        shots.push(await page.screenshot());
+      }
+      fs.writeFileSync(path.join(ARTIFACTS, `sway-synth-${browser}-x${amplitude}-${s1}s.png`), shots[1]);
+      return changedFraction(decodePng(shots[0]), decodePng(shots[1]));
+    };
+    const stillBig = await change(100, [0.05, 0.1]);
+    const big = await change(100, [12.0, 12.25]);
+    const trueScale = await change(1, [12.0, 12.25]);
+    const stats = await page.evaluate(() => window.quakeview.stats().buildings);
+    t.diagnostic(`${browser}: canvas changed ${(100 * big).toFixed(2)} % at 100x, ${(100 * trueScale).toFixed(2)} % at 1x, ` +
+      `${(100 * stillBig).toFixed(2)} % before the shaking; in view ${stats.visible}, moved floor by floor ${stats.animated}`);
+    assert.ok(stats.visible > 1000, `the city is in view: ${JSON.stringify(stats)}`);
+    // In the neutral colours `animated` counts those moved floor by floor: (almost) none here.
+    assert.ok(stats.animated < 0.1 * stats.visible, `most buildings are beyond the full-detail distance: ${JSON.stringify(stats)}`);
+    assert.ok(big >= 0.02, `the far buildings sway at 100x: ${(100 * big).toFixed(2)} % of the canvas changed`);
+    assert.ok(trueScale <= big / 5, `at true scale the sway is under a pixel: ${(100 * trueScale).toFixed(2)} %`);
+    assert.ok(stillBig < 0.005, `still before the shaking arrives: ${(100 * stillBig).toFixed(2)} % changed`);
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});

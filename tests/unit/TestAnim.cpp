@@ -225,3 +225,41 @@ TEST_CASE("Merged series take the largest member code at each moment, over all m
   CHECK(qv::mergeSeries(codes, std::vector<qv::SeriesRef>{qv::SeriesRef{}}, 4.0f, none).count == 0);
   CHECK(none.empty());
 }
+
+TEST_CASE("A building not moved floor by floor sways from its drift series at its own periods", "[anim][series]") {
+  // Gain 40 m per unit drift, drift 0.005 now: the roof moves 0.2 m in all, 0.2/√2 on each axis at
+  // their peaks; X at 0.8 s, Y at 1.2 s, from a start at 3 s.
+  const float gain = 40.0f, drift = 0.005f, tx = 0.8f, ty = 1.2f, start = 3.0f;
+  const double roofAxis = 0.2 / std::sqrt(2.0);
+  // At rest before the shaking arrives and at the start itself.
+  CHECK(qv::seriesSwayAt(drift, gain, tx, ty, start, 2.9, 1.0f).dxMeters == 0.0f);
+  CHECK(std::fabs(qv::seriesSwayAt(drift, gain, tx, ty, start, 3.0, 1.0f).dxMeters) < 1e-6f);
+  // A quarter of each period later each axis is at its peak, the roof by the full amount.
+  CHECK(qv::seriesSwayAt(drift, gain, tx, ty, start, 3.2, 1.0f).dxMeters == Approx(roofAxis).epsilon(1e-4));
+  CHECK(qv::seriesSwayAt(drift, gain, tx, ty, start, 3.3, 1.0f).dyMeters == Approx(roofAxis).epsilon(1e-4));
+  // Half a period later the other way: it oscillates, it does not lean.
+  CHECK(qv::seriesSwayAt(drift, gain, tx, ty, start, 3.6, 1.0f).dxMeters == Approx(-roofAxis).epsilon(1e-4));
+  // Never more than gain × drift, and a point moves its height's share of the roof's (ground: 0).
+  for (double t = 3.0; t < 13.0; t += 0.037) {
+    const qv::Sway roof = qv::seriesSwayAt(drift, gain, tx, ty, start, t, 1.0f);
+    const qv::Sway middle = qv::seriesSwayAt(drift, gain, tx, ty, start, t, 0.5f);
+    CHECK(std::hypot(roof.dxMeters, roof.dyMeters) <= 0.2f + 1e-5f);
+    CHECK(middle.dxMeters == Approx(roof.dxMeters * 0.5f).margin(1e-6));
+    CHECK(qv::seriesSwayAt(drift, gain, tx, ty, start, t, 0.0f).dxMeters == 0.0f);
+    CHECK(qv::seriesSwayAt(drift, gain, tx, ty, start, t, 2.0f).dxMeters == roof.dxMeters);  // clamped to the roof
+  }
+  // No series (drift -1), no gain (a block, no result) or no period: still.
+  CHECK(qv::seriesSwayAt(-1.0f, gain, tx, ty, start, 3.2, 1.0f).dxMeters == 0.0f);
+  CHECK(qv::seriesSwayAt(drift, 0.0f, tx, ty, start, 3.2, 1.0f).dxMeters == 0.0f);
+  CHECK(qv::seriesSwayAt(drift, gain, 0.0f, ty, start, 3.2, 1.0f).dxMeters == 0.0f);
+}
+
+TEST_CASE("Sway gains and estimated periods follow the building's peaks and storeys", "[anim][series]") {
+  // 0.12 m of roof at 0.4 % drift: 30 m of roof per unit drift; capped at 1.5 × the height.
+  CHECK(qv::swayGainMeters(0.12f, 0.004f, 30.0f) == Approx(30.0f));
+  CHECK(qv::swayGainMeters(1.0f, 0.001f, 30.0f) == Approx(45.0f));
+  CHECK(qv::swayGainMeters(0.12f, 0.0f, 30.0f) == 0.0f);
+  CHECK(qv::swayGainMeters(0.0f, 0.004f, 30.0f) == 0.0f);
+  CHECK(qv::estimatedPeriodS(10.0f) == Approx(1.0f));
+  CHECK(qv::estimatedPeriodS(0.0f) == Approx(0.1f));
+}

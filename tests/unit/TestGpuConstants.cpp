@@ -105,7 +105,11 @@ TEST_CASE("The generated row readers read each field where the device stores it"
   b.seriesStart = 4.25f;
   b.seriesCount = 161.0f;
   b.seriesRateHz = 4.0f;
-  float texels[12];
+  b.swayGainM = 31.5f;
+  b.swayPeriodXS = 1.25f;
+  b.swayPeriodYS = 0.75f;
+  b.reserved = -3.0f;
+  float texels[16];
   static_assert(sizeof texels == sizeof b);
   std::memcpy(texels, &b, sizeof b);  // the bytes writeBuildings sends
   const std::map<std::string, float> building = {{"storeyHeightMeters", b.storeyHeightMeters},
@@ -119,7 +123,11 @@ TEST_CASE("The generated row readers read each field where the device stores it"
                                                  {"seriesBase", b.seriesBase},
                                                  {"seriesStart", b.seriesStart},
                                                  {"seriesCount", b.seriesCount},
-                                                 {"seriesRateHz", b.seriesRateHz}};
+                                                 {"seriesRateHz", b.seriesRateHz},
+                                                 {"swayGainM", b.swayGainM},
+                                                 {"swayPeriodXS", b.swayPeriodXS},
+                                                 {"swayPeriodYS", b.swayPeriodYS},
+                                                 {"reserved", b.reserved}};
   for (const auto& [name, expected] : building) {
     INFO(name);
     CHECK(readByGlsl(glsl, "readBuilding", name, texels) == expected);

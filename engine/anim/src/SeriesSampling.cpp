@@ -26,6 +26,27 @@ float seriesDriftAt(std::span<const std::uint8_t> codes, const SeriesRef& s, flo
   return static_cast<float>(fullScale * (a + (b - a) * (u - i0)));
 }
 
+Sway seriesSwayAt(float drift, float gainM, float periodXS, float periodYS, float startSeconds, double t,
+                  float heightFraction) {
+  if (!(drift > 0.0f) || !(gainM > 0.0f) || !(periodXS > 0.0f) || !(periodYS > 0.0f)) return {};
+  const double since = t - static_cast<double>(startSeconds);
+  if (!(since >= 0.0)) return {};
+  constexpr double kTwoPi = 6.283185307179586;
+  const double roof = static_cast<double>(gainM) * drift * std::clamp(static_cast<double>(heightFraction), 0.0, 1.0) *
+                      0.7071067811865476;
+  return {static_cast<float>(roof * std::sin(kTwoPi * since / periodXS)),
+          static_cast<float>(roof * std::sin(kTwoPi * since / periodYS))};
+}
+
+float swayGainMeters(float peakRoofDisplacementM, float peakDriftRatio, float heightM) {
+  if (!(peakRoofDisplacementM > 0.0f) || !(peakDriftRatio > 0.0f) || !(heightM > 0.0f)) return 0.0f;
+  return std::min(peakRoofDisplacementM / peakDriftRatio, 1.5f * heightM);
+}
+
+float estimatedPeriodS(float storeys) {
+  return std::max(0.1f, 0.1f * (std::isfinite(storeys) ? storeys : 1.0f));
+}
+
 SeriesRef mergeSeries(std::span<const std::uint8_t> codes, std::span<const SeriesRef> members, float rateHz,
                       std::vector<std::uint8_t>& out) {
   SeriesRef merged;

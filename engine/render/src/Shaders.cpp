@@ -51,6 +51,17 @@ float seriesDrift(BuildingRow b, float t) {
   return kSeriesFullScale * mix(a * a, c * c, u - i0);
 }
 
+// A building's sway from its drift series where its floors are not moved one by one: the roof
+// moves swayGainM × drift, split evenly between X and Y, each at its first-mode period from the
+// series' start; a point moves its height fraction of that. The C++ mirror and its tests:
+// qv::seriesSwayAt (qv/anim/SeriesSampling.h).
+vec2 seriesSway(BuildingRow b, float drift, float t, float heightFraction) {
+  if (drift <= 0.0 || b.swayGainM <= 0.0 || t < b.seriesStart) return vec2(0.0);
+  float since = t - b.seriesStart;
+  float roof = b.swayGainM * drift * clamp(heightFraction, 0.0, 1.0) * 0.70710678;
+  return roof * vec2(sin(6.28318531 * since / max(b.swayPeriodXS, 0.01)), sin(6.28318531 * since / max(b.swayPeriodYS, 0.01)));
+}
+
 void main() {
   BuildingRow b = readBuilding(u_buildings, int(a_slot));
   float storeyHeight = max(b.storeyHeightMeters, 0.1);
@@ -65,6 +76,13 @@ void main() {
   vec3 position = a_position;
   float drift = 0.0;  // the storey's drift now, for animated buildings only
   float peakStorey = peakValue;
+  // The building's (or block's) largest storey drift now from its series, when its floors are not
+  // moved one by one (-1 without a series).
+  float seriesNow = floorBase >= 0 ? -1.0 : seriesDrift(b, u_time);
+  if (floorBase < 0 && seriesNow > 0.0) {
+    float height = storeyHeight * float(storeys);
+    position.xy += seriesSway(b, seriesNow, u_time, (position.z - baseZ) / height) * u_amplitude;
+  }
   if (floorBase >= 0) {
     // Skinning by height: the floors below and above the vertex, blended linearly in height (the
     // C++ mirror and its tests: qv::floorBlendAt in qv/anim/FloorBlend.h).
@@ -88,7 +106,7 @@ void main() {
   // without either show their peak over the whole record in grey levels, never in colours of
   // damage (Palette.h).
   if (colorMode == kModeCurrentDrift) {
-    float now = floorBase >= 0 ? drift : seriesDrift(b, u_time);
+    float now = floorBase >= 0 ? drift : seriesNow;
     color = now >= 0.0 ? ramp(driftPosition(now)) : notAnimatedGrey(driftPosition(peakValue));
   }
   else if (colorMode == kModePeakDrift) color = ramp(driftPosition(peakStorey));

@@ -61,6 +61,14 @@ void CityScene::applySummary(std::uint32_t node) {
     const BuildingResponse& r = t.summary->buildings[b];
     BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
     row.peakValue = r.peakDriftRatio;
+    // Its sway from its drift series where its floors are not moved one by one (seriesSwayAt).
+    row.swayGainM = r.source == ResponseSource::None ? 0.0f
+                                                     : swayGainMeters(r.peakRoofDisplacementM, r.peakDriftRatio,
+                                                                      row.storeys * row.storeyHeightMeters);
+    const bool hasPeriods = b < t.summary->scaling.size() && t.summary->scaling[b].periodS[0] > 0.0f;
+    row.swayPeriodXS = hasPeriods ? t.summary->scaling[b].periodS[0] : estimatedPeriodS(row.storeys);
+    row.swayPeriodYS =
+        hasPeriods && t.summary->scaling[b].periodS[1] > 0.0f ? t.summary->scaling[b].periodS[1] : row.swayPeriodXS;
     row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
     row.lossCode = -1.0f;
     if (b < t.summary->losses.size() && r.source != ResponseSource::None) {

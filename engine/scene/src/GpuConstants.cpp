@@ -14,7 +14,7 @@ struct Field {
   std::size_t offsetBytes;
 };
 
-constexpr std::array<Field, 12> kBuildingFields = {{
+constexpr std::array<Field, 16> kBuildingFields = {{
     {"storeyHeightMeters", offsetof(BuildingGpuRecord, storeyHeightMeters)},
     {"storeys", offsetof(BuildingGpuRecord, storeys)},
     {"floorBase", offsetof(BuildingGpuRecord, floorBase)},
@@ -27,6 +27,10 @@ constexpr std::array<Field, 12> kBuildingFields = {{
     {"seriesStart", offsetof(BuildingGpuRecord, seriesStart)},
     {"seriesCount", offsetof(BuildingGpuRecord, seriesCount)},
     {"seriesRateHz", offsetof(BuildingGpuRecord, seriesRateHz)},
+    {"swayGainM", offsetof(BuildingGpuRecord, swayGainM)},
+    {"swayPeriodXS", offsetof(BuildingGpuRecord, swayPeriodXS)},
+    {"swayPeriodYS", offsetof(BuildingGpuRecord, swayPeriodYS)},
+    {"reserved", offsetof(BuildingGpuRecord, reserved)},
 }};
 static_assert(kBuildingFields.size() * sizeof(float) == sizeof(BuildingGpuRecord), "a field is missing");
 

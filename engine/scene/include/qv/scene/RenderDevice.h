@@ -46,8 +46,16 @@ struct BuildingGpuRecord {
   float seriesStart = 0.0f;
   float seriesCount = 0.0f;
   float seriesRateHz = 0.0f;
+  /// Its sway where it is not moved floor by floor (qv::seriesSwayAt): the roof's displacement
+  /// per unit of drift from its series (metres; its peak roof displacement over its peak storey
+  /// drift, 0 for blocks and buildings without a result), and its first-mode periods in X and Y
+  /// (seconds, > 0).
+  float swayGainM = 0.0f;
+  float swayPeriodXS = 1.0f;
+  float swayPeriodYS = 1.0f;
+  float reserved = 0.0f;
 };
-static_assert(sizeof(BuildingGpuRecord) == 48);
+static_assert(sizeof(BuildingGpuRecord) == 64);
 /// Texels per building: slot s occupies texels [s × kBuildingTexels, (s + 1) × kBuildingTexels).
 inline constexpr int kBuildingTexels = static_cast<int>(sizeof(BuildingGpuRecord)) / kGpuTexelBytes;
 
