@@ -99,6 +99,9 @@ class ControlPanel {
   /// Its response: damage, the one peak drift and its source, peaks, plots with axes and the
   /// current time, and the per-storey drifts on a fixed scale with the HAZUS thresholds.
   void drawResponse(Viewer& viewer, const BuildingInfo& info, ui::Widgets& w);
+  /// The "Damage and colours" section: the shown colour mode's key, what follows the response
+  /// (and how), the damage thresholds (ControlPanelLegend.cpp, with the overlay and its key).
+  void drawDamageAndColours(Viewer& viewer, ui::Widgets& w, const StatsSummary& stats);
   void drawOverlay(Viewer& viewer, ui::Widgets& w);
   /// The active filters as a strip at the top of the canvas, whatever the panel's state.
   void drawFilterChips(Viewer& viewer, ui::Widgets& w);
