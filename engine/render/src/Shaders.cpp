@@ -55,11 +55,11 @@ float seriesDrift(BuildingRow b, float t) {
 // moves swayGainM × drift, split evenly between X and Y, each at its first-mode period from the
 // series' start; a point moves its height fraction of that. The C++ mirror and its tests:
 // qv::seriesSwayAt (qv/anim/SeriesSampling.h).
-vec2 seriesSway(BuildingRow b, float drift, float t, float heightFraction) {
-  if (drift <= 0.0 || b.swayGainM <= 0.0 || t < b.seriesStart) return vec2(0.0);
+vec2 seriesSway(BuildingRow b, SwayRow w, float drift, float t, float heightFraction) {
+  if (drift <= 0.0 || w.swayGainM <= 0.0 || t < b.seriesStart) return vec2(0.0);
   float since = t - b.seriesStart;
-  float roof = b.swayGainM * drift * clamp(heightFraction, 0.0, 1.0) * 0.70710678;
-  return roof * vec2(sin(6.28318531 * since / max(b.swayPeriodXS, 0.01)), sin(6.28318531 * since / max(b.swayPeriodYS, 0.01)));
+  float roof = w.swayGainM * drift * clamp(heightFraction, 0.0, 1.0) * 0.70710678;
+  return roof * vec2(sin(6.28318531 * since / max(w.swayPeriodXS, 0.01)), sin(6.28318531 * since / max(w.swayPeriodYS, 0.01)));
 }
 
 void main() {
@@ -81,7 +81,8 @@ void main() {
   float seriesNow = floorBase >= 0 ? -1.0 : seriesDrift(b, u_time);
   if (floorBase < 0 && seriesNow > 0.0) {
     float height = storeyHeight * float(storeys);
-    position.xy += seriesSway(b, seriesNow, u_time, (position.z - baseZ) / height) * u_amplitude;
+    SwayRow sway = readSway(u_buildings, int(a_slot));  // its fourth texel, read only here
+    position.xy += seriesSway(b, sway, seriesNow, u_time, (position.z - baseZ) / height) * u_amplitude;
   }
   if (floorBase >= 0) {
     // Skinning by height: the floors below and above the vertex, blended linearly in height (the

@@ -1,7 +1,9 @@
 #include "qv/scene/GpuConstants.h"
 
+#include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
 
 #include "qv/geometry/BuildingMesh.h"
 #include "qv/scene/RenderDevice.h"
@@ -14,7 +16,9 @@ struct Field {
   std::size_t offsetBytes;
 };
 
-constexpr std::array<Field, 16> kBuildingFields = {{
+// What every vertex reads (three texels), and the sway's fields (the fourth texel), which only the
+// buildings swaying from their drift series read.
+constexpr std::array<Field, 12> kBuildingFields = {{
     {"storeyHeightMeters", offsetof(BuildingGpuRecord, storeyHeightMeters)},
     {"storeys", offsetof(BuildingGpuRecord, storeys)},
     {"floorBase", offsetof(BuildingGpuRecord, floorBase)},
@@ -27,12 +31,16 @@ constexpr std::array<Field, 16> kBuildingFields = {{
     {"seriesStart", offsetof(BuildingGpuRecord, seriesStart)},
     {"seriesCount", offsetof(BuildingGpuRecord, seriesCount)},
     {"seriesRateHz", offsetof(BuildingGpuRecord, seriesRateHz)},
+}};
+constexpr std::array<Field, 4> kSwayFields = {{
     {"swayGainM", offsetof(BuildingGpuRecord, swayGainM)},
     {"swayPeriodXS", offsetof(BuildingGpuRecord, swayPeriodXS)},
     {"swayPeriodYS", offsetof(BuildingGpuRecord, swayPeriodYS)},
     {"reserved", offsetof(BuildingGpuRecord, reserved)},
 }};
-static_assert(kBuildingFields.size() * sizeof(float) == sizeof(BuildingGpuRecord), "a field is missing");
+static_assert((kBuildingFields.size() + kSwayFields.size()) * sizeof(float) == sizeof(BuildingGpuRecord),
+              "a field is missing");
+static_assert(offsetof(BuildingGpuRecord, swayGainM) == 3 * kGpuTexelBytes, "the sway is the fourth texel");
 
 constexpr std::array<Field, 4> kFloorFields = {{
     {"dxMeters", offsetof(FloorGpuRecord, dxMeters)},
@@ -78,8 +86,13 @@ std::string rowReader(const char* structName, const char* readerName, const char
   for (const Field& f : fields) s += " float " + std::string(f.name) + ";";
   s += " };\n";
   s += std::string(structName) + " " + readerName + "(sampler2D table, int i) {\n";
-  const std::size_t texels = (N * sizeof(float) + kGpuTexelBytes - 1) / kGpuTexelBytes;
-  for (std::size_t t = 0; t < texels; ++t) {
+  // Only the texels the fields are in (named by their place in the row: t3 is its fourth).
+  std::size_t first = SIZE_MAX, last = 0;
+  for (const Field& f : fields) {
+    first = std::min(first, f.offsetBytes / kGpuTexelBytes);
+    last = std::max(last, f.offsetBytes / kGpuTexelBytes);
+  }
+  for (std::size_t t = first; t <= last; ++t) {
     s += "  vec4 t" + std::to_string(t) + " = texel(table, " + firstTexel + " + " + std::to_string(t) + ");\n";
   }
   s += "  " + std::string(structName) + " r;\n";
@@ -117,6 +130,7 @@ std::string glslConstants() {
   s += floatConstant("kLossCodeTagFactor", static_cast<float>(kLossCodeTagFactor));
   s += "vec4 texel(sampler2D table, int i) { return texelFetch(table, ivec2(i % kTableWidth, i / kTableWidth), 0); }\n";
   s += rowReader("BuildingRow", "readBuilding", "i * kBuildingTexels", kBuildingFields);
+  s += rowReader("SwayRow", "readSway", "i * kBuildingTexels", kSwayFields);
   s += rowReader("FloorRow", "readFloor", "i", kFloorFields);
   // The series table (RGBA8, kSeriesSamplesPerTexel codes a texel): code i as code / 255.
   s += "const float kSeriesFullScale = " + std::to_string(kSeriesFullScale).substr(0, 8) + ";\n";
