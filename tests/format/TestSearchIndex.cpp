@@ -138,3 +138,24 @@ TEST_CASE("Corrupt, truncated, old and out-of-range search indexes are refused w
     requireError(encodeSearchIndex(std::vector<SearchEntry>{e}), "lod is neither 1 nor 2");
   }
 }
+
+TEST_CASE("Search matches rank the same words, then name starts, whole words, word starts, inside words",
+          "[format][search]") {
+  CHECK(queryMatchRank("Empire State Building", "empire  STATE building") == 0);
+  CHECK(queryMatchRank("Building 3-4", "building 3-4") == 0);
+  CHECK(queryMatchRank("Empire State Building", "Empire") == 1);
+  CHECK(queryMatchRank("Empire State Building", "emp") == 1);
+  CHECK(queryMatchRank("The Empire Building", "empire") == 2);
+  CHECK(queryMatchRank("Empire State Building", "building state") == 2);
+  CHECK(queryMatchRank("Empire State Building", "sta") == 3);
+  CHECK(queryMatchRank("Empire State Building", "state bui") == 3);
+  CHECK(queryMatchRank("Empire State Building", "pire") == 4);
+  CHECK(queryMatchRank("Empire State Building", "empire nowhere") == -1);
+  CHECK(queryMatchRank("", "x") == -1);
+  CHECK(queryMatchRank("anything", "   ") == -1);
+  // Whatever ranks, matches: the rank agrees with matchesQuery.
+  for (const char* q : {"empire", "e", "ding", "state empire", "x"}) {
+    INFO(q);
+    CHECK((queryMatchRank("Empire State Building", q) >= 0) == matchesQuery("Empire State Building", q));
+  }
+}

@@ -57,6 +57,30 @@ TEST_CASE("The city index searches every word in ids, names and addresses", "[sc
   CHECK(rig.index.bytes() > 0);
 }
 
+TEST_CASE("Search results come best match first: the id, name starts, whole words, then the tallest",
+          "[scene][index]") {
+  IndexRig rig;
+  rig.load();
+  REQUIRE(rig.index.loaded());
+  // "Building 1": the names starting with it ("Building 1-j") first, tallest first; then those
+  // where "1" is a whole word elsewhere ("Building i-1").
+  const auto hits = rig.index.search("Building 1", 1000);
+  std::size_t starting = 0;
+  while (starting < hits.size() && hits[starting].name.rfind("Building 1-", 0) == 0) ++starting;
+  CHECK(starting == static_cast<std::size_t>(MiniCity::kSide));
+  for (std::size_t k = 1; k < starting; ++k) CHECK(hits[k - 1].heightM >= hits[k].heightM);
+  for (std::size_t k = starting; k < hits.size(); ++k) CHECK(hits[k].name.find("-1") != std::string::npos);
+  CHECK(hits.size() == static_cast<std::size_t>(2 * MiniCity::kSide - 1));
+  // An id typed in full comes first.
+  const auto byId = rig.index.search(MiniCity::idOf(5, 6), 3);
+  REQUIRE_FALSE(byId.empty());
+  CHECK(byId[0].id == MiniCity::idOf(5, 6));
+  // The same query again gives the same order (the panel asks every frame).
+  const auto again = rig.index.search("Building 1", 1000);
+  REQUIRE(again.size() == hits.size());
+  for (std::size_t k = 0; k < hits.size(); ++k) CHECK(again[k].id == hits[k].id);
+}
+
 TEST_CASE("The city-wide list holds the buildings passing the filters, most damaged first", "[scene][index]") {
   IndexRig rig;
   rig.load();

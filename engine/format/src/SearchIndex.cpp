@@ -1,9 +1,12 @@
 #include "qv/format/SearchIndex.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <string>
+#include <vector>
 
 #include "qv/core/ByteIO.h"
 #include "qv/core/Crc32.h"
@@ -136,6 +139,68 @@ bool matchesQuery(std::string_view text, std::string_view query) {
     i = j;
   }
   return any;
+}
+
+namespace {
+
+char lowerAscii(char c) {
+  return static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+}
+bool wordChar(char c) {
+  return std::isalnum(static_cast<unsigned char>(c)) != 0 || static_cast<unsigned char>(c) >= 0x80;
+}
+
+// The query's words, lower case.
+std::vector<std::string> queryWords(std::string_view query) {
+  std::vector<std::string> words;
+  std::string word;
+  for (char c : query) {
+    if (c == ' ') {
+      if (!word.empty()) words.push_back(std::move(word));
+      word.clear();
+    } else {
+      word += lowerAscii(c);
+    }
+  }
+  if (!word.empty()) words.push_back(std::move(word));
+  return words;
+}
+
+// Where `word` (lower case) occurs in `text`: 2 as a whole word, 1 at a word's start, 0 inside a
+// word, -1 nowhere (the best occurrence).
+int wordPlace(std::string_view text, std::string_view word) {
+  int best = -1;
+  for (std::size_t k = 0; k + word.size() <= text.size() && best < 2; ++k) {
+    std::size_t m = 0;
+    while (m < word.size() && lowerAscii(text[k + m]) == word[m]) ++m;
+    if (m != word.size()) continue;
+    const bool starts = k == 0 || !wordChar(text[k - 1]) || !wordChar(word.front());
+    const bool ends = k + m == text.size() || !wordChar(text[k + m]) || !wordChar(word.back());
+    best = std::max(best, starts ? (ends ? 2 : 1) : 0);
+  }
+  return best;
+}
+
+}  // namespace
+
+int queryMatchRank(std::string_view text, std::string_view query) {
+  const std::vector<std::string> words = queryWords(query);
+  if (words.empty()) return -1;
+  int worst = 2;
+  for (const std::string& w : words) {
+    const int place = wordPlace(text, w);
+    if (place < 0) return -1;
+    worst = std::min(worst, place);
+  }
+  // The text's own words, to compare with the query's as a whole.
+  std::string joined;
+  for (const std::string& w : words) joined += (joined.empty() ? "" : " ") + w;
+  std::vector<std::string> textWords = queryWords(text);
+  std::string textJoined;
+  for (const std::string& w : textWords) textJoined += (textJoined.empty() ? "" : " ") + w;
+  if (textJoined == joined) return 0;
+  if (textJoined.compare(0, joined.size(), joined) == 0) return 1;
+  return worst == 2 ? 2 : (worst == 1 ? 3 : 4);
 }
 
 }  // namespace qv

@@ -1,6 +1,7 @@
 #include "qv/scene/CityIndex.h"
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -249,12 +250,37 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
 std::vector<BuildingListEntry> CityIndex::search(std::string_view query, std::size_t limit) const {
   std::vector<BuildingListEntry> out;
   if (search_.state != TileState::Loaded) return out;
-  for (std::uint32_t i = 0; i < entries_.size() && out.size() < limit; ++i) {
-    const SearchEntry& e = entries_[i];
-    if (matchesQuery(e.id, query) || matchesQuery(e.name, query) || matchesQuery(e.address, query)) {
-      out.push_back(listEntry(i));
+  if (query != searchedQuery_ || searchedEntries_ != entries_.data()) {
+    searchedQuery_ = std::string(query);
+    searchedEntries_ = entries_.data();
+    struct Match {
+      int rank;
+      float heightM;
+      std::uint32_t index;
+    };
+    std::vector<Match> matches;
+    constexpr int kOthers = 5;  // after every name rank
+    for (std::uint32_t i = 0; i < entries_.size(); ++i) {
+      const SearchEntry& e = entries_[i];
+      const int idRank = queryMatchRank(e.id, query);
+      const int nameRank = queryMatchRank(e.name, query);
+      const int addressRank = queryMatchRank(e.address, query);
+      int rank = INT_MAX;
+      if (idRank == 0) rank = 0;
+      if (nameRank >= 0) rank = std::min(rank, nameRank);
+      if (addressRank >= 0) rank = std::min(rank, kOthers + addressRank);
+      if (idRank > 0) rank = std::min(rank, kOthers + idRank);
+      if (rank != INT_MAX) matches.push_back({rank, e.heightM, i});
     }
+    std::sort(matches.begin(), matches.end(), [](const Match& a, const Match& b) {
+      if (a.rank != b.rank) return a.rank < b.rank;
+      if (a.heightM != b.heightM) return a.heightM > b.heightM;
+      return a.index < b.index;
+    });
+    searchOrder_.clear();
+    for (const Match& m : matches) searchOrder_.push_back(m.index);
   }
+  for (std::size_t k = 0; k < searchOrder_.size() && out.size() < limit; ++k) out.push_back(listEntry(searchOrder_[k]));
   return out;
 }
 

@@ -49,4 +49,10 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
 /// Case-insensitive (ASCII) containment of every word of `query` in `text`.
 bool matchesQuery(std::string_view text, std::string_view query);
 
+/// How well `text` matches `query` (case-insensitive, ASCII; words separated by spaces), best
+/// first: 0 the same words, 1 `text` starts with the query, 2 every query word is a whole word of
+/// `text`, 3 every query word starts a word of `text`, 4 every query word is inside `text`
+/// (matchesQuery); -1 no match. A word is a run of letters and digits.
+int queryMatchRank(std::string_view text, std::string_view query);
+
 }  // namespace qv

@@ -127,7 +127,11 @@ class CityIndex {
   [[nodiscard]] const SearchEntry* entry(std::string_view id) const;
   /// The list row of building `id` (with its response), nullopt when the index has none.
   [[nodiscard]] std::optional<BuildingListEntry> listEntryOf(std::string_view id) const;
-  /// Buildings whose id, name or address contain every word of `query`: at most `limit`, index order.
+  /// Buildings whose id, name or address contain every word of `query`, at most `limit`, best
+  /// first: the id itself, then names by how they match (queryMatchRank: the same words, starting
+  /// with the query, whole words, word starts, inside words), then addresses and partial ids;
+  /// within a rank the tallest (the most prominent) first, then index order. The order of the
+  /// last query is kept (the panel asks every frame).
   [[nodiscard]] std::vector<BuildingListEntry> search(std::string_view query, std::size_t limit) const;
   /// How many buildings of each use the city has, most first (then by name): the use filter's
   /// choices. Empty until the index loads.
@@ -154,6 +158,11 @@ class CityIndex {
   void requestConsequences();
   FileLoad search_;
   std::vector<SearchEntry> entries_;
+  // The last search's query and its matches in order (indices into entries_), for entries_ at
+  // searchedEntries_.
+  mutable std::string searchedQuery_;
+  mutable const SearchEntry* searchedEntries_ = nullptr;
+  mutable std::vector<std::uint32_t> searchOrder_;
   FileLoad summaryLoad_;
   std::optional<ResponseSummaryTile> summary_;  // the response, in the index's order
   FileLoad consequencesLoad_;
