@@ -127,6 +127,7 @@ TEST_CASE("tiler: coarse tiles carry every attribute of the leaf except the desc
   }
   const std::string dir =
       (std::filesystem::temp_directory_path() / ("qv-coarse-attributes-" + std::to_string(::getpid()))).string();
+  city.sources = {"/home/someone/private/inputs/manhattan.osm.pbf", "parts.geojson"};
   TilerOptions options;
   options.maxBuildingsPerLeaf = 16;
   options.threads = 1;
@@ -134,6 +135,11 @@ TEST_CASE("tiler: coarse tiles carry every attribute of the leaf except the desc
   const Result<TilerReport> report = writeCityTiles(city, dir, options);
   REQUIRE(report.ok());
   REQUIRE(report->tiles > report->leaves);
+  // The manifest names its inputs by file name, not by the preparing machine's directories.
+  CHECK(report->tileset.sources == std::vector<std::string>{"manhattan.osm.pbf", "parts.geojson"});
+  const auto manifest = readFile(dir + "/tileset.json");
+  REQUIRE(manifest.ok());
+  CHECK(std::string(manifest->begin(), manifest->end()).find("/home/someone") == std::string::npos);
 
   // Centroids are stored relative to each tile's origin: compare them in city coordinates.
   const auto inCity = [](BuildingAttributes a, const CityTile& tile) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <mutex>
 #include <span>
@@ -544,7 +545,13 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
     t.response->notes.reset();
     t.response->consequences.reset();
   }
-  t.sources = model.sources;
+  // The inputs by file name only: a manifest does not carry the directories of the machine that
+  // prepared it.
+  t.sources.clear();
+  for (const std::string& source : model.sources) {
+    const std::string name = std::filesystem::path(source).filename().string();
+    t.sources.push_back(name.empty() ? source : name);
+  }
   t.excluded = model.excluded;
   t.bounds = nodes[0].bounds;
   t.maxHeightM = nodes[0].maxHeight;
