@@ -1,10 +1,11 @@
 // Critical facilities as emergency managers define them, on a small test city with PLANTED uses
 // (tests/e2e/data/critical-facilities.geojson, prepared by scripts/test.sh with a synthetic
 // scenario): essential facilities (hospital, fire, police, ambulance), schools, a 150 m office
-// tower, a multi-part residential building, a stadium, a fuel station, a clinic, and unnamed
+// tower, a multi-part residential building, a stadium, a fuel station, a clinic, a bus stop's
+// shelter (OSM amenity=shelter: no facility), a social facility that is a shelter, and unnamed
 // buildings with and without an address. Each planted feature says what it should be in its
 // `expect_category` and `expect_use` properties (the normalized use: an `amenity=clinic` is a
-// "hospital" by use but not an essential facility), which the prep tool ignores.
+// "clinic", not an essential facility), which the prep tool ignores.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';

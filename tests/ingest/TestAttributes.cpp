@@ -4,6 +4,7 @@
 #include <optional>
 #include <string>
 
+#include "qv/format/FacilityCategory.h"
 #include "qv/prep/Attributes.h"
 
 using namespace qv;
@@ -92,10 +93,44 @@ TEST_CASE("Uses are normalized from building and amenity", "[ingest][attributes]
       {"ventilation_shaft", "", "service"},
       {"spaceport", "", "other"},
       {"", "police", "police"},
+      {"yes", "clinic", "clinic"},       // an outpatient clinic (Hazus COM7), not a hospital
+      {"hospital", "clinic", "clinic"},  // building=hospital is any medical building
+      {"hospital", "", "hospital"},
   };
   for (const Row& row : rows) {
     INFO(row.building << " / " << row.amenity);
     CHECK(normalizeUse(row.building, row.amenity) == row.use);
+  }
+}
+
+TEST_CASE("Use and facility category follow one rule from the same tags", "[ingest][attributes]") {
+  // The ingest reads the use from the building tag and the stored amenity value (normalizeFacility):
+  // the category classifyFacility gives and the use agree.
+  struct Row {
+    const char* building;
+    const char* amenity;
+    const char* healthcare;
+    const char* socialFacility;
+    const char* use;
+    FacilityCategory category;
+  };
+  const Row rows[] = {
+      {"yes", "", "hospital", "", "hospital", FacilityCategory::Essential},
+      {"hospital", "clinic", "", "", "clinic", FacilityCategory::None},
+      {"yes", "", "clinic", "", "clinic", FacilityCategory::None},
+      {"yes", "shelter", "", "", "unknown", FacilityCategory::None},  // a bus stop's shelter
+      {"yes", "social_facility", "", "shelter", "shelter", FacilityCategory::SchoolShelter},
+      {"yes", "social_facility", "", "group_home", "unknown", FacilityCategory::None},
+      {"yes", "police", "", "", "police", FacilityCategory::Essential},
+      {"yes", "ambulance_station", "", "", "ambulance_station", FacilityCategory::Essential},
+  };
+  for (const Row& row : rows) {
+    INFO(row.building << " / " << row.amenity << " / " << row.healthcare << " / " << row.socialFacility);
+    BuildingAttributes a;
+    a.amenity = normalizeFacility(row.amenity, "", row.healthcare, row.socialFacility, "", "", "");
+    a.use = normalizeUse(row.building, a.amenity);
+    CHECK(a.use == row.use);
+    CHECK(classifyFacility(a).category == row.category);
   }
 }
 
@@ -279,8 +314,11 @@ TEST_CASE("Facility tags other than amenity are folded into the stored amenity",
   CHECK(normalizeFacility("school", "ambulance_station", "", "", "", "", "") == "school");  // amenity wins
   CHECK(normalizeFacility("", "ambulance_station", "", "", "", "", "") == "ambulance_station");
   CHECK(normalizeFacility("", "", "hospital", "", "", "", "") == "hospital");
-  CHECK(normalizeFacility("", "", "clinic", "", "", "", "") == "");
+  CHECK(normalizeFacility("", "", "clinic", "", "", "", "") == "clinic");
+  CHECK(normalizeFacility("", "", "doctor", "", "", "", "") == "clinic");
   CHECK(normalizeFacility("", "", "", "shelter", "", "", "") == "shelter");
+  CHECK(normalizeFacility("social_facility", "", "", "shelter", "", "", "") == "shelter");
+  CHECK(normalizeFacility("shelter", "", "", "", "", "", "") == "weather_shelter");  // OSM: against the weather
   CHECK(normalizeFacility("", "", "", "", "plant", "", "") == "power_plant");
   CHECK(normalizeFacility("", "", "", "", "substation", "", "") == "substation");
   CHECK(normalizeFacility("", "", "", "", "", "mall", "") == "mall");

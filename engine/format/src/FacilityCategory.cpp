@@ -41,7 +41,8 @@ constexpr Rule kAmenityRules[] = {
 // Normalized uses (qv::prep::normalizeUse); "sports" holds stadiums, arenas and sports halls.
 constexpr Rule kUseRules[] = {
     {"hospital", FacilityCategory::Essential},       {"fire_station", FacilityCategory::Essential},
-    {"police", FacilityCategory::Essential},         {"school", FacilityCategory::SchoolShelter},
+    {"police", FacilityCategory::Essential},         {"ambulance_station", FacilityCategory::Essential},
+    {"school", FacilityCategory::SchoolShelter},     {"shelter", FacilityCategory::SchoolShelter},
     {"university", FacilityCategory::SchoolShelter}, {"religious", FacilityCategory::HighOccupancy},
     {"sports", FacilityCategory::HighOccupancy},     {"transportation", FacilityCategory::HighOccupancy},
 };
@@ -62,8 +63,8 @@ constexpr std::array<std::string_view, 5> kSources = {
 
 FacilityClass classifyFacility(std::string_view use, std::string_view amenity, float footprintAreaM2,
                                std::uint16_t storeys, unsigned reasons) {
-  // An outpatient clinic has no beds: not an essential medical care facility (its use is still
-  // "hospital", which normalizeUse gives amenity=clinic).
+  // An outpatient clinic has no beds: not an essential medical care facility (its use is "clinic";
+  // tiles prepared before that say "hospital").
   if (amenity == "clinic") return {};
   // Rank: essential, school or shelter, hazardous, high occupancy, none.
   auto rank = [](FacilityCategory c) {

@@ -63,14 +63,20 @@ struct UseRow {
 };
 
 constexpr UseRow kUses[] = {
-    {"house", Occupancy::RES1},     {"mobile_home", Occupancy::RES2},  {"residential", Occupancy::RES3},
-    {"hotel", Occupancy::RES4},     {"retail", Occupancy::COM1},       {"warehouse", Occupancy::COM2},
-    {"office", Occupancy::COM4},    {"commercial", Occupancy::COM4},   {"transportation", Occupancy::COM4},
-    {"hospital", Occupancy::COM6},  {"sports", Occupancy::COM8},       {"parking", Occupancy::COM10},
-    {"roof", Occupancy::COM10},     {"industrial", Occupancy::IND2},   {"service", Occupancy::IND2},
-    {"tower", Occupancy::IND2},     {"construction", Occupancy::IND6}, {"shed", Occupancy::AGR1},
-    {"religious", Occupancy::REL1}, {"civic", Occupancy::GOV1},        {"fire_station", Occupancy::GOV2},
-    {"police", Occupancy::GOV2},    {"school", Occupancy::EDU1},       {"university", Occupancy::EDU2},
+    {"house", Occupancy::RES1},          {"mobile_home", Occupancy::RES2},
+    {"residential", Occupancy::RES3},    {"hotel", Occupancy::RES4},
+    {"retail", Occupancy::COM1},         {"warehouse", Occupancy::COM2},
+    {"office", Occupancy::COM4},         {"commercial", Occupancy::COM4},
+    {"transportation", Occupancy::COM4}, {"hospital", Occupancy::COM6},
+    {"clinic", Occupancy::COM7},         {"sports", Occupancy::COM8},
+    {"parking", Occupancy::COM10},       {"roof", Occupancy::COM10},
+    {"industrial", Occupancy::IND2},     {"service", Occupancy::IND2},
+    {"tower", Occupancy::IND2},          {"construction", Occupancy::IND6},
+    {"shed", Occupancy::AGR1},           {"religious", Occupancy::REL1},
+    {"civic", Occupancy::GOV1},          {"fire_station", Occupancy::GOV2},
+    {"police", Occupancy::GOV2},         {"school", Occupancy::EDU1},
+    {"university", Occupancy::EDU2},     {"ambulance_station", Occupancy::GOV2},
+    {"shelter", Occupancy::RES6},
 };
 
 double finiteOrZero(double x) {

@@ -103,13 +103,20 @@ struct UseRow {
 // mixed use 3.5 m) where it has a value; the others are typical clear heights plus a 0.5-1 m
 // floor zone for halls, workshops and garages. See docs/attributes.md for the reasoning.
 constexpr UseRow kUseTable[] = {
-    {"residential", 3.1f, 4}, {"house", 3.0f, 2},        {"hotel", 3.1f, 6},       {"office", 3.9f, 6},
-    {"commercial", 3.9f, 2},  {"retail", 4.5f, 1},       {"industrial", 5.0f, 2},  {"warehouse", 6.0f, 1},
-    {"school", 3.9f, 3},      {"university", 3.9f, 4},   {"hospital", 4.2f, 4},    {"fire_station", 4.5f, 2},
-    {"police", 3.9f, 3},      {"religious", 6.0f, 1},    {"civic", 4.5f, 2},       {"transportation", 6.0f, 1},
-    {"parking", 3.0f, 3},     {"sports", 6.0f, 1},       {"roof", 4.0f, 1},        {"shed", 3.0f, 1},
-    {"service", 3.5f, 1},     {"construction", 3.5f, 2}, {"mobile_home", 3.0f, 1}, {"unknown", 3.5f, 2},
-    {"tower", 4.0f, 3},
+    {"residential", 3.1f, 4},    {"house", 3.0f, 2},
+    {"hotel", 3.1f, 6},          {"office", 3.9f, 6},
+    {"commercial", 3.9f, 2},     {"retail", 4.5f, 1},
+    {"industrial", 5.0f, 2},     {"warehouse", 6.0f, 1},
+    {"school", 3.9f, 3},         {"university", 3.9f, 4},
+    {"hospital", 4.2f, 4},       {"fire_station", 4.5f, 2},
+    {"clinic", 3.9f, 2},         {"ambulance_station", 4.5f, 1},
+    {"shelter", 3.1f, 3},        {"police", 3.9f, 3},
+    {"religious", 6.0f, 1},      {"civic", 4.5f, 2},
+    {"transportation", 6.0f, 1}, {"parking", 3.0f, 3},
+    {"sports", 6.0f, 1},         {"roof", 4.0f, 1},
+    {"shed", 3.0f, 1},           {"service", 3.5f, 1},
+    {"construction", 3.5f, 2},   {"mobile_home", 3.0f, 1},
+    {"unknown", 3.5f, 2},        {"tower", 4.0f, 3},
 };
 
 constexpr UseRow kOtherUse{"other", 3.5f, 2};
@@ -159,7 +166,7 @@ constexpr Mapping kBuildingValues[] = {
     {"university", "university"},
     {"college", "university"},
     {"hospital", "hospital"},
-    {"clinic", "hospital"},
+    {"clinic", "clinic"},
     {"fire_station", "fire_station"},
     {"police", "police"},
     {"church", "religious"},
@@ -208,13 +215,15 @@ constexpr Mapping kBuildingValues[] = {
 
 constexpr Mapping kAmenityValues[] = {
     {"hospital", "hospital"},
-    {"clinic", "hospital"},
+    {"clinic", "clinic"},
     {"school", "school"},
     {"kindergarten", "school"},
     {"university", "university"},
     {"college", "university"},
     {"fire_station", "fire_station"},
+    {"ambulance_station", "ambulance_station"},
     {"police", "police"},
+    {"shelter", "shelter"},  // the stored value of a social facility that is a shelter
     {"place_of_worship", "religious"},
     {"townhall", "civic"},
     {"courthouse", "civic"},
@@ -487,10 +496,15 @@ std::optional<int> parseStartYear(std::string_view text) {
 std::string normalizeUse(std::string_view buildingTag, std::string_view amenity) {
   buildingTag = trim(buildingTag);
   const std::optional<std::string_view> fromBuilding = lookup(kBuildingValues, buildingTag);
-  // A generic building value gives way to a telling amenity (building=yes + amenity=hospital).
-  const bool generic = !fromBuilding || *fromBuilding == "commercial" || *fromBuilding == "civic";
+  // A generic building value gives way to a telling amenity (building=yes + amenity=hospital), and
+  // a medical building to what it is: building=hospital + amenity=clinic is an outpatient clinic
+  // (the use and the facility category follow one rule: a "hospital" is an essential facility, a
+  // "clinic" is not).
+  amenity = trim(amenity);
+  const bool generic = !fromBuilding || *fromBuilding == "commercial" || *fromBuilding == "civic" ||
+                       (*fromBuilding == "hospital" && amenity == "clinic");
   if (generic) {
-    if (const auto fromAmenity = lookup(kAmenityValues, trim(amenity))) return std::string(*fromAmenity);
+    if (const auto fromAmenity = lookup(kAmenityValues, amenity)) return std::string(*fromAmenity);
   }
   if (fromBuilding) return std::string(*fromBuilding);
   if (buildingTag.empty() || buildingTag == "yes") return "unknown";
@@ -606,11 +620,16 @@ std::string normalizeFacility(std::string_view amenity, std::string_view emergen
                               std::string_view socialFacility, std::string_view power, std::string_view shop,
                               std::string_view industrial) {
   amenity = trim(amenity);
+  // OSM's amenity=shelter is a shelter against the weather (bus stops, gazebos, picnic roofs): no
+  // facility. A shelter in the emergency-management sense is a social facility
+  // (amenity=social_facility + social_facility=shelter, or the latter alone).
+  if (amenity == "shelter") return "weather_shelter";
+  if ((amenity.empty() || amenity == "social_facility") && trim(socialFacility) == "shelter") return "shelter";
   if (!amenity.empty()) return std::string(amenity);
-  // In order of criticality: emergency response, medical care, shelter, hazardous, assembly.
+  // In order of criticality: emergency response, medical care, hazardous, assembly.
   if (trim(emergency) == "ambulance_station") return "ambulance_station";
   if (trim(healthcare) == "hospital") return "hospital";
-  if (trim(socialFacility) == "shelter") return "shelter";
+  if (trim(healthcare) == "clinic" || trim(healthcare) == "doctor") return "clinic";
   if (trim(power) == "plant") return "power_plant";
   if (trim(power) == "substation") return "substation";
   if (trim(industrial) == "chemical") return "chemical_works";

@@ -206,8 +206,11 @@ void parseTags(const RawFeature& feature, Prepared& out, WarningLog& warnings) {
            tags.replacementValue, "is not an amount in USD; inferred from floor area and use instead");
     }
   }
-  out.use = feature.kind == FeatureKind::Building ? normalizeUse(tags.building, tags.amenity)
-                                                  : normalizeUse(tags.buildingPart, tags.amenity);
+  // The use follows from the same facility value the category does (normalizeFacility).
+  const std::string facility = normalizeFacility(tags.amenity, tags.emergency, tags.healthcare, tags.socialFacility,
+                                                 tags.power, tags.shop, tags.industrial);
+  out.use = feature.kind == FeatureKind::Building ? normalizeUse(tags.building, facility)
+                                                  : normalizeUse(tags.buildingPart, facility);
 }
 
 /// Cleans and parses one feature (its points already projected in `table`).

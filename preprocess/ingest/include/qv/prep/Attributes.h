@@ -40,9 +40,11 @@ std::optional<double> parseMinLevel(std::string_view text);
 /// give nullopt.
 std::optional<int> parseStartYear(std::string_view text);
 
-/// Normalized use from the building=* value and the amenity tag (docs/attributes.md, "Use"):
+/// Normalized use from the building=* value and the stored amenity value (normalizeFacility's, so
+/// that use and facility category follow from the same tags; docs/attributes.md, "Use"):
 /// "residential", "house", "office", "commercial", "retail", "hotel", "industrial", "warehouse",
-/// "school", "university", "hospital", "fire_station", "police", "religious", "civic",
+/// "school", "university", "hospital", "clinic", "fire_station", "ambulance_station", "police",
+/// "shelter", "religious", "civic",
 /// "transportation", "parking", "sports", "roof", "shed", "service", "construction",
 /// "mobile_home", "other" (a specific building value not in the table) or "unknown"
 /// (building=yes and no telling amenity).
@@ -139,8 +141,10 @@ CodeEra inferCodeEra(int startYear);
 inline constexpr float kTallBuildingHeightM = 100.0f;
 
 /// The stored amenity value (docs/attributes.md "Facility categories"): the amenity tag when set,
-/// else the facility another tag names, for qv::classifyFacility: emergency=ambulance_station
-/// "ambulance_station", healthcare=hospital "hospital", social_facility=shelter "shelter",
+/// else the facility another tag names, for qv::classifyFacility: amenity=shelter (OSM's weather
+/// shelter) "weather_shelter"; social_facility=shelter (alone or with amenity=social_facility)
+/// "shelter"; emergency=ambulance_station "ambulance_station", healthcare=hospital "hospital",
+/// healthcare=clinic or doctor "clinic",
 /// power=plant "power_plant", power=substation "substation", shop=mall "mall",
 /// industrial=chemical "chemical_works", industrial=refinery or oil "refinery"; else empty.
 std::string normalizeFacility(std::string_view amenity, std::string_view emergency, std::string_view healthcare,
