@@ -37,6 +37,8 @@
 //   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
 //   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), shownColorMode(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
+//   screenshot()  the view as a PNG data URL with its caption (event, city, attribution); saveImage()
+//              downloads it (the panel's "Save image")
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
 //              render, total}, drawCalls, triangles}, each but seconds/frames as {median, p95};
 //              null until the flight ends (benchDone: a Promise of it).
@@ -252,6 +254,47 @@
     exportList(format = 'csv') {
       if (!engine) return '';
       return engine.ccall('qv_export', 'string', ['string'], [format]).replace(/^\uFEFF/, '');
+    },
+    // The picture of the view as a PNG data URL: the canvas as drawn (panels, colour key and scale
+    // bar included; the drawing buffer is kept between frames) with a caption band under it: the
+    // shaking (SCENARIO or ACTUAL) and the earthquake, the city, the time and the filters, the
+    // method and the attribution (qv::imageCaption). null before a city is loaded.
+    screenshot() {
+      if (!engine) return null;
+      const caption = JSON.parse(engine.UTF8ToString(engine._qv_image_caption()));
+      if (!caption) return null;
+      const scale = canvas.clientWidth > 0 ? canvas.width / canvas.clientWidth : 1;
+      const fontPx = Math.round(13 * scale);
+      const lineHeight = Math.round(fontPx * 1.45);
+      const pad = Math.round(8 * scale);
+      const out = document.createElement('canvas');
+      out.width = canvas.width;
+      out.height = canvas.height + caption.lines.length * lineHeight + 2 * pad;
+      const g = out.getContext('2d');
+      g.drawImage(canvas, 0, 0);
+      g.fillStyle = '#f4f2ee';
+      g.fillRect(0, canvas.height, out.width, out.height - canvas.height);
+      g.textBaseline = 'top';
+      caption.lines.forEach((line, i) => {
+        g.font = `${i === 0 ? 'bold ' : ''}${fontPx}px sans-serif`;
+        g.fillStyle = i === 0 ? (caption.actual ? '#b00d00' : '#8c4000') : '#222222';
+        g.fillText(line, pad, canvas.height + pad + i * lineHeight, out.width - 2 * pad);
+      });
+      return out.toDataURL('image/png');
+    },
+    // Downloads screenshot() as a PNG named for the city, the event and the view (the panel's
+    // "Save image"); returns the file name, or null before a city is loaded.
+    saveImage() {
+      const url = this.screenshot();
+      if (!url) return null;
+      const name = JSON.parse(engine.UTF8ToString(engine._qv_image_caption())).fileName;
+      const link = document.createElement('a');
+      link.href = url;
+      link.download = name;
+      document.body.appendChild(link);
+      link.click();
+      link.remove();
+      return name;
     },
   };
   Object.defineProperty(window, 'quakeview', { value: api, writable: false, configurable: false });

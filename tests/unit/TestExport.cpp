@@ -397,3 +397,43 @@ TEST_CASE("Exports call only essential facilities, schools and shelters critical
   CHECK(geojson.find("\"importance\":\"general\",\"facility\":\"none\"") != std::string::npos);
   CHECK(geojson.find("\"importance\":\"critical\",\"facility\":\"school_shelter\"") != std::string::npos);
 }
+
+TEST_CASE("A picture of the view carries the event, the city, the time, the filters and the attribution",
+          "[scene][export]") {
+  Tileset tileset;
+  tileset.name = "midtown";
+  tileset.sources = {"nyc-manhattan-south-buildings.osm.pbf"};
+  ResponseInfo r;
+  r.eventType = "ACTUAL";
+  r.shakingField = "shakemap";
+  r.method = "MDOF shear building, Bouc-Wen";
+  r.shakemap = ResponseInfo::ShakeMap{};
+  r.shakemap->eventId = "us7000abcd";
+  r.shakemap->version = "3";
+  r.shakemap->description = "M 5.8 - 10 km SW of Somewhere, NY";
+  tileset.response = r;
+  BuildingFilters filters;
+  filters.minDamage = 2;
+  const ImageCaption c = imageCaption(tileset, filters, 12.04, 38.0);
+  REQUIRE(c.lines.size() == 3);
+  CHECK(c.actual);
+  CHECK(c.lines[0] ==
+        "Shaking: ACTUAL EVENT (ShakeMap of a recorded earthquake) | Earthquake: ShakeMap us7000abcd version 3 "
+        "(M 5.8 - 10 km SW of Somewhere, NY)");
+  CHECK(c.lines[1] == "City: midtown | Time: 12.0 s of 38.0 s | Filter: damage at least moderate");
+  CHECK(c.lines[2] ==
+        "QuakeView (MDOF shear building, Bouc-Wen): patterns across a city, not a safety assessment | Map data © "
+        "OpenStreetMap contributors (ODbL)");
+  CHECK(c.fileName == exportFileName(tileset, filters, "view", "png"));
+  CHECK(c.fileName.ends_with("-view-damage-moderate.png"));
+  // A scenario on a synthetic city: no map data to attribute.
+  tileset.sources = {"synth-city --buildings 3000 --seed 3"};
+  tileset.response->eventType = "SCENARIO";
+  const ImageCaption synthetic = imageCaption(tileset, BuildingFilters{}, 0.0, 30.0);
+  CHECK_FALSE(synthetic.actual);
+  CHECK(synthetic.lines[0].starts_with("Shaking: SCENARIO"));
+  CHECK(synthetic.lines[2].find("OpenStreetMap") == std::string::npos);
+  // Without a response the picture says so.
+  tileset.response.reset();
+  CHECK(imageCaption(tileset, BuildingFilters{}, 0.0, 0.0).lines[0] == "Shaking: no response computed");
+}

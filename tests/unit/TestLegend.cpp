@@ -23,6 +23,7 @@ namespace {
 struct NoHost final : UiHost {
   void openUrl(const std::string&) override {}
   void download(const std::string&, const std::string&, const std::string&) override {}
+  void saveImage() override {}
 };
 
 // The mini city in a viewer, settled, looked at from 500 m: its buildings are within the default

@@ -23,6 +23,8 @@ struct RecordingHost final : UiHost {
   void download(const std::string& name, const std::string&, const std::string& content) override {
     downloads.emplace_back(name, content);
   }
+  int imagesSaved = 0;
+  void saveImage() override { ++imagesSaved; }
 };
 
 std::string drawPanel(Viewer& viewer, TextMirror& mirror, ControlPanel& panel, RecordingHost& host) {

@@ -32,6 +32,7 @@ class BrowserUiHost final : public UiHost {
   void download(const std::string& filename, const std::string& mimeType, const std::string& content) override {
     browser::downloadText(filename, mimeType, content);
   }
+  void saveImage() override { browser::saveImage(); }
 };
 
 class App {

@@ -11,6 +11,7 @@
 
 #include "App.h"
 #include "qv/core/JsonWriter.h"
+#include "qv/scene/Export.h"
 
 namespace {
 qv::App* gApp = nullptr;
@@ -124,6 +125,22 @@ EMSCRIPTEN_KEEPALIVE const char* qv_building(const char* id) {
   if (gApp == nullptr || id == nullptr) return hand("null");
   const auto info = gApp->viewer().building(id);
   return hand(info ? qv::buildingInfoJson(*info) : std::string("null"));
+}
+
+/// The caption of a picture of the view (quakeview.screenshot()): {"actual", "lines", "fileName"}
+/// (qv::imageCaption); "null" before a city is loaded.
+EMSCRIPTEN_KEEPALIVE const char* qv_image_caption() {
+  if (gApp == nullptr) return hand("null");
+  qv::CityScene* city = gApp->viewer().city();
+  const qv::Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
+  if (tileset == nullptr) return hand("null");
+  const qv::ImageCaption c =
+      qv::imageCaption(*tileset, city->filters(), gApp->viewer().time(), gApp->viewer().duration());
+  qv::JsonWriter w;
+  w.beginObject().field("actual", c.actual).key("lines").beginArray();
+  for (const std::string& line : c.lines) w.value(line);
+  w.endArray().field("fileName", c.fileName).endObject();
+  return hand(w.take());
 }
 
 /// `quakeview.consequences()`: the totals of the city (consequences.json), of the view and of each

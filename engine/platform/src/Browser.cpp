@@ -58,6 +58,15 @@ EM_JS(void, qv_js_download, (const char* name, const char* type, const char* dat
       1000);
 });
 
+// After the current frame's task (the drawing buffer then holds the whole frame, panels included).
+EM_JS(void, qv_js_save_image, (), {
+  setTimeout(
+      function() {
+        if (window.quakeview && window.quakeview.saveImage) window.quakeview.saveImage();
+      },
+      0);
+});
+
 bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& options, std::string& error) {
   EmscriptenWebGLContextAttributes attributes;
   emscripten_webgl_init_context_attributes(&attributes);
@@ -68,7 +77,9 @@ bool createWebGl2Context(const char* canvasSelector, const GlContextOptions& opt
   attributes.stencil = EM_FALSE;
   attributes.antialias = options.antialias ? EM_TRUE : EM_FALSE;
   attributes.premultipliedAlpha = EM_FALSE;
-  attributes.preserveDrawingBuffer = EM_FALSE;
+  // Kept between frames, so that the picture can be taken at any moment (quakeview.screenshot(),
+  // "Save image") and the browser's own "Save image as" of the canvas is the picture, not black.
+  attributes.preserveDrawingBuffer = EM_TRUE;
   attributes.powerPreference = EM_WEBGL_POWER_PREFERENCE_HIGH_PERFORMANCE;
   const EMSCRIPTEN_WEBGL_CONTEXT_HANDLE context = emscripten_webgl_create_context(canvasSelector, &attributes);
   if (context <= 0) {
@@ -140,6 +151,10 @@ void notifyBenchDone(const std::string& json) {
 
 void openUrl(const std::string& url) {
   qv_js_open_url(url.c_str());
+}
+
+void saveImage() {
+  qv_js_save_image();
 }
 
 void downloadText(const std::string& filename, const std::string& mimeType, const std::string& content) {

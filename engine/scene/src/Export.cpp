@@ -1,5 +1,6 @@
 #include "qv/scene/Export.h"
 
+#include <cctype>
 #include <cstdio>
 
 #include "qv/core/JsonWriter.h"
@@ -204,6 +205,29 @@ ExportProvenance exportProvenance(const Tileset& tileset, const BuildingFilters&
   p.method = r.method;
   p.timeOfDay = r.timeOfDay;
   return p;
+}
+
+ImageCaption imageCaption(const Tileset& tileset, const BuildingFilters& filters, double timeSeconds,
+                          double durationSeconds) {
+  const ExportProvenance p = exportProvenance(tileset, filters);
+  ImageCaption c;
+  c.actual = tileset.response && tileset.response->eventType == "ACTUAL";
+  c.lines.push_back("Shaking: " + p.shaking + (p.earthquake.empty() ? "" : " | Earthquake: " + p.earthquake));
+  char time[96];
+  std::snprintf(time, sizeof time, " | Time: %.1f s of %.1f s", timeSeconds, durationSeconds);
+  c.lines.push_back("City: " + (p.city.empty() ? std::string("(unnamed)") : p.city) + time + " | Filter: " + p.filter);
+  bool osm = false;
+  for (const std::string& s : tileset.sources) {
+    std::string lower(s);
+    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    osm = osm || lower.ends_with(".osm") || lower.ends_with(".pbf") || lower.ends_with(".osm.bz2") ||
+          lower.find("openstreetmap") != std::string::npos;
+  }
+  c.lines.push_back("QuakeView" + (p.method.empty() ? std::string() : " (" + p.method + ")") +
+                    ": patterns across a city, not a safety assessment" +
+                    (osm ? " | Map data © OpenStreetMap contributors (ODbL)" : ""));
+  c.fileName = exportFileName(tileset, filters, "view", "png");
+  return c;
 }
 
 std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFrame& geo,

@@ -357,6 +357,9 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
     host.download(exportFileName(*tileset, BuildingFilters{}, "consequences", "csv"), "text/csv",
                   exportConsequencesCsv(*file, &view, &provenance));
   }
+  w.sameLine();
+  // The view as a PNG, with the event, the city and the attribution under it (quakeview.screenshot()).
+  if (w.button("Save image (PNG)")) host.saveImage();
   ImGui::Unindent();
 }
 

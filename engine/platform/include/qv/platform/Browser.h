@@ -55,6 +55,9 @@ void notifyBenchDone(const std::string& json);
 void openUrl(const std::string& url);
 /// Offers text to the user as a file download (a Blob behind a temporary link).
 void downloadText(const std::string& filename, const std::string& mimeType, const std::string& content);
+/// Downloads the picture of the view (web/quakeview.js `saveImage`: the canvas and its caption as
+/// a PNG) after the frame being drawn completes.
+void saveImage();
 
 /// A fatal problem (no WebGL2, shaders failed): shows `message` on the page, rejects `ready`.
 void notifyFatal(const std::string& message);

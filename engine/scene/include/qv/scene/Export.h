@@ -3,6 +3,7 @@
 
 #include <span>
 #include <string>
+#include <vector>
 
 #include "qv/geometry/GeoFrame.h"
 #include "qv/scene/CityScene.h"
@@ -35,6 +36,20 @@ std::string describeFilters(const BuildingFilters& filters);
 
 /// The provenance of exports from `tileset` (without a response: shaking "no response computed").
 ExportProvenance exportProvenance(const Tileset& tileset, const BuildingFilters& filters);
+
+/// The caption a picture of the view carries (quakeview.screenshot(), the panel's "Save image"), so
+/// that an image forwarded alone still says what it shows: its lines, first the shaking statement
+/// (SCENARIO or ACTUAL, as exportProvenance says it) with the earthquake; then the city, the time
+/// shown and the filters; then the method, "patterns across a city, not a safety assessment" and
+/// the map data's attribution (OpenStreetMap's where the city's sources are OSM files); and the
+/// file name to save it under (exportFileName, "view", "png").
+struct ImageCaption {
+  bool actual = false;  ///< an ACTUAL event (its line is drawn in red, a scenario's in orange)
+  std::vector<std::string> lines;
+  std::string fileName;
+};
+ImageCaption imageCaption(const Tileset& tileset, const BuildingFilters& filters, double timeSeconds,
+                          double durationSeconds);
 
 /// A download's file name that says what it holds: "quakeview-<city>-<event>-<what>[-<filter>].<ext>",
 /// each part lower-case ASCII letters, digits and '-' ("quakeview-midtown-actual-us7000abcd-buildings-

@@ -24,6 +24,9 @@ class UiHost {
   virtual void openUrl(const std::string& url) = 0;
   /// Offers `content` to the user as a downloaded file.
   virtual void download(const std::string& filename, const std::string& mimeType, const std::string& content) = 0;
+  /// Offers the picture of the view (the canvas with its caption: the event, the city, the
+  /// attribution) as a downloaded PNG, once the frame being drawn is complete.
+  virtual void saveImage() = 0;
 };
 
 /// How the viewer adapts to the device, shared by the app (which decides) and the Performance

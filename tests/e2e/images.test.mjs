@@ -1,0 +1,112 @@
+// Images of the view for a briefing (issue 33, item 2): quakeview.screenshot() gives a PNG of the
+// canvas as drawn (panels, colour key and scale bar included) with a caption band under it (the
+// shaking, SCENARIO or ACTUAL, the city, the time, the attribution); the browser's own copy of the
+// canvas (what "Save image as" and canvas.toDataURL give) is the picture, not black; the panel's
+// "Save image (PNG)" downloads it. Runs in Chromium and in Firefox ESR (the download in Chromium).
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { after, before, test } from 'node:test';
+import { launchBrowser, openPage, openSection, settle, waitReady } from './lib/browser.mjs';
+import { changedFraction, decodePng, luminanceStats } from './lib/pixels.mjs';
+import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
+
+const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
+
+let server;
+before(async () => {
+  assert.ok(fs.existsSync(path.join(DATA, 'synth', 'tileset.json')), 'test city missing (scripts/test.sh prepares it)');
+  server = await serveSite({ '/data': DATA });
+  fs.mkdirSync(ARTIFACTS, { recursive: true });
+});
+after(async () => {
+  if (server) await server.close();
+});
+
+const pngOf = (dataUrl) => Buffer.from(dataUrl.replace(/^data:image\/png;base64,/, ''), 'base64');
+
+test('screenshot() is the view with its caption, the canvas copy is not black, Save image downloads it', async (t) => {
+  const { context, close, browser } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await settle(page);
+    await page.evaluate(() => { window.quakeview.pause(); window.quakeview.setTime(8); });
+    await page.waitForTimeout(800);
+    const canvasSize = await page.evaluate(() => {
+      const c = document.getElementById('canvas');
+      return { width: c.width, height: c.height, cssWidth: c.clientWidth, cssHeight: c.clientHeight };
+    });
+
+    // The picture: the canvas's size plus the caption band, the city in colour, not black.
+    const dataUrl = await page.evaluate(() => window.quakeview.screenshot());
+    assert.match(dataUrl, /^data:image\/png;base64,/);
+    const shot = pngOf(dataUrl);
+    fs.writeFileSync(path.join(ARTIFACTS, `image-${browser}.png`), shot);
+    const image = decodePng(shot);
+    assert.equal(image.width, canvasSize.width);
+    assert.ok(image.height > canvasSize.height + 30, `a caption band under the view: ${image.height} px tall`);
+    const view = { x: 0, y: 0, width: canvasSize.width, height: canvasSize.height };
+    const stats = luminanceStats(image, view);
+    t.diagnostic(`${browser}: screenshot ${image.width}x${image.height}, view luminance ${JSON.stringify(stats)}`);
+    assert.ok(stats.mean > 60, `the view is not black: ${JSON.stringify(stats)}`);
+
+    // Its view part is what the page shows (the panel's FPS line may differ from frame to frame).
+    const page1 = decodePng(await page.screenshot());
+    if (page1.width === image.width && page1.height === canvasSize.height) {
+      const top = { width: image.width, height: canvasSize.height, data: image.data.subarray(0, image.width * canvasSize.height * 4) };
+      const differs = changedFraction(page1, top, 24, view);
+      t.diagnostic(`${browser}: view differs from the page's own screenshot in ${(100 * differs).toFixed(2)} % of its pixels`);
+      assert.ok(differs < 0.03, `the picture is the view: ${(100 * differs).toFixed(2)} % differ`);
+    }
+
+    // The caption: the scenario's line in orange (bold), then dark text, on a light band.
+    const band = { x: 0, y: canvasSize.height, width: image.width, height: image.height - canvasSize.height };
+    let orange = 0;
+    let dark = 0;
+    for (let y = band.y; y < band.y + band.height; ++y) {
+      for (let x = 0; x < Math.min(image.width, 900); ++x) {
+        const i = (y * image.width + x) * 4;
+        const [r, g, b] = [image.data[i], image.data[i + 1], image.data[i + 2]];
+        if (r > 110 && r < 170 && g > 40 && g < 90 && b < 40) ++orange;
+        if (r < 80 && g < 80 && b < 80) ++dark;
+      }
+    }
+    t.diagnostic(`${browser}: caption pixels orange ${orange}, dark ${dark}`);
+    assert.ok(orange > 100, 'the first caption line (SCENARIO) is drawn in orange');
+    assert.ok(dark > 300, 'the other caption lines are drawn');
+
+    // What the browser's "Save image as" copies: the canvas itself, not black.
+    const copy = decodePng(pngOf(await page.evaluate(() => document.getElementById('canvas').toDataURL('image/png'))));
+    const copyStats = luminanceStats(copy, null);
+    assert.ok(copyStats.mean > 60, `the canvas copy is the picture, not black: ${JSON.stringify(copyStats)}`);
+
+    // The panel's button downloads the same picture, named for the city, the event and the view.
+    if (browser === 'chromium') {
+      await openSection(page, 'All consequences: city, view, districts');
+      // Beside "Export totals (CSV)" at the section's end: scrolled into the panel as a person would.
+      let button = null;
+      for (let attempt = 0; attempt < 8; ++attempt) {
+        const layout = await page.evaluate(() => window.quakeview.uiLayout());
+        button = layout.items.find((i) => i.window === 'QuakeView' && i.label === 'Save image (PNG)');
+        const panel = layout.windows.find((w) => w.title === 'QuakeView');
+        assert.ok(button && panel, 'the panel has a Save image button');
+        const centreY = button.y + button.height / 2;
+        if (centreY > panel.y + 20 && centreY < panel.y + panel.height - 10) break;
+        await page.mouse.move(panel.x + panel.width / 2, panel.y + panel.height / 2);
+        await page.mouse.wheel(0, centreY - (panel.y + panel.height / 2));
+        await page.waitForTimeout(300);
+      }
+      const downloadPromise = page.waitForEvent('download', { timeout: 15000 });
+      await page.mouse.click(button.x + button.width / 2, button.y + button.height / 2);
+      const download = await downloadPromise;
+      assert.match(download.suggestedFilename(), /^quakeview-.*-scenario-view\.png$/);
+      const saved = decodePng(fs.readFileSync(await download.path()));
+      assert.equal(saved.width, image.width);
+      assert.equal(saved.height, image.height);
+    }
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
