@@ -256,13 +256,14 @@
       return engine.ccall('qv_export', 'string', ['string'], [format]).replace(/^\uFEFF/, '');
     },
     // The picture of the view as a PNG data URL: the canvas as drawn (panels, colour key and scale
-    // bar included; the drawing buffer is kept between frames) with a caption band under it: the
+    // bar included; a frame drawn now and read in the same task) with a caption band under it: the
     // shaking (SCENARIO or ACTUAL) and the earthquake, the city, the time and the filters, the
     // method and the attribution (qv::imageCaption). null before a city is loaded.
     screenshot() {
       if (!engine) return null;
       const caption = JSON.parse(engine.UTF8ToString(engine._qv_image_caption()));
       if (!caption) return null;
+      engine._qv_draw_now();  // the drawing buffer is not kept: draw the frame and read it in this task
       const scale = canvas.clientWidth > 0 ? canvas.width / canvas.clientWidth : 1;
       const fontPx = Math.round(13 * scale);
       const lineHeight = Math.round(fontPx * 1.45);

@@ -378,9 +378,9 @@ bool App::pacedForFirstView(double now) const {
   return now - lastFrameSeconds_ < 1.0 / kFirstViewFps;
 }
 
-void App::frame() {
+void App::frame(bool forced) {
   const double now = browser::nowSeconds();
-  if (pacedForFirstView(now)) return;
+  if (!forced && pacedForFirstView(now)) return;
   const double frameMs = (now - lastFrameSeconds_) * 1000.0;
   const double dt = std::clamp(now - lastFrameSeconds_, 0.0, 0.25);
   lastFrameSeconds_ = now;

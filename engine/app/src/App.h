@@ -39,7 +39,9 @@ class App {
  public:
   /// Creates the context and everything on it; false (after notifying the shell) when fatal.
   bool start(const AppOptions& options, const std::vector<std::string>& startupErrors);
-  void frame();
+  /// One frame; `forced` draws it even while the first view is paced (quakeview.screenshot() draws
+  /// a frame and reads the canvas in the same task: the drawing buffer is not kept between frames).
+  void frame(bool forced = false);
 
   [[nodiscard]] Viewer& viewer() { return *viewer_; }
   [[nodiscard]] const std::string& uiText() const { return mirror_.text(); }

@@ -127,6 +127,11 @@ EMSCRIPTEN_KEEPALIVE const char* qv_building(const char* id) {
   return hand(info ? qv::buildingInfoJson(*info) : std::string("null"));
 }
 
+/// Draws a frame now (quakeview.screenshot() then reads the canvas in the same task).
+EMSCRIPTEN_KEEPALIVE void qv_draw_now() {
+  if (gApp != nullptr) gApp->frame(true);
+}
+
 /// The caption of a picture of the view (quakeview.screenshot()): {"actual", "lines", "fileName"}
 /// (qv::imageCaption); "null" before a city is loaded.
 EMSCRIPTEN_KEEPALIVE const char* qv_image_caption() {
