@@ -91,6 +91,7 @@ struct Prepared {
   glm::dvec2 centroid{0.0, 0.0};
   HeightTags heights;
   std::string use;
+  std::string facility;  ///< the stored amenity value (normalizeFacility), which the use follows too
   float roofHeightM = 0.0f;
   bool roofHeightTagged = false;
   int startYear = 0;
@@ -207,10 +208,10 @@ void parseTags(const RawFeature& feature, Prepared& out, WarningLog& warnings) {
     }
   }
   // The use follows from the same facility value the category does (normalizeFacility).
-  const std::string facility = normalizeFacility(tags.amenity, tags.emergency, tags.healthcare, tags.socialFacility,
-                                                 tags.power, tags.shop, tags.industrial);
-  out.use = feature.kind == FeatureKind::Building ? normalizeUse(tags.building, facility)
-                                                  : normalizeUse(tags.buildingPart, facility);
+  out.facility = normalizeFacility(tags.amenity, tags.emergency, tags.healthcare, tags.socialFacility, tags.power,
+                                   tags.shop, tags.industrial);
+  out.use = feature.kind == FeatureKind::Building ? normalizeUse(tags.building, out.facility)
+                                                  : normalizeUse(tags.buildingPart, out.facility);
 }
 
 /// Cleans and parses one feature (its points already projected in `table`).
@@ -318,8 +319,7 @@ void fillIdentity(const RawFeature& feature, const Prepared& prepared, BuildingA
   a.address = formatAddress(tags.houseNumber, tags.street, tags.postcode, tags.city);
   a.material = tags.material;
   a.structure = tags.structure;
-  a.amenity = normalizeFacility(tags.amenity, tags.emergency, tags.healthcare, tags.socialFacility, tags.power,
-                                tags.shop, tags.industrial);
+  a.amenity = prepared.facility;
   a.startYear = static_cast<std::int16_t>(prepared.startYear);
   a.occupants = prepared.occupants;
   a.replacementValueUsd = prepared.replacementValueUsd;
