@@ -115,6 +115,14 @@ void App::dispatchInput() {
   // letter turns the camera nor a character is lost.
   if (searchPendingFrames_ > 0) --searchPendingFrames_;
   if (ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing) searchPendingFrames_ = 0;
+  // Escape or Tab among them means the user has left the search before its edit began: no more
+  // waiting (which would hold every later key for up to kSearchPendingFrames frames).
+  for (const InputEvent& e : events) {
+    if (searchPendingFrames_ > 0 && e.type == InputEvent::Type::KeyDown && (e.code == "Escape" || e.code == "Tab")) {
+      searchPendingFrames_ = 0;
+      if (e.code == "Escape") panel_.cancelFocusSearch();
+    }
+  }
   std::size_t i = 0;
   for (bool stop = false; i < events.size() && !stop; i += stop ? 0 : 1) {
     InputEvent& e = events[i];

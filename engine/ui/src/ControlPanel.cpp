@@ -156,7 +156,8 @@ void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory
     const float maxWidth = narrow ? display.x - 20.0f : std::max(200.0f, display.x - kPanelWidth - 40.0f);
     ImGui::SetNextWindowSizeConstraints(ImVec2(200.0f, 0.0f), ImVec2(maxWidth, display.y * 0.3f));
     ImGui::SetNextWindowBgAlpha(0.92f);
-    if (w.begin("Errors", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
+    // A new message does not take the keyboard from the search or the focused control.
+    if (w.begin("Errors", nullptr, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing)) {
       // Long messages (what to do about a refused address) wrap at the widest the window may be.
       ImGui::PushTextWrapPos(maxWidth - 2.0f * ImGui::GetStyle().WindowPadding.x);
       const auto& errors = viewer.errors();

@@ -3,6 +3,7 @@
 // on a fixed scale with the building's HAZUS thresholds. Values and scales come from the pure
 // qv/scene/InspectionValues.h; this file only draws them (Dear ImGui) and mirrors them as text.
 #include <imgui.h>
+#include <imgui_internal.h>  // BringWindowToDisplayFront: the inspection window appears in front, unfocused
 
 #include <algorithm>
 #include <cmath>
@@ -205,7 +206,10 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
   const std::string title = "Building " + id + "###inspection";
   const bool newBuilding = id != inspected_;
   inspected_ = id;
-  if (w.begin(title.c_str(), &open, ImGuiWindowFlags_AlwaysAutoResize)) {
+  // A selection does not take the keyboard: a search just asked for ('/') keeps its field, and a
+  // control showing the focus keeps it. The window still comes to the front.
+  if (w.begin(title.c_str(), &open, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoFocusOnAppearing)) {
+    if (ImGui::IsWindowAppearing()) ImGui::BringWindowToDisplayFront(ImGui::GetCurrentWindow());
     // Each newly selected building starts at the top (its name), not where the last one was scrolled to.
     if (newBuilding) ImGui::SetScrollY(0.0f);
     const BuildingAttributes& a = info->attributes;

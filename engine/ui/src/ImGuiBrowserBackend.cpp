@@ -370,7 +370,8 @@ void imguiBrowserReleaseKeyboard() {
   if (g == nullptr) return;
   if (g->ActiveId != 0) ImGui::ClearActiveID();
   g->NavDisableHighlight = true;
-  ImGui::FocusWindow(nullptr);  // closes pop-ups; ImGui's NavActive turns off
+  g->NavNextActivateId = 0;     // a text field about to start its edit ('/' just pressed) does not
+  ImGui::FocusWindow(nullptr);  // closes pop-ups, cancels pending moves; ImGui's NavActive turns off
 }
 
 }  // namespace qv::ui

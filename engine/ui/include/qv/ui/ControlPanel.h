@@ -79,6 +79,8 @@ class ControlPanel {
   void setCursor(std::optional<std::pair<double, double>> css) { cursor_ = css; }
   /// Puts the keyboard focus in the search box on the next frame ('/' key).
   void focusSearch() { focusSearch_ = true; }
+  /// Withdraws a `focusSearch()` not yet acted on (Escape pressed right after '/').
+  void cancelFocusSearch() { focusSearch_ = false; }
   /// Exports the filtered list: "csv" or "geojson". Returns the text (also downloaded).
   std::string exportList(Viewer& viewer, const std::string& format, UiHost& host);
 
