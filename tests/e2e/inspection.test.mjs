@@ -107,6 +107,15 @@ test('the inspection window: units that show values, one peak drift with its sou
     // The storey bars: a fixed scale holding the HAZUS thresholds, bars coloured by state.
     assert.match(text, /fixed scale 0 to \d\.\d\d %; lines: slight, moderate, extensive(, complete)? thresholds/);
     assert.match(text, /Storeys by the state their drift reaches: \d+ (none|slight|moderate|extensive|complete)/);
+    // The site's own shaking (the scenario's medians there), and the scaled record's PGA named as the record's.
+    assert.equal(b.siteShaking && b.siteShaking.source, 'scenario', JSON.stringify(b.siteShaking));
+    assert.ok(b.siteShaking.pgaG > 0 && b.siteShaking.psa03G > b.siteShaking.psa30G, JSON.stringify(b.siteShaking));
+    assert.equal(b.siteShaking.pgvCmS, null, 'a value the field does not give is null, not 0');
+    const site = text.match(/Shaking at the site \(scenario median \(BSSA14\)\): PGA (\d+\.\d{3}) g, PSA 0\.3 s/);
+    assert.ok(site && Math.abs(Number(site[1]) - b.siteShaking.pgaG) < 0.00051, `site line: ${text}`);
+    const record = text.match(/Record's PGA \(scaled\): (\d+\.\d{3}) g/);
+    assert.ok(record && Math.abs(Number(record[1]) - b.recordPgaG) < 0.00051, `record line: ${text}`);
+    assert.doesNotMatch(text, /Peak ground acceleration/);
     const lowShot = await page.screenshot({ path: path.join(SHOTS, 'inspection-low-rise.png') });
 
     // A tall building: its window is taller than 720 px and scrolls with the wheel.

@@ -1,9 +1,12 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <vector>
 
+#include "qv/core/Crc32.h"
 #include "qv/format/ResponseTile.h"
 
 using namespace qv;
@@ -317,4 +320,63 @@ TEST_CASE("A history's drift series is the largest storey drift in each window",
   const DriftSpan none = appendDriftSeries(BuildingHistory{}, 3.0f, series);
   CHECK(none.count == 0);
   CHECK(series.codes.size() == 10);
+}
+
+TEST_CASE("The site section keeps the field's values, 'not given' as NaN, with or without a result",
+          "[format][response]") {
+  ResponseSummaryTile t = tinySummary();
+  BuildingSite shakemap;  // a ShakeMap without MMI
+  shakemap.source = SiteSource::ShakeMap;
+  shakemap.pgaG = 0.304f;
+  shakemap.pgvCmS = 6.9f;
+  shakemap.psa03G = 0.281f;
+  shakemap.psa10G = 0.076f;
+  shakemap.psa30G = 0.015f;
+  shakemap.vs30Mps = 446.0f;
+  t.sites = {shakemap, BuildingSite{}};
+  const auto bytes = encodeResponseSummary(t);
+  CHECK(bytes.size() == encodeResponseSummary(tinySummary()).size() + 12 + 2 * 32);
+  const auto decoded = decodeResponseSummary(bytes, "site.qvs");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->sites.size() == 2);
+  const BuildingSite& s = decoded->sites[0];
+  CHECK(s.source == SiteSource::ShakeMap);
+  CHECK(s.pgaG == 0.304f);
+  CHECK(s.psa10G == 0.076f);
+  CHECK(s.vs30Mps == 446.0f);
+  CHECK(std::isnan(s.mmi));
+  CHECK_FALSE(decoded->sites[1].given());
+  CHECK(std::isnan(decoded->sites[1].pgaG));
+  CHECK(siteShakingText(s) ==
+        "PGA 0.304 g, PGV 6.9 cm/s, PSA 0.3 s 0.281 g, PSA 1.0 s 0.076 g, PSA 3.0 s 0.015 g, "
+        "Vs30 446 m/s");
+  CHECK(siteShakingText(decoded->sites[1]).empty());
+  CHECK(siteSourceName(SiteSource::Scenario) == "scenario");
+
+  // A hostile file: a negative PGA, or an infinite one, is refused naming the section; an unknown
+  // source reads as no site.
+  auto patched = [&](std::size_t recordByte, auto write) {
+    std::vector<std::uint8_t> b = bytes;
+    std::uint32_t offset = 0;
+    for (std::size_t at = 28;  // the header, then the section table (docs/formats.md)
+         at + 12 <= b.size(); at += 12) {
+      if (std::memcmp(b.data() + at, "SITE", 4) == 0) {
+        std::memcpy(&offset, b.data() + at + 4, 4);
+        break;
+      }
+    }
+    REQUIRE(offset > 0);
+    write(b.data() + offset + recordByte);
+    const std::uint32_t crc = crc32(std::span<const std::uint8_t>(b).subspan(16));
+    std::memcpy(b.data() + 12, &crc, 4);
+    return b;
+  };
+  for (const float v : {-0.5f, std::numeric_limits<float>::infinity()}) {
+    const auto bad = decodeResponseSummary(patched(4, [&](std::uint8_t* p) { std::memcpy(p, &v, 4); }), "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("bad.qvs") && Catch::Contains("SITE"));
+  }
+  const auto unknown = decodeResponseSummary(patched(0, [](std::uint8_t* p) { *p = 9; }), "future.qvs");
+  REQUIRE(unknown.ok());
+  CHECK_FALSE(unknown->sites[0].given());
 }

@@ -228,6 +228,17 @@ TEST_CASE("response under a uniform ShakeMap hits its targets: Sa(T1) by default
       const auto s = building["spectral_scaling"]["x"];
       const double period = number(s["period_s"]);
       CHECK(number(s["target_sa_g"]) == Approx(targetSa(0.30, 0.60, 0.25, 0.08, period)).epsilon(1e-4));
+      // The site's own shaking, as the grid gives it, beside the scaled record's PGA.
+      const auto site = building["site_shaking"];
+      CHECK(std::string(site["source"].get_string().value()) == "shakemap");
+      CHECK(number(site["pga_g"]) == Approx(0.30).epsilon(1e-5));
+      CHECK(number(site["pgv_cms"]) == Approx(20.0).epsilon(1e-5));
+      CHECK(number(site["psa03_g"]) == Approx(0.60).epsilon(1e-5));
+      CHECK(number(site["psa10_g"]) == Approx(0.25).epsilon(1e-5));
+      CHECK(number(site["psa30_g"]) == Approx(0.08).epsilon(1e-5));
+      CHECK(number(site["mmi"]) == Approx(6.5).epsilon(1e-5));
+      CHECK(number(site["vs30_mps"]) == Approx(400.0).epsilon(1e-5));
+      CHECK(number(building["record_pga_g"]) == number(building["pga_g"]));
       // One component: Y is not analysed.
       CHECK(number(building["spectral_scaling"]["y"]["scale"]) == 0.0);
     }
@@ -354,4 +365,29 @@ TEST_CASE("Occupants and replacement values a GeoJSON gives are used, not inferr
   const auto garbage = parse(other, run("info '" + dir + "/city' --building g:garbage --json").output);
   CHECK(garbage["consequences"]["occupants_inferred"].get_bool().value());
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("A scenario's site shaking is its model's medians: the PGA the record is scaled to, and spectra",
+          "[response][cli]") {
+  const City city("scenario-site", lowerManhattan());
+  const auto response = run("response --city " + city.path() +
+                            " --epicentre -74.05,40.65,8 --magnitude 6.5 --synthetic 1 --scale-by pga");
+  INFO(response.output);
+  REQUIRE(response.exitCode == 0);
+  for (int id = 1; id <= 5; ++id) {
+    simdjson::dom::parser p;
+    const auto building =
+        parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+    const auto site = building["site_shaking"];
+    CHECK(std::string(site["source"].get_string().value()) == "scenario");
+    // Scaled by PGA: the record peaks at the site's median PGA.
+    CHECK(number(site["pga_g"]) == Approx(number(building["record_pga_g"])).epsilon(1e-4));
+    // A magnitude 6.5 at about 6 km on rock: short periods shake more than long ones.
+    CHECK(number(site["psa03_g"]) > number(site["psa10_g"]));
+    CHECK(number(site["psa10_g"]) > number(site["psa30_g"]));
+    CHECK(number(site["psa30_g"]) > 0.0);
+    CHECK(number(site["vs30_mps"]) == 760.0);
+    CHECK(site["pgv_cms"].is_null());  // the scenario model here gives no PGV: not given, not 0
+    CHECK(site["mmi"].is_null());
+  }
 }

@@ -106,7 +106,7 @@ TEST_CASE("CSV export: formula triggers are neutralised, text round-trips, numbe
   const auto rows = readCsv(csv);
   REQUIRE(rows.size() == kHostile.size() + 1);
   const std::vector<std::string>& header = rows[0];
-  REQUIRE(header.size() == 35);
+  REQUIRE(header.size() == 42);
   CHECK(header[1] == "name");
   CHECK(header[2] == "address");
   for (std::size_t i = 0; i < kHostile.size(); ++i) {
@@ -129,6 +129,47 @@ TEST_CASE("CSV export: formula triggers are neutralised, text round-trips, numbe
     CHECK(row[11].rfind("-74.0", 0) == 0);  // longitude west of Greenwich
     CHECK(row[6] == "0.004200");
   }
+}
+
+TEST_CASE("CSV and GeoJSON exports carry the site's shaking beside the record's PGA", "[scene][export]") {
+  std::vector<BuildingListEntry> list = hostileList();
+  list.resize(2);
+  BuildingSite& site = list[0].site;  // a ShakeMap without MMI; list[1] has no field
+  site.source = SiteSource::ShakeMap;
+  site.pgaG = 0.304f;
+  site.pgvCmS = 6.89f;
+  site.psa03G = 0.281f;
+  site.psa10G = 0.0762f;
+  site.psa30G = 0.0148f;
+  const auto rows = readCsv(exportCsv(list, GeoFrame(-74.0, 40.7)));
+  REQUIRE(rows.size() == 3);
+  const auto& header = rows[0];
+  auto column = [&](std::string_view name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    REQUIRE(it != header.end());
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  CHECK(rows[1][column("pga_g")] == "0.2100");  // the scaled record's, unchanged
+  CHECK(rows[1][column("site_source")] == "shakemap");
+  CHECK(rows[1][column("site_pga_g")] == "0.3040");
+  CHECK(rows[1][column("site_pgv_cms")] == "6.89");
+  CHECK(rows[1][column("site_psa10_g")] == "0.0762");
+  CHECK(rows[1][column("site_mmi")].empty());  // not in this ShakeMap: blank, not 0
+  CHECK(rows[2][column("site_source")].empty());
+  CHECK(rows[2][column("site_pga_g")].empty());
+
+  simdjson::dom::parser parser;
+  simdjson::dom::element root;
+  REQUIRE(parser.parse(exportGeoJson(list, GeoFrame(-74.0, 40.7))).get(root) == simdjson::SUCCESS);
+  simdjson::dom::array features;
+  REQUIRE(root["features"].get(features) == simdjson::SUCCESS);
+  std::vector<simdjson::dom::element> f(features.begin(), features.end());
+  REQUIRE(f.size() == 2);
+  double pga = 0.0;
+  REQUIRE(f[0]["properties"]["site_shaking"]["pga_g"].get(pga) == simdjson::SUCCESS);
+  CHECK(pga == Approx(0.304));
+  CHECK(f[0]["properties"]["site_shaking"]["mmi"].is_null());
+  CHECK(f[1]["properties"]["site_shaking"].is_null());
 }
 
 TEST_CASE("CSV export: a name with invalid UTF-8 arrives as U+FFFD, not as broken bytes", "[scene][export]") {

@@ -131,8 +131,9 @@ constexpr std::size_t kScalingRecordSize = 32;
 constexpr std::size_t kSpreadRecordSize = 12;
 constexpr std::size_t kStoreySpreadRecordSize = 12;
 constexpr std::size_t kLossRecordSize = 132;
+constexpr std::size_t kSiteRecordSize = 32;
 
-// The optional summary sections (SPEC, SUIT, SSPR, LOSS): sizes match the counts, values are finite,
+// The optional summary sections (SPEC, SITE, SUIT, SSPR, LOSS): sizes match the counts, values are finite,
 // non-negative, and probabilities lie in [0, 1].
 Status decodeOptionalSections(std::span<const std::uint8_t> bytes, const Parsed& header, const std::string& prefix,
                               ResponseSummaryTile& tile) {
@@ -166,6 +167,24 @@ Status decodeOptionalSections(std::span<const std::uint8_t> bytes, const Parsed&
         if (!value(b.periodS[d]) || !value(b.targetSaG[d]) || !value(b.recordSaG[d]) || !value(b.scale[d]))
           return bad("SPEC", r, "invalid period, Sa or scale");
       }
+    }
+  }
+  auto site = sized("SITE", n, kSiteRecordSize);
+  if (!site.ok()) return Error{site.error()};
+  if (*site) {
+    ByteReader& r = **site;
+    tile.sites.resize(n);
+    for (BuildingSite& b : tile.sites) {
+      const std::uint8_t source = r.u8("site source");
+      r.skip(3, "reserved");
+      b.source = source <= static_cast<std::uint8_t>(SiteSource::Scenario) ? static_cast<SiteSource>(source)
+                                                                           : SiteSource::None;
+      for (float* v : {&b.pgaG, &b.pgvCmS, &b.psa03G, &b.psa10G, &b.psa30G, &b.mmi, &b.vs30Mps}) {
+        *v = r.f32("site value");
+        // NaN: not given; otherwise finite and >= 0 (MMI 1 .. 12 is not enforced: a value is shown as written).
+        if (!std::isnan(*v) && !value(*v)) return bad("SITE", r, "invalid site value");
+      }
+      if (b.source == SiteSource::None) b = BuildingSite{};
     }
   }
   auto suit = sized("SUIT", n, kSpreadRecordSize);
@@ -316,6 +335,50 @@ std::string_view noResultReasonDescription(NoResultReason r) {
   }
 }
 
+std::string_view siteSourceName(SiteSource s) {
+  switch (s) {
+    case SiteSource::ShakeMap:
+      return "shakemap";
+    case SiteSource::Scenario:
+      return "scenario";
+    case SiteSource::None:
+      break;
+  }
+  return "none";
+}
+
+std::string_view siteSourceLabel(SiteSource s) {
+  switch (s) {
+    case SiteSource::ShakeMap:
+      return "ShakeMap";
+    case SiteSource::Scenario:
+      return "scenario median (BSSA14)";
+    case SiteSource::None:
+      break;
+  }
+  return "";
+}
+
+std::string siteShakingText(const BuildingSite& site) {
+  std::string text;
+  if (!site.given()) return text;
+  char buffer[48];
+  auto add = [&](const char* format, float v) {
+    if (std::isnan(v)) return;
+    std::snprintf(buffer, sizeof buffer, format, static_cast<double>(v));
+    text += text.empty() ? "" : ", ";
+    text += buffer;
+  };
+  add("PGA %.3f g", site.pgaG);
+  add("PGV %.1f cm/s", site.pgvCmS);
+  add("PSA 0.3 s %.3f g", site.psa03G);
+  add("PSA 1.0 s %.3f g", site.psa10G);
+  add("PSA 3.0 s %.3f g", site.psa30G);
+  add("MMI %.1f", site.mmi);
+  add("Vs30 %.0f m/s", site.vs30Mps);
+  return text;
+}
+
 std::string_view responseSourceName(ResponseSource s) {
   switch (s) {
     case ResponseSource::Model:
@@ -354,7 +417,7 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
     storeyValues += storeys;
   }
   std::vector<Section> sections = {{tag("RSUM"), &rsum}, {tag("SDRF"), &sdrf}};
-  ByteWriter spec, suit, sspr, loss;
+  ByteWriter spec, site, suit, sspr, loss;
   if (!tile.scaling.empty() && tile.scaling.size() == tile.buildings.size()) {
     for (const BuildingScaling& b : tile.scaling) {
       for (int d = 0; d < 2; ++d) {
@@ -365,6 +428,19 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
       }
     }
     sections.push_back({tag("SPEC"), &spec});
+  }
+  if (!tile.sites.empty() && tile.sites.size() == tile.buildings.size()) {
+    for (const BuildingSite& b : tile.sites) {
+      const bool given = b.source != SiteSource::None;
+      site.u8(static_cast<std::uint8_t>(b.source));
+      site.u8(0);
+      site.u16(0);
+      for (const float v : {b.pgaG, b.pgvCmS, b.psa03G, b.psa10G, b.psa30G, b.mmi, b.vs30Mps}) {
+        // Anything not a valid value is written as "not given" (a reader refuses negatives and infinities).
+        site.f32(given && std::isfinite(v) && v >= 0.0f ? v : BuildingSite::kNotGiven);
+      }
+    }
+    sections.push_back({tag("SITE"), &site});
   }
   if (!tile.spread.empty() && tile.spread.size() == tile.buildings.size()) {
     for (const BuildingSpread& b : tile.spread) {

@@ -80,6 +80,16 @@ std::string buildingInfoJson(const BuildingInfo& info) {
     w.field("modelTriangles", info.modelTriangles);
   }
   w.field("detailed", info.detailed).field("tile", info.tile);
+  // The field's shaking at the site (null where the field gives none); pgaG above is the record's.
+  if (info.hasResponse && hasResult) w.field("recordPgaG", info.response.pgaG);
+  if (info.site) {
+    const BuildingSite& s = *info.site;
+    w.key("siteShaking").beginObject().field("source", siteSourceName(s.source));
+    w.field("pgaG", s.pgaG).field("pgvCmS", s.pgvCmS).field("psa03G", s.psa03G).field("psa10G", s.psa10G);
+    w.field("psa30G", s.psa30G).field("mmi", s.mmi).field("vs30Mps", s.vs30Mps).endObject();
+  } else {
+    w.key("siteShaking").null();
+  }
   if (hasResult && info.scaling) {
     w.key("spectralScaling").beginObject();
     for (int d = 0; d < 2; ++d) {

@@ -244,6 +244,7 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
     e.pgaG = r->pgaG;
     if (const BuildingLoss* l = loss(index)) e.loss = *l;
   }
+  if (summary_ && index < summary_->sites.size()) e.site = summary_->sites[index];
   return e;
 }
 

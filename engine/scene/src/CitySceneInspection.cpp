@@ -114,6 +114,7 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
     info.storeyPeakDrift.assign(first, first + static_cast<std::ptrdiff_t>(info.response.storeys));
     const ResponseSummaryTile& summary = *source->summary;
     if (index < summary.scaling.size()) info.scaling = summary.scaling[index];
+    if (index < summary.sites.size() && summary.sites[index].given()) info.site = summary.sites[index];
     if (index < summary.spread.size()) info.spread = summary.spread[index];
     if (index < summary.losses.size()) info.loss = summary.losses[index];
   }

@@ -1,6 +1,7 @@
 #include "qv/scene/Export.h"
 
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 
 #include "qv/core/JsonWriter.h"
@@ -237,7 +238,8 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
       "id,name,address,use,importance,damage_state,peak_drift_ratio,peak_roof_displacement_m,pga_g,height_m,storeys,"
       "lon,lat,x_m,y_m,p_none,p_slight,p_moderate,p_extensive,p_complete,p_collapse,expected_damage_state,"
       "p_tag_green,p_tag_yellow,p_tag_red,occupants,occupants_inferred,injuries_1,injuries_2,injuries_3,deaths,"
-      "repair_cost_usd,replacement_value_usd,value_inferred,repair_time_days\r\n";
+      "repair_cost_usd,replacement_value_usd,value_inferred,repair_time_days,"
+      "site_source,site_pga_g,site_pgv_cms,site_psa03_g,site_psa10_g,site_psa30_g,site_mmi\r\n";
   for (const BuildingListEntry& b : buildings) {
     const auto ll = geo.reverse({b.x, b.y});
     out += csvField(b.id) + ',' + csvField(b.name) + ',' + csvField(b.address) + ',' + csvField(b.use) + ',';
@@ -264,6 +266,11 @@ std::string exportCsv(std::span<const BuildingListEntry> buildings, const GeoFra
     } else {
       out += std::string(20, ',');
     }
+    // The field's own shaking at the site (pga_g above is the scaled record's): blank where not given.
+    auto site = [](float v, int decimals) { return std::isnan(v) ? std::string() : number(v, decimals); };
+    out += ',' + std::string(b.site.given() ? siteSourceName(b.site.source) : std::string_view()) + ',';
+    out += site(b.site.pgaG, 4) + ',' + site(b.site.pgvCmS, 2) + ',' + site(b.site.psa03G, 4) + ',' +
+           site(b.site.psa10G, 4) + ',' + site(b.site.psa30G, 4) + ',' + site(b.site.mmi, 2);
     out += "\r\n";
   }
   return out;
@@ -298,6 +305,13 @@ std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const Ge
       w.field("pga_g", b.pgaG);
     } else {
       w.key("peak_drift_ratio").null().key("peak_roof_displacement_m").null().key("pga_g").null();
+    }
+    if (b.site.given()) {
+      w.key("site_shaking").beginObject().field("source", siteSourceName(b.site.source));
+      w.field("pga_g", b.site.pgaG).field("pgv_cms", b.site.pgvCmS).field("psa03_g", b.site.psa03G);
+      w.field("psa10_g", b.site.psa10G).field("psa30_g", b.site.psa30G).field("mmi", b.site.mmi).endObject();
+    } else {
+      w.key("site_shaking").null();
     }
     w.field("height_m", b.heightM);
     if (b.storeys > 0) {

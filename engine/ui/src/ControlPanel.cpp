@@ -196,6 +196,16 @@ void ControlPanel::drawShakingProvenance(const ResponseInfo& r, ui::Widgets& w) 
   }
 }
 
+void ControlPanel::drawSiteShaking(const BuildingInfo& info, const Tileset* tileset, ui::Widgets& w) {
+  if (!info.site) return;
+  std::string label = "Shaking at the site (" + std::string(siteSourceLabel(info.site->source));
+  if (info.site->source == SiteSource::ShakeMap && tileset != nullptr && tileset->response &&
+      tileset->response->shakemap) {
+    label += " " + tileset->response->shakemap->eventId + " version " + tileset->response->shakemap->version;
+  }
+  w.field(label + ")", siteShakingText(*info.site));
+}
+
 void ControlPanel::drawShakingOfBuilding(const BuildingInfo& info, ui::Widgets& w) {
   if (info.scaling && info.scaling->periodS[0] > 0.0f) {
     const BuildingScaling& s = *info.scaling;

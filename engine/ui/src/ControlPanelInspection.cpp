@@ -267,6 +267,7 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
       if (info->hasResponse) {
         w.textWrapped("Reason: " + std::string(noResultReasonDescription(info->response.noResultReason)));
       }
+      drawSiteShaking(*info, viewer.city() != nullptr ? viewer.city()->tileset() : nullptr, w);
     }
     if (w.button("Fly to (F)")) viewer.flyToSelection();
     w.sameLine();
@@ -299,7 +300,10 @@ void ControlPanel::drawResponse(Viewer& viewer, const BuildingInfo& info, ui::Wi
                                          (r.source == ResponseSource::Imported ? " (peak of the imported analysis)"
                                                                                : " (exact peak from the solver)"));
   w.field("Peak roof displacement", displacementText(r.peakRoofDisplacementM, feet));
-  w.field("Peak ground acceleration", ui::format("%.3f g", static_cast<double>(r.pgaG)));
+  // The site's own shaking first; the record's PGA is what the scaled record peaks at (its scale
+  // follows Sa(T1), so it differs from the site's PGA).
+  drawSiteShaking(info, viewer.city() != nullptr ? viewer.city()->tileset() : nullptr, w);
+  w.field("Record's PGA (scaled)", ui::format("%.3f g", static_cast<double>(r.pgaG)));
   w.field("Residual drift", driftPercentText(r.residualDriftRatio));
   w.field("Results from",
           r.source == ResponseSource::Imported ? "imported analysis" : "MDOF shear-building model (simplified)");

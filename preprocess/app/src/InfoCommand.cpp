@@ -1,6 +1,7 @@
 // quakeview-prep info DIR [--json] [--building ID] [--verify]
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <optional>
@@ -118,9 +119,29 @@ struct BuildingResponseView {
   std::vector<float> storeyPeakDrift;
   std::vector<StoreySpread> storeySpread;  ///< empty when the summary has none
   std::optional<BuildingScaling> scaling;
+  std::optional<BuildingSite> site;  ///< the shaking field at the site (with or without a result)
   std::optional<BuildingSpread> spread;
   std::optional<BuildingLoss> loss;
 };
+
+// "site_shaking": the field's values at the building (null where the field gives none).
+void writeSiteJson(JsonWriter& w, const std::optional<BuildingSite>& site) {
+  if (!site || !site->given()) {
+    w.key("site_shaking").null();
+    return;
+  }
+  w.key("site_shaking").beginObject().field("source", siteSourceName(site->source));
+  w.field("pga_g", site->pgaG).field("pgv_cms", site->pgvCmS);
+  w.field("psa03_g", site->psa03G).field("psa10_g", site->psa10G).field("psa30_g", site->psa30G);
+  w.field("mmi", site->mmi).field("vs30_mps", site->vs30Mps).endObject();
+}
+
+// "  shaking at the site (ShakeMap): PGA 0.304 g, PGV 6.9 cm/s, ..." (what the field gives).
+void printSite(const std::optional<BuildingSite>& site) {
+  if (!site || !site->given()) return;
+  std::printf("  shaking at the site (%s): %s\n", std::string(siteSourceLabel(site->source)).c_str(),
+              siteShakingText(*site).c_str());
+}
 
 void printBuildingLoss(const BuildingResponseView& r);
 
@@ -203,6 +224,7 @@ Result<std::optional<BuildingResponseView>> loadBuildingResponse(const std::stri
     v.storeySpread.assign(spread, spread + static_cast<std::ptrdiff_t>(v.summary.storeys));
   }
   if (!tile->scaling.empty()) v.scaling = tile->scaling[index];
+  if (!tile->sites.empty()) v.site = tile->sites[index];
   if (!tile->spread.empty()) v.spread = tile->spread[index];
   if (!tile->losses.empty()) v.loss = tile->losses[index];
   return std::optional<BuildingResponseView>(std::move(v));
@@ -335,13 +357,15 @@ int runInfo(const CommandArgs& argv) {
           w.endArray();
           if (hasResult) {
             w.field("peak_roof_displacement_m", r->summary.peakRoofDisplacementM);
-            w.field("pga_g", r->summary.pgaG);
+            // pga_g (kept for scripts) is the record's: its peak after scaling, as record_pga_g says.
+            w.field("pga_g", r->summary.pgaG).field("record_pga_g", r->summary.pgaG);
             w.field("peak_floor_acceleration_mps2", r->summary.peakFloorAccelerationMs2);
             w.field("residual_drift_ratio", r->summary.residualDriftRatio);
           } else {
             w.key("peak_roof_displacement_m").null();
-            w.key("pga_g").null();
+            w.key("pga_g").null().key("record_pga_g").null();
           }
+          writeSiteJson(w, r ? r->site : std::nullopt);
           if (hasResult) {
             w.key("no_result_reason").null();
             w.key("no_result_detail").null();
@@ -370,8 +394,9 @@ int runInfo(const CommandArgs& argv) {
           for (unsigned bit = 1; bit < 256; bit <<= 1) {
             if ((a.notes & bit) != 0) std::printf("  note: %s\n", std::string(attributeNoteText(bit)).c_str());
           }
+          if (r) printSite(r->site);
           if (hasResult) {
-            std::printf("  damage %s (%s), peak drift %.4f, peak roof displacement %.3f m, PGA %.3f g\n",
+            std::printf("  damage %s (%s), peak drift %.4f, peak roof displacement %.3f m, record's PGA %.3f g\n",
                         damage.c_str(), std::string(responseSourceName(r->summary.source)).c_str(),
                         static_cast<double>(r->summary.peakDriftRatio),
                         static_cast<double>(r->summary.peakRoofDisplacementM), static_cast<double>(r->summary.pgaG));

@@ -197,6 +197,7 @@ class ShakingField {
     double delayS = 0.0;                   // S-wave travel time from the hypocentre
     seismic::SpectralOrdinates spectra{};  // ShakeMap values at the site (g)
     double distanceKm = 0.0;               // epicentral (Joyner-Boore for the point source)
+    BuildingSite intensity;                // what the summary's SITE section keeps
   };
 
   ShakingField(const ResponseRunOptions& options, const Tileset& tileset, std::optional<ShakeMapGrid> grid)
@@ -228,6 +229,18 @@ class ShakingField {
       if (!site.ok()) return Error{site.error()};
       s.pgaG = site->pgaG;
       s.delayS = site->delaySeconds;
+      const seismic::Scenario& sc = *options_.scenario;
+      auto psa = [&](double periodS) {
+        return static_cast<float>(
+            seismic::bssa14MedianPsaG(periodS, sc.magnitude, s.distanceKm, sc.vs30MetresPerSecond, sc.mechanism) *
+            sc.siteFactor);
+      };
+      s.intensity.source = SiteSource::Scenario;
+      s.intensity.pgaG = static_cast<float>(site->pgaG);
+      s.intensity.psa03G = psa(0.3);
+      s.intensity.psa10G = psa(1.0);
+      s.intensity.psa30G = psa(3.0);
+      s.intensity.vs30Mps = static_cast<float>(sc.vs30MetresPerSecond);
       return std::optional<Site>(s);
     }
     s.delayS = hasEpicentre_ ? seismic::shearWaveDelayS(s.distanceKm, depthKm_, waveSpeed_) : 0.0;
@@ -236,6 +249,14 @@ class ShakingField {
     if (!sample) return std::optional<Site>();
     s.pgaG = sample->pgaG;
     s.spectra = {sample->pgaG, sample->psa03G, sample->psa10G, sample->psa30G};
+    s.intensity.source = SiteSource::ShakeMap;
+    s.intensity.pgaG = static_cast<float>(sample->pgaG);
+    s.intensity.pgvCmS = static_cast<float>(sample->pgvCmS);
+    s.intensity.psa03G = static_cast<float>(sample->psa03G);
+    s.intensity.psa10G = static_cast<float>(sample->psa10G);
+    s.intensity.psa30G = static_cast<float>(sample->psa30G);
+    s.intensity.mmi = static_cast<float>(sample->mmi);
+    s.intensity.vs30Mps = static_cast<float>(sample->vs30Mps);
     return std::optional<Site>(s);
   }
 
@@ -509,6 +530,10 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
           result.summary.noResultReason = reason;
           result.noResultDetail = std::move(detail);
         };
+        // The field at the site, kept with or without a result (an engineer checking a building
+        // that could not be modelled still reads the shaking there).
+        auto site = field.site(a.centroidX + tile->originX, a.centroidY + tile->originY);
+        if (site.ok() && site->has_value() && (**site).intensity.given()) result.site = (**site).intensity;
         // A part whose base is above ground (a rooftop structure on another building) would be
         // shaken by that building's roof motion, not by the ground's: not analysed.
         if (a.minHeightM > kMaxGroundBaseM) {
@@ -525,7 +550,6 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
           noResult(NoResultReason::ModelInvalid, !mx.ok() ? mx.error() : my.error());
           continue;
         }
-        auto site = field.site(a.centroidX + tile->originX, a.centroidY + tile->originY);
         if (!site.ok()) {
           noResult(NoResultReason::OutsideField, site.error());
           continue;

@@ -81,6 +81,9 @@ class SummaryBuilder {
     }
     tile_.buildings.push_back(s);
     const bool result = r != nullptr && s.source != ResponseSource::None;
+    // The site's shaking is known with or without a result (a building whose model is invalid).
+    tile_.sites.push_back(r != nullptr && r->site ? *r->site : BuildingSite{});
+    hasSites_ = hasSites_ || (r != nullptr && r->site && r->site->given());
     tile_.scaling.push_back(result && r->scaling ? *r->scaling : BuildingScaling{});
     tile_.spread.push_back(result && r->spread ? *r->spread : BuildingSpread{});
     tile_.losses.push_back(result && r->loss ? *r->loss : BuildingLoss{});
@@ -91,6 +94,7 @@ class SummaryBuilder {
   }
   ResponseSummaryTile& finish() {
     if (!hasScaling_) tile_.scaling.clear();
+    if (!hasSites_) tile_.sites.clear();
     if (!hasSpread_) tile_.spread.clear();
     if (!hasStoreySpread_) tile_.storeySpread.clear();
     if (!hasLoss_) tile_.losses.clear();
@@ -106,7 +110,8 @@ class SummaryBuilder {
  private:
   ResponseSummaryTile tile_;
   bool withSeries_ = true;
-  bool hasScaling_ = false, hasSpread_ = false, hasStoreySpread_ = false, hasLoss_ = false, hasSeries_ = false;
+  bool hasScaling_ = false, hasSites_ = false, hasSpread_ = false, hasStoreySpread_ = false, hasLoss_ = false,
+       hasSeries_ = false;
   std::uint64_t seriesBuildings_ = 0;
 };
 

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <string>
 #include <string_view>
@@ -80,6 +81,39 @@ struct BuildingScaling {
   float scale[2] = {0.0f, 0.0f};      ///< factor applied to that record (> 0 with a result)
   bool operator==(const BuildingScaling&) const = default;
 };
+
+/// Where a building's site intensity comes from (optional section SITE).
+enum class SiteSource : std::uint8_t {
+  None = 0,      ///< no shaking field (records as given, or an import): no site values
+  ShakeMap = 1,  ///< the ShakeMap grid's values, interpolated bilinearly at the building
+  Scenario = 2,  ///< the scenario's ground-motion model (BSSA14) medians at the building
+};
+/// "none", "shakemap", "scenario" (values this build does not know read as "none").
+std::string_view siteSourceName(SiteSource source);
+
+/// The shaking at the building's site as the field gives it (optional section SITE), before any
+/// record is scaled to it: what an engineer compares with a code spectrum or a fragility. A value
+/// the field does not give is NaN (a ShakeMap without PGV or MMI; a scenario gives no PGV, MMI or
+/// Vs30 here). Written for every building inside the field, with or without a result.
+struct BuildingSite {
+  SiteSource source = SiteSource::None;
+  float pgaG = kNotGiven;     ///< peak ground acceleration (g)
+  float pgvCmS = kNotGiven;   ///< peak ground velocity (cm/s)
+  float psa03G = kNotGiven;   ///< 5 %-damped pseudo-spectral acceleration at 0.3 s (g)
+  float psa10G = kNotGiven;   ///< ... at 1.0 s (g)
+  float psa30G = kNotGiven;   ///< ... at 3.0 s (g)
+  float mmi = kNotGiven;      ///< modified Mercalli intensity
+  float vs30Mps = kNotGiven;  ///< the site's Vs30 the field assumed (m/s)
+  static constexpr float kNotGiven = std::numeric_limits<float>::quiet_NaN();
+  [[nodiscard]] bool given() const { return source != SiteSource::None; }
+};
+
+/// The values a site's field gives, for people: "PGA 0.304 g, PGV 6.9 cm/s, PSA 0.3 s 0.281 g,
+/// PSA 1.0 s 0.076 g, PSA 3.0 s 0.015 g, MMI 6.5, Vs30 446 m/s" (values not given are left out;
+/// empty when none is).
+std::string siteShakingText(const BuildingSite& site);
+/// Where the values come from, for people: "ShakeMap", "scenario median (BSSA14)", "".
+std::string_view siteSourceLabel(SiteSource source);
 
 /// Record-to-record spread across a suite (optional section SUIT). Medians are geometric means
 /// over the records; betas are the standard deviations of the natural logarithms (0 for one record).
@@ -163,6 +197,7 @@ struct ResponseSummaryTile {
   // Optional sections: each empty (not stored) or holding one value per building (storeySpread: one
   // per storey value). Readers that do not know a section ignore it.
   std::vector<BuildingScaling> scaling;    ///< SPEC
+  std::vector<BuildingSite> sites;         ///< SITE
   std::vector<BuildingSpread> spread;      ///< SUIT
   std::vector<StoreySpread> storeySpread;  ///< SSPR
   std::vector<BuildingLoss> losses;        ///< LOSS

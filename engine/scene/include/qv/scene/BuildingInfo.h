@@ -20,6 +20,7 @@ struct BuildingInfo {
   std::vector<float> storeyPeakDrift;  ///< per storey, ground up (empty without a response)
   // From the summary's optional sections, when the response has them (quakeview-prep response).
   std::optional<BuildingScaling> scaling;
+  std::optional<BuildingSite> site;  ///< the shaking field at the site, with or without a result
   std::optional<BuildingSpread> spread;
   std::optional<BuildingLoss> loss;
   /// LOD2 buildings whose tile carries the model: where it came from ("cityjson", "obj",
@@ -34,7 +35,10 @@ struct BuildingInfo {
 /// peakRoofDisplacementM, pgaG} plus informative extras (minHeightM, footprintAreaM2,
 /// structuralTypeDescription, importanceReasons, startYear, responseSource, noResultReason (null
 /// with a result), approximate, unconvergedSteps, worstResidualRatio, detailed, and for LOD2 models
-/// modelSource and modelTriangles); with HAZUS results also spectralScaling, suite,
+/// modelSource and modelTriangles), recordPgaG (with a result: the same value as pgaG, the scaled
+/// record's peak, named for what it is) and siteShaking ({source: "shakemap" | "scenario", pgaG,
+/// pgvCmS, psa03G, psa10G, psa30G, mmi, vs30Mps}, null values where the field gives none; null
+/// without a field); with HAZUS results also spectralScaling, suite,
 /// damageProbabilities, collapseProbability, expectedDamageState, mostLikelyDamageState and
 /// consequences (README's table).
 std::string buildingInfoJson(const BuildingInfo& info);

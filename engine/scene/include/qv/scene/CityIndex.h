@@ -74,11 +74,12 @@ struct BuildingListEntry {
   DamageState damage = DamageState::NoResult;
   float peakDriftRatio = 0.0f;
   float peakRoofDisplacementM = 0.0f;
-  float pgaG = 0.0f;
+  float pgaG = 0.0f;  ///< the record's peak after scaling (BuildingResponse::pgaG), not the site's
   float heightM = 0.0f;
   std::uint16_t storeys = 0;
   double x = 0.0, y = 0.0;           ///< centroid, metres in the city frame
   std::optional<BuildingLoss> loss;  ///< HAZUS probabilities and consequences, when the response has them
+  BuildingSite site;                 ///< the shaking field at the site (source None without one)
 };
 
 /// What a list row names a building by: its name, else its address, else (only when it has

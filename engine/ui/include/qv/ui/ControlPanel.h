@@ -121,6 +121,8 @@ class ControlPanel {
   static void drawShakingProvenance(const ResponseInfo& response, ui::Widgets& w);
   /// The building's Sa(T1) scaling and its spread across the record suite.
   static void drawShakingOfBuilding(const BuildingInfo& info, ui::Widgets& w);
+  /// "Shaking at the site (ShakeMap <id> version <v>)": the field's own values at the building.
+  static void drawSiteShaking(const BuildingInfo& info, const Tileset* tileset, ui::Widgets& w);
   /// Damage-state probabilities as bars, tags, and the consequences with their "inferred" marks.
   static void drawBuildingLoss(const BuildingLoss& loss, ui::Widgets& w);
   /// City, view and district totals with their provenance, and their CSV exports.

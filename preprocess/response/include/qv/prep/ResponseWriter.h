@@ -24,9 +24,11 @@ namespace qv::prep {
 struct BuildingResult {
   BuildingResponse summary;            ///< firstStorey is ignored (the writer lays storeys out)
   std::vector<float> storeyPeakDrift;  ///< summary.storeys values, ground up
-  // Optional per-building values (summary sections SPEC, SUIT, SSPR, LOSS): a section is written
+  // Optional per-building values (summary sections SPEC, SITE, SUIT, SSPR, LOSS): a section is written
   // when some building of the response has its value; the others then get zeros.
   std::optional<BuildingScaling> scaling;
+  /// The shaking field's values at the building (section SITE), with or without a result.
+  std::optional<BuildingSite> site;
   std::optional<BuildingSpread> spread;
   std::vector<StoreySpread> storeySpread;  ///< empty, or summary.storeys values
   std::optional<BuildingLoss> loss;
