@@ -225,3 +225,44 @@ TEST_CASE("Masonry eras: before 1890 and old religious buildings, towers and chi
   inferSeismicAttributes(a, false);
   CHECK(a.notes == kNoteNone);
 }
+
+TEST_CASE("A spire, mast or antenna part is drawn but is not structure: height and storeys stop at the roof",
+          "[ingest][plausibility]") {
+  const Ingested in = ingest({fixture("appendage.osm")});
+  REQUIRE(in.model.ok());
+  // A pyramidal part that is all roof, raised on the body (the Empire State Building's mast).
+  const Building* mast = findBuilding(*in.model, "w100");
+  REQUIRE(mast != nullptr);
+  CHECK(mast->attributes.heightM == Approx(40.0f));
+  CHECK(mast->attributes.storeys == 10);  // the outline's tagged levels
+  CHECK((mast->attributes.notes & kNoteRoofAppendage) != 0);
+  REQUIRE(mast->parts.size() == 2);  // the mast is still drawn, to its tip
+  CHECK(std::max(mast->parts[0].heightM, mast->parts[1].heightM) == Approx(60.0f));
+  // man_made=tower, tower:type=communication (One World Trade Center's spire).
+  const BuildingAttributes& spire = attributesOf(*in.model, "w200");
+  CHECK(spire.heightM == Approx(80.0f));
+  CHECK(spire.storeys == 20);
+  CHECK((spire.notes & kNoteRoofAppendage) != 0);
+  // A pointed part standing on the ground is the building; a bell tower is structure.
+  const BuildingAttributes& pavilion = attributesOf(*in.model, "w300");
+  CHECK(pavilion.heightM == Approx(10.0f));
+  CHECK((pavilion.notes & kNoteRoofAppendage) == 0);
+  const BuildingAttributes& church = attributesOf(*in.model, "w400");
+  CHECK(church.heightM == Approx(35.0f));
+  CHECK((church.notes & kNoteRoofAppendage) == 0);
+}
+
+TEST_CASE("The Empire State Building and One World Trade Center stand at their roofs, not their antenna and spire",
+          "[ingest][plausibility]") {
+  const Ingested& in = manhattanSouth();
+  REQUIRE(in.model.ok());
+  // OSM: ESB height=443.2 to the antenna tip, its mast two pyramidal parts from 330 m; One WTC's
+  // outline height=417, its spire a communication tower part to 541 m.
+  const BuildingAttributes& esb = attributesOf(*in.model, "w34633854");
+  CHECK(esb.heightM == Approx(330.0f));
+  CHECK(esb.storeys == 102);
+  const BuildingAttributes& wtc = attributesOf(*in.model, "w713565776");
+  CHECK(wtc.heightM < 425.0f);
+  CHECK(wtc.heightM >= 417.0f);
+  CHECK(wtc.storeys == 94);
+}

@@ -107,6 +107,9 @@ constexpr NoteRow kNotes[] = {
      "built before 1890, before steel and concrete frames: masonry bearing walls"},
     {kNoteTraditionalMasonry, "traditional-masonry",
      "religious building, tower or chimney built before 1950 or undated: masonry bearing walls"},
+    {kNoteRoofAppendage, "roof-appendage",
+     "height and storeys stop at the roof: a spire, mast or antenna part above it is drawn but is not "
+     "structure"},
 };
 }  // namespace
 

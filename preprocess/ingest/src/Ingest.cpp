@@ -368,8 +368,27 @@ Building makeSimpleBuilding(const RawFeature& feature, Prepared& prepared, Warni
   return building;
 }
 
+/// A part that is a spire, mast or antenna on top of a building, not storeys (docs/attributes.md,
+/// "roof appendage"): man_made=mast|antenna|flagpole, man_made=tower with tower:type=communication,
+/// building:part=spire|antenna|mast, or a part raised above the ground that is all roof with a
+/// pointed shape (roof:shape pyramidal, cone, onion or spire, roof:height its whole height: the
+/// Empire State Building's mast). One World Trade Center's spire is man_made=tower,
+/// tower:type=communication.
+bool isRoofAppendage(const detail::RawTags& tags, const ResolvedHeights& h, const Prepared& part) {
+  const std::string_view manMade = tags.manMade;
+  if (manMade == "mast" || manMade == "antenna" || manMade == "flagpole") return true;
+  if (manMade == "tower" && tags.towerType == "communication") return true;
+  const std::string_view partKind = tags.buildingPart;
+  if (partKind == "spire" || partKind == "antenna" || partKind == "mast") return true;
+  const std::string_view shape = tags.roofShape;
+  const bool pointed = shape == "pyramidal" || shape == "cone" || shape == "onion" || shape == "spire";
+  return pointed && part.roofHeightTagged && h.minHeightM > 0.0f &&
+         part.roofHeightM >= (h.heightM - h.minHeightM) - 0.5f;
+}
+
 /// A building whose geometry is its parts (Simple 3D Buildings): the outline gives identity,
-/// footprint and defaults; heights are the parts'.
+/// footprint and defaults; heights are the parts'. The structural height stops at the roof: parts
+/// that are spires, masts or antennas (isRoofAppendage) are drawn but add no height or storeys.
 Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, const std::vector<std::uint32_t>& partIds,
                                std::deque<RawFeature>& features, std::vector<Prepared>& preparedParts,
                                WarningLog& warnings) {
@@ -377,6 +396,7 @@ Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, co
   BuildingAttributes& a = building.attributes;
   fillIdentity(outline, prepared, a);
   float top = 0.0f;
+  float appendageTop = 0.0f;  // the highest spire, mast or antenna part
   float bottom = std::numeric_limits<float>::infinity();
   ValueSource topSource = ValueSource::Inferred;
   std::optional<double> maxLevels = prepared.heights.levels;
@@ -401,6 +421,11 @@ Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, co
     Prepared& part = preparedParts[p];
     const std::string& partUse = part.use == "unknown" ? a.use : part.use;
     const ResolvedHeights h = resolveHeights(part.heights, partUse, prepared.heights.heightM);
+    if (isRoofAppendage(features[p].tags, h, part)) {
+      appendageTop = std::max(appendageTop, h.heightM);
+      addParts(part, features[p], h, features[p].id, building);
+      continue;
+    }
     if (part.areaM2 > largestPartAreaM2) {
       largestPartAreaM2 = part.areaM2;
       largestPartHeightM = h.heightM;
@@ -416,6 +441,8 @@ Building makeBuildingWithParts(const RawFeature& outline, Prepared& prepared, co
       maxLevels = std::max(maxLevels.value_or(0.0), *part.heights.levels);
     addParts(part, features[p], h, features[p].id, building);
   }
+  if (top <= 0.0f) top = appendageTop;  // only such parts: they are the building
+  if (appendageTop > top) a.notes |= kNoteRoofAppendage;
   a.heightM = top;
   a.minHeightM = std::isfinite(bottom) ? bottom : 0.0f;
   a.heightSource =

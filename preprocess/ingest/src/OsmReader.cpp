@@ -85,6 +85,7 @@ void keepTags(const osmium::TagList& tags, RawTags& out) {
         break;
       case 'm':
         if (key == "min_height") slot = &out.minHeight;
+        if (key == "man_made") slot = &out.manMade;
         break;
       case 'n':
         if (key == "name") slot = &out.name;
@@ -92,6 +93,9 @@ void keepTags(const osmium::TagList& tags, RawTags& out) {
       case 'r':
         if (key == "roof:shape") slot = &out.roofShape;
         if (key == "roof:height") slot = &out.roofHeight;
+        break;
+      case 't':
+        if (key == "tower:type") slot = &out.towerType;
         break;
       case 's':
         if (key == "start_date") slot = &out.startDate;

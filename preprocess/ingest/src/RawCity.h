@@ -41,6 +41,8 @@ struct RawTags {
   std::string power;           ///< power=* (plant, substation)
   std::string shop;            ///< shop=* (mall)
   std::string industrial;      ///< industrial=* (chemical, refinery, oil)
+  std::string manMade;         ///< man_made=* (a part that is a mast, antenna or tower: not storeys)
+  std::string towerType;       ///< tower:type=* (communication)
   std::string houseNumber;
   std::string street;
   std::string postcode;

@@ -21,6 +21,14 @@
 namespace qv::prep {
 namespace {
 
+// The top of what is drawn of a building (metres above ground): its height, or a taller part's (a
+// spire, mast or antenna above the roof is drawn but not in the structural height).
+float drawnTopM(const Building& b) {
+  float top = b.attributes.heightM;
+  for (const BuildingPart& p : b.parts) top = std::max(top, p.heightM);
+  return top;
+}
+
 constexpr int kMaxDepth = 16;
 constexpr double kMinCellSize = 20.0;          // metres: never split finer than a building
 constexpr std::uint16_t kMaxCoarseParts = 32;  // parts of one building in a coarse tile
@@ -145,7 +153,7 @@ void chooseCoarse(const CityModel& model, const std::vector<float>& size, Node& 
   std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(limit), order.end(), larger);
   for (auto it = order.begin() + static_cast<std::ptrdiff_t>(limit); it != order.end(); ++it) {
     const BuildingAttributes& a = model.buildings[*it].attributes;
-    node.omittedErrorM = std::max({node.omittedErrorM, static_cast<double>(a.heightM),
+    node.omittedErrorM = std::max({node.omittedErrorM, static_cast<double>(drawnTopM(model.buildings[*it])),
                                    std::sqrt(std::max(0.0, static_cast<double>(a.footprintAreaM2)))});
   }
   order.resize(limit);
@@ -510,8 +518,7 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       node.bytes = bytes.size();
       node.crc = crc32(bytes);
       node.tileBuildings = static_cast<std::uint32_t>(tile.buildings.size());
-      for (std::uint32_t b : node.buildings)
-        node.maxHeight = std::max(node.maxHeight, model.buildings[b].attributes.heightM);
+      for (std::uint32_t b : node.buildings) node.maxHeight = std::max(node.maxHeight, drawnTopM(model.buildings[b]));
       if (const Status s = writeStagedFile(staging->path() + "/" + node.file, bytes); !s.ok()) {
         const std::lock_guard lock(errorMutex);
         if (firstError.empty()) firstError = s.error();

@@ -74,6 +74,7 @@ enum AttributeNote : std::uint8_t {
   kNoteOldStoreyHeight = 8,      ///< built before 1890: storeys inferred at 19th-century floor heights
   kNotePreFrameMasonry = 16,     ///< built before 1890, before steel and concrete frames: masonry
   kNoteTraditionalMasonry = 32,  ///< a religious building, tower or chimney before 1950 (or undated): masonry
+  kNoteRoofAppendage = 64,       ///< a spire, mast or antenna part above the roof: drawn, not in the height
 };
 
 struct BuildingAttributes {
