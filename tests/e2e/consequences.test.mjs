@@ -63,6 +63,21 @@ test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool w
     }
     assert.ok(Math.abs(c.view.repairCostUsd.expected - c.city.repairCostUsd.expected) <=
       1e-4 * Math.max(1, c.city.repairCostUsd.expected));
+    // The view says which ground it covers; closer in, it covers less, inside the overview's.
+    const all = c.view.bounds;
+    assert.ok(all && all.west < all.east && all.south < all.north, JSON.stringify(all));
+    const camera = await page.evaluate(() => window.quakeview.getCamera());
+    await page.evaluate((cam) => window.quakeview.setCamera({ ...cam, distance: cam.distance / 6 }), camera);
+    await waitForFunction(page, (n) => window.quakeview.consequences().view.buildings < n, c.view.buildings,
+      { timeout: 30000 });
+    await page.waitForTimeout(500);
+    const near = (await page.evaluate(() => window.quakeview.consequences())).view.bounds;
+    assert.ok(near.west >= all.west - 1e-9 && near.east <= all.east + 1e-9 && near.south >= all.south - 1e-9 &&
+      near.north <= all.north + 1e-9, `${JSON.stringify(near)} inside ${JSON.stringify(all)}`);
+    assert.ok((near.east - near.west) * (near.north - near.south) < (all.east - all.west) * (all.north - all.south));
+    await page.evaluate((cam) => window.quakeview.setCamera(cam), camera);
+    await waitForFunction(page, (n) => window.quakeview.consequences().view.buildings === n, c.city.buildings,
+      { timeout: 30000 });
 
     // The Consequences section of the panel (open by default) leads with the headline numbers;
     // one click opens all of them, the same table; the suite's spread follows once the city-wide

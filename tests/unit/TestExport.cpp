@@ -274,7 +274,8 @@ TEST_CASE("The view's consequence sums: exact expected values, a normal 90 % int
   file.timeOfDay = "night";
   file.city = t;
   file.districts.push_back({"=Downtown", t});
-  const auto rows = readCsv(exportConsequencesCsv(file, &t));
+  const ViewArea area{-74.0123, 40.7012, -73.98115, 40.72513};
+  const auto rows = readCsv(exportConsequencesCsv(file, &t, nullptr, &area));
   REQUIRE(rows.size() == 4);
   CHECK(rows[1][0] == "city");
   CHECK(rows[2][0] == "view");
@@ -282,6 +283,17 @@ TEST_CASE("The view's consequence sums: exact expected values, a normal 90 % int
   CHECK(rows[3][1] == "'=Downtown");  // a district name cannot run a formula
   CHECK(rows[1][2] == "4");
   CHECK(rows[1][3] == "night");
+  // The view row says which ground it covers, in its area and in the bounds columns.
+  const auto& header = rows[0];
+  REQUIRE(header.size() == 4 + 15 * 3 + 4);
+  CHECK(header[header.size() - 4] == "west");
+  CHECK(header.back() == "north");
+  CHECK(rows[2][1] == "lon -74.01230..-73.98115, lat 40.70120..40.72513");
+  CHECK(rows[2][header.size() - 4] == "-74.012300");
+  CHECK(rows[2][header.size() - 1] == "40.725130");
+  CHECK(rows[1][header.size() - 4].empty());  // the city and the districts: blank
+  CHECK(rows[3].back().empty());
+  for (const auto& row : rows) CHECK(row.size() == header.size());
 }
 
 TEST_CASE("Exports say where their numbers came from and leave missing values blank", "[scene][export]") {

@@ -405,7 +405,10 @@ void App::frame(bool forced) {
   input_->setUiWantsKeyboard(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
 
   // The city's first view is framed beside the panel as it was last drawn.
-  viewer_->setFramingInsetCss(panel_.panelRightCss());
+  viewer_->setFramingInsetCss(panel_.panelRightCss(),
+                              ControlPanel::narrowLayout(canvas.cssWidth)
+                                  ? 0.0
+                                  : ControlPanel::widestPanelRightCss(static_cast<float>(canvas.cssWidth)));
   viewer_->frame(dt);
 
   // The shareable view's time and selection, once the city is there to apply them to.

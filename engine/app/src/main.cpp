@@ -156,7 +156,8 @@ EMSCRIPTEN_KEEPALIVE const char* qv_consequences() {
   const qv::Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
   if (tileset == nullptr || !tileset->response) return hand("null");
   const qv::seismic::LossTotals view = city->consequencesInView();
-  return hand(qv::consequencesJson(&*tileset->response, city->consequences(), &view));
+  const std::optional<qv::ViewArea> area = gApp->viewer().viewArea();
+  return hand(qv::consequencesJson(&*tileset->response, city->consequences(), &view, area ? &*area : nullptr));
 }
 
 EMSCRIPTEN_KEEPALIVE int qv_select(const char* id) {

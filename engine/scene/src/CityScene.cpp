@@ -429,12 +429,21 @@ void CityScene::countDamageInView() {
   if (viewChanged) {
     damageInView_.fill(0);
     lossInView_.clear();
+    viewBox_.reset();
     for (std::uint32_t i : selection_.draw) {
       const TileRuntime& t = *tiles_[i];
       if (!t.loaded) continue;
       for (const IndexRange& r : t.inView) {
         for (std::uint32_t p = r.begin; p < r.end; ++p) {
           const std::uint32_t b = t.loaded->tree.order()[p];
+          if (b < t.loaded->data.buildings.size()) {
+            const BuildingAttributes& a = t.loaded->data.buildings[b].attributes;
+            const double x = a.centroidX + t.loaded->data.originX;
+            const double y = a.centroidY + t.loaded->data.originY;
+            if (!viewBox_) viewBox_ = std::array<double, 4>{x, y, x, y};
+            std::array<double, 4>& box = *viewBox_;
+            box = {std::min(box[0], x), std::min(box[1], y), std::max(box[2], x), std::max(box[3], y)};
+          }
           const DamageState d =
               t.summary && b < t.summary->buildings.size() ? t.summary->buildings[b].damage : DamageState::NoResult;
           ++damageInView_[d == DamageState::NoResult ? 5 : static_cast<std::size_t>(d)];

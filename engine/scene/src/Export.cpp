@@ -329,14 +329,15 @@ std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const Ge
 }
 
 std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, const seismic::LossTotals* view,
-                                  const ExportProvenance* provenance) {
+                                  const ExportProvenance* provenance, const ViewArea* viewArea) {
   const char* const names[] = {"none",       "slight",     "moderate",   "extensive", "complete",
                                "collapsed",  "tag_green",  "tag_yellow", "tag_red",   "occupants",
                                "injuries_1", "injuries_2", "injuries_3", "deaths",    "repair_cost_usd"};
   std::string out = preamble("consequences", provenance) + "area_kind,area,buildings,time_of_day";
   for (const char* n : names) out += std::string(",") + n + "," + n + "_low," + n + "_high";
-  out += "\r\n";
-  auto row = [&](std::string_view kind, std::string_view area, const seismic::LossTotals& t) {
+  out += ",west,south,east,north\r\n";
+  auto row = [&](std::string_view kind, std::string_view area, const seismic::LossTotals& t,
+                 const ViewArea* bounds = nullptr) {
     const seismic::Estimate* values[] = {&t.damageStates[0], &t.damageStates[1], &t.damageStates[2], &t.damageStates[3],
                                          &t.damageStates[4], &t.collapsed,       &t.tags[0],         &t.tags[1],
                                          &t.tags[2],         &t.occupants,       &t.injuries[0],     &t.injuries[1],
@@ -346,10 +347,16 @@ std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, cons
     for (const seismic::Estimate* e : values) {
       out += ',' + number(e->expected, 4) + ',' + number(e->low, 4) + ',' + number(e->high, 4);
     }
+    if (bounds != nullptr) {
+      out += ',' + number(bounds->west, 6) + ',' + number(bounds->south, 6) + ',' + number(bounds->east, 6) + ',' +
+             number(bounds->north, 6);
+    } else {
+      out += ",,,,";
+    }
     out += "\r\n";
   };
   row("city", "", totals.city);
-  if (view != nullptr) row("view", "", *view);
+  if (view != nullptr) row("view", viewArea != nullptr ? viewAreaText(*viewArea) : std::string(), *view, viewArea);
   for (const seismic::ConsequenceTotals::District& d : totals.districts) row("district", d.name, d.totals);
   return out;
 }

@@ -79,8 +79,14 @@ void writeTotals(JsonWriter& w, const seismic::LossTotals& t) {
 
 }  // namespace
 
+std::string viewAreaText(const ViewArea& a) {
+  char text[96];
+  std::snprintf(text, sizeof text, "lon %.5f..%.5f, lat %.5f..%.5f", a.west, a.east, a.south, a.north);
+  return text;
+}
+
 std::string consequencesJson(const ResponseInfo* response, const seismic::ConsequenceTotals* file,
-                             const seismic::LossTotals* view) {
+                             const seismic::LossTotals* view, const ViewArea* viewArea) {
   if (response == nullptr) return "null";
   JsonWriter w;
   w.beginObject();
@@ -109,6 +115,12 @@ std::string consequencesJson(const ResponseInfo* response, const seismic::Conseq
   if (view != nullptr && file != nullptr) {
     w.key("view").beginObject();
     writeTotals(w, *view);
+    if (viewArea != nullptr) {
+      w.key("bounds").beginObject().field("west", viewArea->west).field("south", viewArea->south);
+      w.field("east", viewArea->east).field("north", viewArea->north).endObject();
+    } else {
+      w.key("bounds").null();
+    }
     w.endObject();
   } else {
     w.key("view").null();

@@ -116,7 +116,8 @@ bool Viewer::setTime(double seconds) {
   return true;
 }
 
-void Viewer::setFramingInsetCss(double left) {
+void Viewer::setFramingInsetCss(double left, double widestLeft) {
+  widestInsetCss_ = std::isfinite(widestLeft) ? widestLeft : -1.0;
   const double inset = std::isfinite(left) ? std::max(left, 0.0) : 0.0;
   // The panel's width follows its content (the consequences arriving, a section opened): once the
   // city is framed the view keeps its place unless the inset changes by more than
@@ -158,8 +159,11 @@ void Viewer::frameCityOnce() {
   duration_ = city_->duration();
   CameraState overview = city_->overviewCamera(camera_.fovDeg);
   // The panels cover the left of the canvas: the lens shift (lensShift) puts the city's centre in
-  // the middle of the rest; seen from a little farther, it still fits there.
-  overview.distance *= 1.0 + 0.5 * static_cast<double>(lensShift());
+  // the middle of the rest; seen from a little farther, it still fits there, also beside the
+  // widest panel the layout allows (the same first view whenever the panel's content arrives).
+  const double widest = widestInsetCss_ >= 0.0 ? std::min(widestInsetCss_, widthCss_ * 0.6) : -1.0;
+  const double shift = widest >= 0.0 && widthCss_ > 0.0 ? widest / widthCss_ : static_cast<double>(lensShift());
+  overview.distance *= 1.0 + 0.5 * shift;
   controller_.setHome(overview);
   if (!cameraSetByUser_) camera_ = overview;
   if (const Tileset* tileset = city_->tileset()) geo_ = GeoFrame(tileset->originLon, tileset->originLat);
@@ -367,6 +371,23 @@ void Viewer::flyTo(double x, double y, double distance) {
   sanitizeCamera(to, camera_);
   flight_ = Flight{camera_, to, 0.0, 1.2};
   cameraSetByUser_ = true;
+}
+
+std::optional<ViewArea> Viewer::viewArea() const {
+  if (city_ == nullptr || !city_->viewBox() || !geo_.valid()) return std::nullopt;
+  const std::array<double, 4>& box = *city_->viewBox();
+  const auto southWest = geo_.reverse({box[0], box[1]});
+  const auto northEast = geo_.reverse({box[2], box[3]});
+  if (!southWest || !northEast) return std::nullopt;
+  // Transverse Mercator bends meridians: the box's other corners may reach a little further.
+  const auto northWest = geo_.reverse({box[0], box[3]});
+  const auto southEast = geo_.reverse({box[2], box[1]});
+  ViewArea a;
+  a.west = std::min(southWest->lon, northWest ? northWest->lon : southWest->lon);
+  a.east = std::max(northEast->lon, southEast ? southEast->lon : northEast->lon);
+  a.south = std::min(southWest->lat, southEast ? southEast->lat : southWest->lat);
+  a.north = std::max(northEast->lat, northWest ? northWest->lat : northEast->lat);
+  return a;
 }
 
 bool Viewer::flyToSelection() {

@@ -365,13 +365,18 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   if (w.button("Export totals (CSV)")) {
     // The totals are the whole city's (and the view's): the list filters do not apply to them.
     const ExportProvenance provenance = exportProvenance(*tileset, BuildingFilters{});
+    const std::optional<ViewArea> area = viewer.viewArea();
     host.download(exportFileName(*tileset, BuildingFilters{}, "consequences", "csv"), "text/csv",
-                  exportConsequencesCsv(*file, &view, &provenance));
+                  exportConsequencesCsv(*file, &view, &provenance, area ? &*area : nullptr));
   }
   w.sameLine();
   // The view as a PNG, with the event, the city and the attribution under it (quakeview.screenshot()).
   if (w.button("Save image (PNG)")) host.saveImage();
   ImGui::Unindent();
+}
+
+float ControlPanel::widestPanelRightCss(float cssWidth) {
+  return 10.0f + std::max(200.0f, std::min(520.0f, cssWidth - 20.0f));
 }
 
 void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
@@ -385,7 +390,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   // tablet in portrait.
   const bool narrow = narrowLayout(display.x);
   if (narrow) ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
-  const float maxWidth = std::max(200.0f, std::min(520.0f, display.x - 20.0f));
+  const float maxWidth = widestPanelRightCss(display.x) - 10.0f;
   const float overlayLeft = overlayLeft_ >= 0.0f ? overlayLeft_ : display.x - kOverlayWidthGuessPx;
   const bool clearOverlay = narrow || 10.0f + maxWidth + 10.0f > overlayLeft;
   const float maxHeight = std::max(200.0f, display.y - 20.0f - (clearOverlay ? overlayRoom() : 0.0f));

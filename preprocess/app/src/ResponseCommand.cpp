@@ -1,7 +1,8 @@
-// quakeview-prep response --city DIR (--motion FILE|FOLDER... [--dt S] [--units U] [--motion-y FILE] |
-//   --synthetic SEED...) [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M | --shakemap grid.xml]
+// quakeview-prep response --city DIR [--motion FILE|FOLDER... [--dt S] [--units U] [--motion-y FILE] |
+//   --synthetic SEED...] [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M | --shakemap grid.xml]
 //   [--scale-by sa|pga] [--outside-grid error|skip] [--time-of-day night|day|commute] [--districts F]
 #include <cstdio>
+#include <iterator>
 
 #include "Commands.h"
 #include "Summary.h"
@@ -13,8 +14,8 @@ namespace qv::prep {
 namespace {
 
 const char* const kUsage =
-    "usage: quakeview-prep response --city DIR (--motion FILE|FOLDER... [--dt S] [--units g|m/s2|cm/s2]\n"
-    "                               [--motion-y FILE] | --synthetic SEED...) [--pga G]\n"
+    "usage: quakeview-prep response --city DIR [--motion FILE|FOLDER... [--dt S] [--units g|m/s2|cm/s2]\n"
+    "                               [--motion-y FILE] | --synthetic SEED...] [--pga G]\n"
     "                               [--shakemap GRID.xml [--outside-grid error|skip]\n"
     "                                | --epicentre LON,LAT,DEPTH_KM --magnitude M [--vs30 M_PER_S]\n"
     "                                  [--site-factor F]] [--wave-speed KM_PER_S] [--scale-by sa|pga]\n"
@@ -27,6 +28,8 @@ const char* const kUsage =
     "                     folders of them: the suite; --dt and --units for files that do not say;\n"
     "                     --motion-y a second component (with one record)\n"
     "  --synthetic SEED.. synthetic Kanai-Tajimi motions (two components each) instead of records\n"
+    "                     (with --shakemap or --epicentre and neither: the built-in default suite,\n"
+    "                     seeds 1-5, docs/seismic.md)\n"
     "  --pga G            scale the record(s) to this peak ground acceleration (g), without a field\n"
     "  --shakemap GRID    a USGS ShakeMap grid.xml (3.5 or 4): each building's shaking from the grid at\n"
     "                     its footprint centre, delayed by the S-wave travel time from its epicentre;\n"
@@ -66,8 +69,21 @@ int runResponse(const CommandArgs& argv) {
   if (!city) return usage("--city DIR is required");
   ResponseRunOptions options;
   const bool hasMotion = args->has("motion"), hasSynthetic = args->has("synthetic");
-  if (hasMotion == hasSynthetic) return usage("give exactly one of --motion FILE and --synthetic SEED");
-  if (hasSynthetic) {
+  const bool hasField = args->has("shakemap") || args->has("epicentre") || args->has("epicenter");
+  if (hasMotion && hasSynthetic) return usage("give one of --motion FILE and --synthetic SEED, not both");
+  if (!hasMotion && !hasSynthetic && !hasField) {
+    return usage(
+        "give the records (--motion FILE or --synthetic SEED), or a shaking field (--shakemap or "
+        "--epicentre), which uses the built-in default suite");
+  }
+  if (!hasMotion && !hasSynthetic) {
+    // A ShakeMap or a scenario without records: the built-in default suite (docs/seismic.md).
+    options.syntheticSeeds.assign(std::begin(kDefaultSuiteSeeds), std::end(kDefaultSuiteSeeds));
+    options.defaultSuite = true;
+    if (args->has("motion-y") || args->has("dt") || args->has("units")) {
+      return usage("--motion-y, --dt and --units go with --motion");
+    }
+  } else if (hasSynthetic) {
     for (const std::string& text : args->values("synthetic")) {
       const auto seed = parseInteger(text);
       if (!seed || *seed < 0) return usage("--synthetic SEED must be a whole number >= 0, not '" + text + "'");

@@ -134,8 +134,9 @@ Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options) {
     r.y = std::move(pair->second);
     r.hasY = true;
     char buffer[128];
-    std::snprintf(buffer, sizeof buffer, "synthetic Kanai-Tajimi, seed %llu, PGA %.2f g, %.0f s",
-                  static_cast<unsigned long long>(p.seed), p.peakGroundAccelerationG, p.durationS);
+    std::snprintf(buffer, sizeof buffer, "%ssynthetic Kanai-Tajimi, seed %llu, PGA %.2f g, %.0f s",
+                  options.defaultSuite ? "built-in default suite: " : "", static_cast<unsigned long long>(p.seed),
+                  p.peakGroundAccelerationG, p.durationS);
     r.description = buffer;
     records.push_back(std::move(r));
   }

@@ -204,6 +204,9 @@ class CityScene {
   /// The consequences of the buildings in view (expected values and a normal-approximation 90 %
   /// interval, qv/scene/ViewConsequences.h); zeros without HAZUS results.
   [[nodiscard]] seismic::LossTotals consequencesInView() const { return lossInView_.totals(); }
+  /// The box (city frame, metres: min x, min y, max x, max y) around the footprint centres of the
+  /// buildings damageInView counts, from the last frame; nullopt when none is in view.
+  [[nodiscard]] const std::optional<std::array<double, 4>>& viewBox() const { return viewBox_; }
   /// The city's and districts' totals (the response's consequences.json) once loaded; nullptr before,
   /// after a failure (consequencesFailed) and for responses without them.
   [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return index_.consequences(); }
@@ -348,6 +351,7 @@ class CityScene {
   bool showLod2_ = true;
   [[nodiscard]] bool hiddenByLod(std::uint8_t lod) const;
   std::array<std::uint64_t, 6> damageInView_{};
+  std::optional<std::array<double, 4>> viewBox_;
   ConsequenceSums lossInView_;
   std::uint64_t viewSignature_ = 0;  // visible sets and summaries behind damageInView_
   std::string seriesFor_;

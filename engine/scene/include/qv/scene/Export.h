@@ -7,6 +7,7 @@
 
 #include "qv/geometry/GeoFrame.h"
 #include "qv/scene/CityScene.h"
+#include "qv/scene/ViewConsequences.h"
 #include "qv/seismic/ConsequencesFile.h"
 
 namespace qv {
@@ -91,9 +92,12 @@ std::string exportGeoJson(std::span<const BuildingListEntry> buildings, const Ge
 /// time_of_day, then for each quantity its expected value and the 5th
 /// and 95th percentiles (`_low`, `_high`): none, slight, moderate, extensive, complete (expected
 /// building counts), collapsed, tag_green, tag_yellow, tag_red, occupants, injuries_1 .. injuries_3,
-/// deaths, repair_cost_usd. Text fields are made safe as in exportCsv; byte-order mark and
-/// provenance comment line as in exportCsv ("# QuakeView consequences | ...").
+/// deaths, repair_cost_usd, then the view's ground: west, south, east, north (degrees around the
+/// footprint centres of the buildings it counts; blank on the other rows and without `viewArea`),
+/// the view row's `area` saying the same ("lon …..…, lat …..…", viewAreaText). Text fields are made
+/// safe as in exportCsv; byte-order mark and provenance comment line as in exportCsv
+/// ("# QuakeView consequences | ...").
 std::string exportConsequencesCsv(const seismic::ConsequenceTotals& totals, const seismic::LossTotals* view,
-                                  const ExportProvenance* provenance = nullptr);
+                                  const ExportProvenance* provenance = nullptr, const ViewArea* viewArea = nullptr);
 
 }  // namespace qv

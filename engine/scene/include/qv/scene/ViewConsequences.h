@@ -46,13 +46,22 @@ class ConsequenceSums {
   double occupants_ = 0.0;
 };
 
+/// The ground a view's totals cover: the box around the footprint centres of the buildings they
+/// count, in degrees (Viewer::viewArea).
+struct ViewArea {
+  double west = 0.0, south = 0.0, east = 0.0, north = 0.0;
+};
+/// "lon -74.01230..-73.98110, lat 40.70120..40.72510" (5 decimals: about a metre).
+std::string viewAreaText(const ViewArea& area);
+
 /// `quakeview.consequences()` JSON: {eventType ("SCENARIO", "ACTUAL" or null), shakingField,
 /// shakemap ({eventId, version, processTimestamp, eventTimestamp, description} or null), timeOfDay,
-/// city, view (totals or null), districts: [{name, ...totals}]}, totals being {buildings,
+/// city, view (totals with `bounds` {west, south, east, north}, the degrees around the buildings
+/// counted, null when none is in view; or null), districts: [{name, ...totals}]}, totals being {buildings,
 /// damageStates: {none, slight, moderate, extensive, complete}, collapsed, occupants, injuries:
 /// {severity1 .. severity4}, deaths, repairCostUsd, tags: {green, yellow, red}}, every estimate
 /// {expected, low, high}. "null" without a response.
 std::string consequencesJson(const ResponseInfo* response, const seismic::ConsequenceTotals* file,
-                             const seismic::LossTotals* view);
+                             const seismic::LossTotals* view, const ViewArea* viewArea = nullptr);
 
 }  // namespace qv

@@ -16,6 +16,7 @@
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
 #include "qv/scene/TestScene.h"
+#include "qv/scene/ViewConsequences.h"
 
 namespace qv {
 
@@ -50,7 +51,10 @@ class Viewer {
   /// the view's centre (the looked-at point) is drawn in the middle of the rest, and the city's
   /// first view (and home, R) is framed to fit there. Once the city is framed, changes of at most
   /// kFramingInsetStepCss are ignored (the panel's width follows its content; the view stays put).
-  void setFramingInsetCss(double left);
+  /// `widestLeft` (>= 0) is the most the panels may cover in this layout: the first view's distance
+  /// is chosen to fit beside that, so it does not depend on how wide the panel happened to be drawn
+  /// when the manifest arrived (its content still loading); < 0: the current inset.
+  void setFramingInsetCss(double left, double widestLeft = -1.0);
   static constexpr double kFramingInsetStepCss = 120.0;
   /// The view's lens shift from the inset (CameraView's shiftNdcX).
   [[nodiscard]] float lensShift() const;
@@ -125,6 +129,9 @@ class Viewer {
   [[nodiscard]] std::optional<glm::dvec2> groundAt(double cssX, double cssY) const;
   /// The geographic frame of the city (invalid before the manifest arrives or for the test scene).
   [[nodiscard]] const GeoFrame& geo() const { return geo_; }
+  /// The ground the view's totals cover (CityScene::viewBox in degrees); nullopt without a city,
+  /// with nothing in view or before the manifest gives the frame.
+  [[nodiscard]] std::optional<ViewArea> viewArea() const;
   [[nodiscard]] bool showFeet() const { return showFeet_; }
   void setShowFeet(bool feet) { showFeet_ = feet; }
   /// Metres of the city frame per CSS pixel at the looked-at point.
@@ -163,6 +170,7 @@ class Viewer {
   bool timeChosen_ = false;      // setTime() was called (a link, the user): the opening time stays
   bool openingTimeSet_ = false;  // the first view was moved to the shaking's arrival
   double framingInsetCss_ = 0.0;
+  double widestInsetCss_ = -1.0;  // setFramingInsetCss's widestLeft
   double duration_ = 0.0;
   double speed_ = 1.0;
   float amplitude_ = 1.0f;

@@ -71,6 +71,9 @@ class ControlPanel {
   /// The bottom sheet's greatest height, as a fraction of the canvas height.
   static constexpr float kBottomSheetFraction = 0.4f;
   [[nodiscard]] static bool narrowLayout(double cssWidth) { return cssWidth < static_cast<double>(kNarrowWidthCss); }
+  /// The right edge of the widest the main panel may be drawn on a canvas `cssWidth` wide (CSS px;
+  /// 0 in the narrow layout, where it folds over the bottom): Viewer::setFramingInsetCss's widestLeft.
+  [[nodiscard]] static float widestPanelRightCss(float cssWidth);
 
   /// Draws every window for this frame. Call between ImGui::NewFrame and ImGui::Render.
   void draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);

@@ -22,17 +22,24 @@
 namespace qv::prep {
 
 enum class ScaleBy { SpectralAcceleration, Pga };
+
+/// The built-in default suite (docs/seismic.md, "The default suite"): what `response` analyses
+/// under a ShakeMap or a scenario when no record is given: synthetic Kanai-Tajimi motions (two
+/// components each) of these seeds, each scaled per building and direction to the field's target
+/// like any suite. Named in the manifest's records as "built-in default suite: ...".
+inline constexpr std::uint64_t kDefaultSuiteSeeds[] = {1, 2, 3, 4, 5};
 enum class OutsideGrid { Error, Skip };
 
 struct ResponseRunOptions {
   /// Record files or folders of records (--motion, repeatable): the suite. Every building is analysed
   /// under every record. Empty with syntheticSeeds.
   std::vector<std::string> motions;
-  std::string motionY;                                     ///< optional second component (one record only)
-  std::optional<double> timeStepS;                         ///< --dt for files without one
-  std::optional<seismic::AccelerationUnit> units;          ///< --units for files that do not say
-  std::vector<std::uint64_t> syntheticSeeds;               ///< --synthetic SEED...: one two-component record each
-  std::optional<double> pgaG;                              ///< --pga: scale the record(s) to this peak (g)
+  std::string motionY;                             ///< optional second component (one record only)
+  std::optional<double> timeStepS;                 ///< --dt for files without one
+  std::optional<seismic::AccelerationUnit> units;  ///< --units for files that do not say
+  std::vector<std::uint64_t> syntheticSeeds;       ///< --synthetic SEED...: one two-component record each
+  bool defaultSuite = false;   ///< syntheticSeeds are kDefaultSuiteSeeds, chosen for a field without records
+  std::optional<double> pgaG;  ///< --pga: scale the record(s) to this peak (g)
   std::optional<seismic::Scenario> scenario;               ///< --epicentre ... --magnitude ...
   std::string shakemap;                                    ///< --shakemap grid.xml
   ScaleBy scaleBy = ScaleBy::SpectralAcceleration;         ///< with a scenario or a ShakeMap
