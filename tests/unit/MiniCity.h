@@ -161,6 +161,7 @@ struct MiniCity {
         r.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
         for (int k = 0; k < kStoreys; ++k) summary.storeyPeakDrift.push_back(storeyDrift(r, k));
         summary.buildings.push_back(r);
+        if (withResponse) summary.sites.push_back(siteOf(i, j));
       }
     }
     const auto indexBytes = encodeSearchIndex(index);
@@ -189,6 +190,18 @@ struct MiniCity {
     r.peakRoofDisplacementM = static_cast<float>(amplitude(i, j));
     r.peakDriftRatio = static_cast<float>(amplitude(i, j) / (kStoreys * kStoreyHeight));
     return r;
+  }
+  /// The ShakeMap's values at building (i, j): PGA 0.1 g + 0.01 g per cell from the corner; no MMI.
+  static BuildingSite siteOf(int i, int j) {
+    BuildingSite s;
+    s.source = SiteSource::ShakeMap;
+    s.pgaG = 0.1f + 0.01f * static_cast<float>(i + j);
+    s.pgvCmS = 8.0f;
+    s.psa03G = 2.0f * s.pgaG;
+    s.psa10G = 0.5f * s.pgaG;
+    s.psa30G = 0.1f * s.pgaG;
+    s.vs30Mps = 400.0f;
+    return s;
   }
   static float storeyDrift(const BuildingResponse& r, int storey) {
     return r.peakDriftRatio * (1.0f + 0.1f * static_cast<float>(storey));
@@ -264,6 +277,7 @@ struct MiniCity {
       r.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
       for (int s = 0; s < kStoreys; ++s) summary.storeyPeakDrift.push_back(storeyDrift(r, s));
       summary.buildings.push_back(r);
+      summary.sites.push_back(siteOf(i, j));
 
       BuildingHistory h;
       h.floors = kStoreys;

@@ -166,6 +166,10 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
   CHECK(text.find("Peak drift per storey (storey 1 = ground, left), fixed scale 0 to ") != std::string::npos);
   CHECK(text.find("Storeys by the state their drift reaches: ") != std::string::npos);
   CHECK(text.find("OpenStreetMap") == std::string::npos);  // a synthetic id has no OSM object
+  // The site's own shaking (s10 is cell (1, 1): PGA 0.12 g), then the scaled record's PGA, named so.
+  CHECK(text.find("Shaking at the site (ShakeMap): PGA 0.120 g, PGV 8.0 cm/s, PSA 0.3 s 0.240 g, PSA 1.0 s 0.060 g, "
+                  "PSA 3.0 s 0.012 g, Vs30 400 m/s") != std::string::npos);
+  CHECK(text.find("Record's PGA (scaled): ") != std::string::npos);
 
   // Feet on request.
   viewer.setShowFeet(true);
@@ -197,6 +201,7 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
   CHECK(csv.find("| Filter: damage at least extensive\r\nid,name,address,use,importance,damage_state") !=
         std::string::npos);
   CHECK(csv.find(",-74.0") != std::string::npos);  // longitudes near the origin
+  CHECK(csv.find(",shakemap,") != std::string::npos);  // the site's shaking travels with each row
   const std::string geojson = panel.exportList(viewer, "geojson", host);
   CHECK(geojson.find("\"type\":\"FeatureCollection\"") != std::string::npos);
 }
