@@ -89,6 +89,10 @@ struct City {
   }
   ~City() { std::filesystem::remove_all(dir); }
   [[nodiscard]] std::string path() const { return "'" + dir + "/city'"; }
+  /// `info --building w<id> --json` of the city.
+  [[nodiscard]] std::string buildingJson(int id) const {
+    return run("info " + path() + " --building w" + std::to_string(id) + " --json").output;
+  }
 };
 
 simdjson::dom::element parse(simdjson::dom::parser& parser, const std::string& json) {
@@ -223,8 +227,7 @@ TEST_CASE("response under a uniform ShakeMap hits its targets: Sa(T1) by default
     CHECK(std::string(doc["event_type"].get_string().value()) == "ACTUAL");
     for (int id = 1; id <= 5; ++id) {
       simdjson::dom::parser p;
-      const auto building =
-          parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+      const auto building = parse(p, city.buildingJson(id));
       const auto s = building["spectral_scaling"]["x"];
       const double period = number(s["period_s"]);
       CHECK(number(s["target_sa_g"]) == Approx(targetSa(0.30, 0.60, 0.25, 0.08, period)).epsilon(1e-4));
@@ -250,8 +253,7 @@ TEST_CASE("response under a uniform ShakeMap hits its targets: Sa(T1) by default
     REQUIRE(response.exitCode == 0);
     for (int id = 1; id <= 5; ++id) {
       simdjson::dom::parser p;
-      const auto building =
-          parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+      const auto building = parse(p, city.buildingJson(id));
       CHECK(number(building["pga_g"]) == Approx(0.30).epsilon(1e-4));
     }
   }
@@ -376,8 +378,7 @@ TEST_CASE("A scenario's site shaking is its model's medians: the PGA the record 
   REQUIRE(response.exitCode == 0);
   for (int id = 1; id <= 5; ++id) {
     simdjson::dom::parser p;
-    const auto building =
-        parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+    const auto building = parse(p, city.buildingJson(id));
     const auto site = building["site_shaking"];
     CHECK(std::string(site["source"].get_string().value()) == "scenario");
     // Scaled by PGA: the record peaks at the site's median PGA.
@@ -413,7 +414,7 @@ TEST_CASE("A ShakeMap alone runs under the built-in default suite, named as such
     }
     for (int id = 1; id <= 5; ++id) {
       simdjson::dom::parser p;
-      const auto b = parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+      const auto b = parse(p, city.buildingJson(id));
       CHECK(b["suite"]["records"].get_uint64().value() == 5);
       drifts.push_back(number(b["peak_drift_ratio"].at(0)));
     }
@@ -422,7 +423,7 @@ TEST_CASE("A ShakeMap alone runs under the built-in default suite, named as such
   REQUIRE(run("response --city " + city.path() + " --shakemap '" + grid + "' --synthetic 1 2 3 4 5").exitCode == 0);
   for (int id = 1; id <= 5; ++id) {
     simdjson::dom::parser p;
-    const auto b = parse(p, run("info " + city.path() + " --building w" + std::to_string(id) + " --json").output);
+    const auto b = parse(p, city.buildingJson(id));
     CHECK(number(b["peak_drift_ratio"].at(0)) == drifts[static_cast<std::size_t>(id - 1)]);
   }
   // Without a field there is no default: the records must be given.
