@@ -200,7 +200,7 @@ TEST_CASE("Selecting a building shows its inspection window and exports list the
   CHECK(csv.rfind("\xEF\xBB\xBF# QuakeView building list | Shaking: SCENARIO", 0) == 0);
   CHECK(csv.find("| Filter: damage at least extensive\r\nid,name,address,use,importance,damage_state") !=
         std::string::npos);
-  CHECK(csv.find(",-74.0") != std::string::npos);  // longitudes near the origin
+  CHECK(csv.find(",-74.0") != std::string::npos);      // longitudes near the origin
   CHECK(csv.find(",shakemap,") != std::string::npos);  // the site's shaking travels with each row
   const std::string geojson = panel.exportList(viewer, "geojson", host);
   CHECK(geojson.find("\"type\":\"FeatureCollection\"") != std::string::npos);

@@ -165,8 +165,10 @@ function wrapPuppeteerPage(page, downloads) {
     down: async (opts) => settled(await page.mouse.down(opts)),
     up: async (opts) => settled(await page.mouse.up(opts)),
     click: async (x, y, opts) => settled(await page.mouse.click(x, y, opts)),
-    // Playwright: wheel(deltaX, deltaY); puppeteer: wheel({deltaX, deltaY}).
-    wheel: async (deltaX, deltaY) => settled(await page.mouse.wheel({ deltaX, deltaY })),
+    // Playwright: wheel(deltaX, deltaY); puppeteer: wheel({deltaX, deltaY}). WebDriver BiDi takes
+    // whole pixels only (Firefox refuses 840.5 as "invalid argument").
+    wheel: async (deltaX, deltaY) =>
+      settled(await page.mouse.wheel({ deltaX: Math.round(deltaX), deltaY: Math.round(deltaY) })),
   };
   // Playwright's key names are the DOM `code`/`key` names; puppeteer's US layout knows the space
   // bar only as ' '.
