@@ -97,6 +97,22 @@ bool startsWithFormula(const std::string& field) {
   return !field.empty() && std::string("=+-@\t\r").find(field.front()) != std::string::npos;
 }
 
+// "midtown" under an ACTUAL ShakeMap (us7000abcd version 3), as the exports' provenance reads it.
+Tileset actualShakeMapCity() {
+  Tileset tileset;
+  tileset.name = "midtown";
+  ResponseInfo r;
+  r.eventType = "ACTUAL";
+  r.shakingField = "shakemap";
+  r.method = "MDOF shear building, Bouc-Wen";
+  r.shakemap = ResponseInfo::ShakeMap{};
+  r.shakemap->eventId = "us7000abcd";
+  r.shakemap->version = "3";
+  r.shakemap->description = "M 5.8 - 10 km SW of Somewhere, NY";
+  tileset.response = r;
+  return tileset;
+}
+
 }  // namespace
 
 TEST_CASE("CSV export: formula triggers are neutralised, text round-trips, numbers stay numbers", "[scene][export]") {
@@ -297,19 +313,9 @@ TEST_CASE("The view's consequence sums: exact expected values, a normal 90 % int
 }
 
 TEST_CASE("Exports say where their numbers came from and leave missing values blank", "[scene][export]") {
-  Tileset tileset;
-  tileset.name = "midtown";
-  ResponseInfo r;
-  r.eventType = "ACTUAL";
-  r.shakingField = "shakemap";
-  r.method = "MDOF shear building, Bouc-Wen";
-  r.records = {"RSN1 ELCENTRO, 180", "synthetic seed 2"};
-  r.timeOfDay = "day";
-  r.shakemap = ResponseInfo::ShakeMap{};
-  r.shakemap->eventId = "us7000abcd";
-  r.shakemap->version = "3";
-  r.shakemap->description = "M 5.8 - 10 km SW of Somewhere, NY";
-  tileset.response = r;
+  Tileset tileset = actualShakeMapCity();
+  tileset.response->records = {"RSN1 ELCENTRO, 180", "synthetic seed 2"};
+  tileset.response->timeOfDay = "day";
   BuildingFilters filters;
   filters.minDamage = 2;
   filters.use = "school";
@@ -453,18 +459,8 @@ TEST_CASE("Exports call only essential facilities, schools and shelters critical
 
 TEST_CASE("A picture of the view carries the event, the city, the time, the filters and the attribution",
           "[scene][export]") {
-  Tileset tileset;
-  tileset.name = "midtown";
+  Tileset tileset = actualShakeMapCity();
   tileset.sources = {"nyc-manhattan-south-buildings.osm.pbf"};
-  ResponseInfo r;
-  r.eventType = "ACTUAL";
-  r.shakingField = "shakemap";
-  r.method = "MDOF shear building, Bouc-Wen";
-  r.shakemap = ResponseInfo::ShakeMap{};
-  r.shakemap->eventId = "us7000abcd";
-  r.shakemap->version = "3";
-  r.shakemap->description = "M 5.8 - 10 km SW of Somewhere, NY";
-  tileset.response = r;
   BuildingFilters filters;
   filters.minDamage = 2;
   const ImageCaption c = imageCaption(tileset, filters, 12.04, 38.0);
