@@ -29,7 +29,7 @@ const char* const kUsage =
     "                     --motion-y a second component (with one record)\n"
     "  --synthetic SEED.. synthetic Kanai-Tajimi motions (two components each) instead of records\n"
     "                     (with --shakemap or --epicentre and neither: the built-in default suite,\n"
-    "                     seeds 1-5, docs/seismic.md)\n"
+    "                     seeds 1-5 matched to each site's target spectrum, docs/seismic.md)\n"
     "  --pga G            scale the record(s) to this peak ground acceleration (g), without a field\n"
     "  --shakemap GRID    a USGS ShakeMap grid.xml (3.5 or 4): each building's shaking from the grid at\n"
     "                     its footprint centre, delayed by the S-wave travel time from its epicentre;\n"

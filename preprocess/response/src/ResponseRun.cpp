@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <thread>
 
@@ -123,8 +124,12 @@ Result<std::vector<std::string>> expandMotionPaths(const std::vector<std::string
   return out;
 }
 
-Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options) {
+// The records of --motion and --synthetic. The default suite under a field it can be matched to is
+// made later, per site shape (defaultSuiteRecords); here only when it cannot (a ShakeMap without
+// PSA fields): the seeds' Kanai-Tajimi motions as they are.
+Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options, bool matchedDefaultSuite) {
   std::vector<Record> records;
+  if (matchedDefaultSuite) return records;
   for (const std::uint64_t seed : options.syntheticSeeds) {
     seismic::SyntheticMotionParameters p;
     p.seed = seed;
@@ -135,10 +140,11 @@ Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options) {
     r.x = std::move(pair->first);
     r.y = std::move(pair->second);
     r.hasY = true;
-    char buffer[128];
-    std::snprintf(buffer, sizeof buffer, "%ssynthetic Kanai-Tajimi, seed %llu, PGA %.2f g, %.0f s",
-                  options.defaultSuite ? "built-in default suite: " : "", static_cast<unsigned long long>(p.seed),
-                  p.peakGroundAccelerationG, p.durationS);
+    char buffer[192];
+    std::snprintf(
+        buffer, sizeof buffer, "%ssynthetic Kanai-Tajimi, seed %llu, PGA %.2f g, %.0f s",
+        options.defaultSuite ? "built-in default suite (not spectrum-matched: the ShakeMap has no PSA): " : "",
+        static_cast<unsigned long long>(p.seed), p.peakGroundAccelerationG, p.durationS);
     r.description = buffer;
     records.push_back(std::move(r));
   }
@@ -190,6 +196,76 @@ Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options) {
     if (!(r.peakG > 0.0)) return Error{r.description + ": the record is all zeros"};
   }
   return records;
+}
+
+// The response spectra a record's scaling by Sa(T1) reads.
+Status computeSpectra(Record& r) {
+  auto x = seismic::ResponseSpectrum::compute(r.x);
+  if (!x.ok()) return fail(r.description + ": " + x.error());
+  r.spectrumX = std::move(x).value();
+  if (r.hasY) {
+    auto y = seismic::ResponseSpectrum::compute(r.y);
+    if (!y.ok()) return fail(r.description + ": " + y.error());
+    r.spectrumY = std::move(y).value();
+  }
+  return {};
+}
+
+// The default suite matched to every site shape of the city (DefaultSuite.h), with the spectra
+// for scaling: suites[shapeIndex[shape]][seed's place]. The shapes x seeds are spread over the
+// threads; each record depends on its shape and seed only, so the result does not depend on them.
+Result<std::vector<std::vector<Record>>> matchDefaultSuite(const std::map<SiteShape, std::size_t>& shapeIndex,
+                                                           const ResponseRunOptions& options) {
+  const std::size_t seeds = std::size(kDefaultSuiteSeeds);
+  std::vector<std::pair<SiteShape, std::size_t>> shapes(shapeIndex.begin(), shapeIndex.end());
+  std::vector<std::vector<Record>> suites(shapes.size(), std::vector<Record>(seeds));
+  std::vector<TargetSpectrum> targets;
+  const seismic::Scenario* scenario = options.scenario ? &*options.scenario : nullptr;
+  for (const auto& [shape, index] : shapes) targets.push_back(shapeTarget(shape, scenario));
+  std::atomic<std::size_t> next{0};
+  std::mutex mutex;
+  std::string firstError;
+  Progress progress("matching the default suite to " + std::to_string(shapes.size()) + " site shapes",
+                    shapes.size() * seeds);
+  std::atomic<std::uint64_t> done{0};
+  auto work = [&] {
+    for (std::size_t task = next++; task < shapes.size() * seeds; task = next++) {
+      if (interrupted()) return;
+      const std::size_t s = task / seeds, k = task % seeds;
+      auto matched = defaultSuiteRecord(kDefaultSuiteSeeds[k], targets[s]);
+      Record r;
+      if (matched.ok()) {
+        r.x = std::move(matched->x);
+        r.y = std::move(matched->y);
+        r.hasY = true;
+        r.peakG = std::max(r.x.peakAbsMps2(), r.y.peakAbsMps2()) / seismic::kGravityMps2;
+        char buffer[192];
+        std::snprintf(buffer, sizeof buffer,
+                      "built-in default suite: synthetic Kanai-Tajimi, seed %llu, spectrum-matched to each site's "
+                      "target (%zu site shape%s), %.0f s",
+                      static_cast<unsigned long long>(kDefaultSuiteSeeds[k]), shapes.size(),
+                      shapes.size() == 1 ? "" : "s", r.x.durationS());
+        r.description = buffer;
+      }
+      const Status status = matched.ok() ? computeSpectra(r) : fail(matched.error());
+      if (!status.ok()) {
+        const std::lock_guard lock(mutex);
+        if (firstError.empty()) firstError = "default suite: " + status.error();
+        return;
+      }
+      suites[shapes[s].second][k] = std::move(r);
+      progress.update(++done);
+    }
+  };
+  const unsigned threads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  progress.finish();
+  if (interrupted()) return Error{"interrupted; the city's previous response is unchanged"};
+  if (!firstError.empty()) return Error{firstError};
+  return suites;
 }
 
 // Geometric mean and standard deviation of the logarithms (values floored at `floor`).
@@ -245,6 +321,7 @@ struct Analysed {
   std::vector<std::array<double, 2>> recordSaG;   // per record, X and Y
   std::vector<Peaks> peaks;                       // per record (pass one)
   std::size_t shown = 0;                          // the record whose history is stored
+  std::size_t shape = 0;                          // its site shape's suite (shapeSuites)
   detail::ShakingField::Site site;
 };
 
@@ -262,14 +339,6 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   if (!parsed.ok()) return Error{parsed.error()};
   const Tileset tileset = std::move(parsed).value();
 
-  auto loaded = loadRecords(options);
-  if (!loaded.ok()) return Error{loaded.error()};
-  std::vector<Record> records = std::move(loaded).value();
-  report.records = records.size();
-  report.motion = records.size() == 1
-                      ? records[0].description
-                      : std::to_string(records.size()) + " records: " + records[0].description + ", ...";
-
   std::optional<ShakeMapGrid> grid;
   if (!options.shakemap.empty()) {
     auto g = readShakeMapGrid(options.shakemap);
@@ -282,18 +351,70 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     grid = std::move(g).value();
   }
   const detail::ShakingField field(options, tileset, grid);
-  if (field.spectral()) {
-    for (Record& r : records) {
-      auto x = seismic::ResponseSpectrum::compute(r.x);
-      if (!x.ok()) return Error{r.description + ": " + x.error()};
-      r.spectrumX = std::move(x).value();
-      if (r.hasY) {
-        auto y = seismic::ResponseSpectrum::compute(r.y);
-        if (!y.ok()) return Error{r.description + ": " + y.error()};
-        r.spectrumY = std::move(y).value();
+  const bool matchedSuite = options.defaultSuite && field.matchable();
+  auto loaded = loadRecords(options, matchedSuite);
+  if (!loaded.ok()) return Error{loaded.error()};
+  // The suite of each site shape: one shape (every building under the same records) unless the
+  // default suite is matched per shape (DefaultSuite.h).
+  std::vector<std::vector<Record>> shapeSuites;
+  std::map<SiteShape, std::size_t> shapeIndex;
+  std::vector<std::uint32_t> leaves;
+  std::uint64_t totalBuildings = 0;
+  for (std::uint32_t i = 0; i < tileset.nodes.size(); ++i) {
+    if (tileset.nodes[i].children.empty()) {
+      leaves.push_back(i);
+      totalBuildings += tileset.nodes[i].buildings;
+    }
+  }
+  // One pass over the buildings' sites before the analysis: those outside the ShakeMap (an error
+  // naming how many, unless --outside-grid skip) and the shapes the default suite is matched to.
+  std::vector<std::uint64_t> shapeBuildings;
+  if ((grid && options.outsideGrid == OutsideGrid::Error) || matchedSuite) {
+    std::uint64_t outside = 0;
+    std::map<SiteShape, std::uint64_t> shapes;
+    for (const std::uint32_t node : leaves) {
+      const std::string path = dir + "/" + tileset.nodes[node].file;
+      auto bytes = readFile(path);
+      if (!bytes.ok()) return Error{bytes.error()};
+      auto tile = decodeCityTile(*bytes, path);
+      if (!tile.ok()) return Error{tile.error()};
+      for (const TileBuilding& b : tile->buildings) {
+        auto site = field.site(b.attributes.centroidX + tile->originX, b.attributes.centroidY + tile->originY);
+        if (site.ok() && !site->has_value()) ++outside;
+        if (matchedSuite && site.ok() && site->has_value()) ++shapes[field.shape(**site)];
+      }
+    }
+    if (grid && options.outsideGrid == OutsideGrid::Error && outside > 0) {
+      return Error{options.shakemap + ": " + std::to_string(outside) + " of the city's " +
+                   std::to_string(totalBuildings) + " buildings lie outside the grid (" + grid->describeExtent() +
+                   "); give --outside-grid skip to leave them without a result"};
+    }
+    for (const auto& [shape, count] : shapes) {
+      shapeIndex.emplace(shape, shapeBuildings.size());
+      shapeBuildings.push_back(count);
+    }
+  }
+  if (matchedSuite) {
+    if (shapeBuildings.empty()) return Error{"no building of the city lies in the shaking field"};
+    auto suites = matchDefaultSuite(shapeIndex, options);
+    if (!suites.ok()) return Error{suites.error()};
+    shapeSuites = std::move(suites).value();
+  } else {
+    shapeSuites.push_back(std::move(loaded).value());
+    if (field.spectral()) {
+      for (Record& r : shapeSuites[0]) {
+        if (Status s = computeSpectra(r); !s.ok()) return Error{s.error()};
       }
     }
   }
+  const std::vector<Record>& records = shapeSuites[0];
+  // The record shown as the input's plot: of the shape most buildings have.
+  const std::size_t commonShape =
+      static_cast<std::size_t>(std::max_element(shapeBuildings.begin(), shapeBuildings.end()) - shapeBuildings.begin());
+  report.records = records.size();
+  report.motion = records.size() == 1
+                      ? records[0].description
+                      : std::to_string(records.size()) + " records: " + records[0].description + ", ...";
   if (options.scenario) {
     report.scenario = describeScenario(*options.scenario);
     report.eventType = "SCENARIO";
@@ -327,35 +448,6 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   const auto frames = static_cast<std::size_t>(std::ceil((maxDelay + longest + dt + kTailSeconds) / dt)) + 1;
   report.frames = frames;
   report.timeStepS = dt;
-
-  std::vector<std::uint32_t> leaves;
-  std::uint64_t totalBuildings = 0;
-  for (std::uint32_t i = 0; i < tileset.nodes.size(); ++i) {
-    if (tileset.nodes[i].children.empty()) {
-      leaves.push_back(i);
-      totalBuildings += tileset.nodes[i].buildings;
-    }
-  }
-  // Buildings outside the ShakeMap: an error naming how many, unless --outside-grid skip.
-  if (grid && options.outsideGrid == OutsideGrid::Error) {
-    std::uint64_t outside = 0;
-    for (const std::uint32_t node : leaves) {
-      const std::string path = dir + "/" + tileset.nodes[node].file;
-      auto bytes = readFile(path);
-      if (!bytes.ok()) return Error{bytes.error()};
-      auto tile = decodeCityTile(*bytes, path);
-      if (!tile.ok()) return Error{tile.error()};
-      for (const TileBuilding& b : tile->buildings) {
-        auto site = field.site(b.attributes.centroidX + tile->originX, b.attributes.centroidY + tile->originY);
-        if (site.ok() && !site->has_value()) ++outside;
-      }
-    }
-    if (outside > 0) {
-      return Error{options.shakemap + ": " + std::to_string(outside) + " of the city's " +
-                   std::to_string(totalBuildings) + " buildings lie outside the grid (" + grid->describeExtent() +
-                   "); give --outside-grid skip to leave them without a result"};
-    }
-  }
 
   std::optional<Districts> districts;
   if (!options.districts.empty()) {
@@ -470,8 +562,9 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
             item.targetSaG[d] = field.targetSaG(item.site, *period);
           }
         }
+        if (matchedSuite) item.shape = shapeIndex.at(field.shape(item.site));
         bool scalable = true;
-        for (const Record& r : records) {
+        for (const Record& r : shapeSuites[item.shape]) {
           seismic::BuildingShaking shaking;
           shaking.delaySeconds = item.site.delayS;
           std::array<double, 2> recordSa{0.0, 0.0};
@@ -519,23 +612,30 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
           shaking.push_back(analysed[i].shaking[record]);
         }
       };
-      std::vector<std::size_t> everyone(analysed.size());
-      for (std::size_t i = 0; i < analysed.size(); ++i) everyone[i] = i;
       std::vector<std::uint32_t> unconverged(analysed.size(), 0);
       std::vector<float> worstResidual(analysed.size(), 0.0f);
       if (suite) {
         for (std::size_t r = 0; r < records.size(); ++r) {
-          gather(r, everyone);
-          const Status solved = peakSolver.solve(
-              modelsX, shaking, records[r].x, records[r].hasY ? &records[r].y : nullptr,
-              [&](std::size_t i, const seismic::BuildingResponse& response) {
-                analysed[i].peaks.push_back(peaksOf(response));
-                unconverged[i] += response.nonConvergedSteps;
-                worstResidual[i] = std::max(worstResidual[i], response.worstResidualRatio);
-                localStoreySteps += response.storeys * response.frames * (response.hasY ? 2u : 1u);
-              },
-              modelsY);
-          if (!solved.ok()) return setError("tile " + n.key() + ": " + solved.error());
+          for (std::size_t c = 0; c < shapeSuites.size(); ++c) {
+            members.clear();
+            for (std::size_t i = 0; i < analysed.size(); ++i) {
+              if (analysed[i].shape == c) members.push_back(i);
+            }
+            if (members.empty()) continue;
+            gather(r, members);
+            const Record& record = shapeSuites[c][r];
+            const Status solved = peakSolver.solve(
+                modelsX, shaking, record.x, record.hasY ? &record.y : nullptr,
+                [&](std::size_t m, const seismic::BuildingResponse& response) {
+                  const std::size_t i = members[m];
+                  analysed[i].peaks.push_back(peaksOf(response));
+                  unconverged[i] += response.nonConvergedSteps;
+                  worstResidual[i] = std::max(worstResidual[i], response.worstResidualRatio);
+                  localStoreySteps += response.storeys * response.frames * (response.hasY ? 2u : 1u);
+                },
+                modelsY);
+            if (!solved.ok()) return setError("tile " + n.key() + ": " + solved.error());
+          }
         }
         for (Analysed& item : analysed) {
           std::vector<double> roofs;
@@ -554,108 +654,111 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
 
       // Pass two: the stored history, each building under its shown record.
       for (std::size_t r = 0; r < records.size(); ++r) {
-        members.clear();
-        for (std::size_t i = 0; i < analysed.size(); ++i) {
-          if (analysed[i].shown == r) members.push_back(i);
+        for (std::size_t c = 0; c < shapeSuites.size(); ++c) {
+          members.clear();
+          for (std::size_t i = 0; i < analysed.size(); ++i) {
+            if (analysed[i].shown == r && analysed[i].shape == c) members.push_back(i);
+          }
+          if (members.empty()) continue;
+          gather(r, members);
+          const Record& record = shapeSuites[c][r];
+          const Status solved = historySolver.solve(
+              modelsX, shaking, record.x, record.hasY ? &record.y : nullptr,
+              [&](std::size_t m, const seismic::BuildingResponse& response) {
+                const double encodeStart = threadCpuSeconds();
+                const std::size_t i = members[m];
+                Analysed& item = analysed[i];
+                if (!suite) {
+                  item.peaks = {peaksOf(response)};
+                  unconverged[i] = response.nonConvergedSteps;
+                  worstResidual[i] = response.worstResidualRatio;
+                  localStoreySteps += response.storeys * response.frames * (response.hasY ? 2u : 1u);
+                }
+                BuildingResult& out = results[item.index];
+                const std::span<const float> y =
+                    response.hasY ? std::span<const float>(response.y.floorDisplacementM) : std::span<const float>();
+                EncodedHistory h = encodeHistory(response.x.floorDisplacementM, y, response.storeys, response.frames,
+                                                 response.timeStepS, encoding);
+                out.history = std::move(h.history);
+                // Across the suite: medians and log standard deviations of the peaks.
+                std::vector<double> values(item.peaks.size());
+                auto stats = [&](auto pick, double floor) {
+                  for (std::size_t q = 0; q < item.peaks.size(); ++q) values[q] = pick(item.peaks[q]);
+                  return logStats(values, floor);
+                };
+                const auto [medianDrift, driftBeta] = stats([](const Peaks& p) { return p.maxDrift; }, kDriftFloor);
+                const auto [medianAcceleration, accelerationBeta] =
+                    stats([](const Peaks& p) { return p.maxAcceleration; }, kAccelerationFloor);
+                out.summary.source = ResponseSource::Model;
+                out.summary.storeys = static_cast<std::uint16_t>(response.storeys);
+                out.summary.damage = seismic::classifyDamage(medianDrift, item.x.damageDriftThresholds);
+                out.summary.peakDriftRatio = static_cast<float>(medianDrift);
+                out.summary.peakRoofDisplacementM = static_cast<float>(h.peakRoofM);
+                out.summary.peakFloorAccelerationMs2 = static_cast<float>(medianAcceleration);
+                const double appliedX = record.x.peakAbsMps2() * item.shaking[r].scale;
+                const double appliedY =
+                    record.hasY ? record.y.peakAbsMps2() *
+                                      (item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY : item.shaking[r].scale)
+                                : 0.0;
+                out.summary.pgaG = static_cast<float>(std::max(appliedX, appliedY) / seismic::kGravityMps2);
+                out.storeyPeakDrift.assign(response.storeys, 0.0f);
+                out.storeySpread.assign(response.storeys, StoreySpread{});
+                float residual = 0.0f;
+                for (std::size_t s = 0; s < response.storeys; ++s) {
+                  const auto [drift, beta] = stats([s](const Peaks& p) { return p.storeyDrift[s]; }, kDriftFloor);
+                  const auto [acceleration, aBeta] =
+                      stats([s](const Peaks& p) { return p.floorAcceleration[s]; }, kAccelerationFloor);
+                  out.storeyPeakDrift[s] = static_cast<float>(drift);
+                  out.storeySpread[s] = {static_cast<float>(beta), static_cast<float>(acceleration),
+                                         static_cast<float>(aBeta)};
+                  float res =
+                      s < response.x.residualDriftRatio.size() ? std::abs(response.x.residualDriftRatio[s]) : 0.0f;
+                  if (response.hasY && s < response.y.residualDriftRatio.size())
+                    res = std::max(res, std::abs(response.y.residualDriftRatio[s]));
+                  residual = std::max(residual, res);
+                }
+                out.summary.residualDriftRatio = residual;
+                out.summary.noResultReason = NoResultReason::None;
+                out.summary.approximate = unconverged[i] > 0;
+                out.summary.unconvergedSteps = unconverged[i];
+                out.summary.worstResidualRatio = worstResidual[i];
+                out.spread = BuildingSpread{static_cast<std::uint16_t>(records.size()), static_cast<std::uint16_t>(r),
+                                            static_cast<float>(driftBeta), static_cast<float>(accelerationBeta)};
+                BuildingScaling scaling;
+                for (int d = 0; d < (record.hasY ? 2 : 1); ++d) {  // one component: Y is not analysed
+                  scaling.periodS[d] = static_cast<float>(item.periodS[d]);
+                  scaling.targetSaG[d] = static_cast<float>(item.targetSaG[d]);
+                  scaling.recordSaG[d] = static_cast<float>(item.recordSaG[r][static_cast<std::size_t>(d)]);
+                  scaling.scale[d] = static_cast<float>(d == 1 && item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY
+                                                                                               : item.shaking[r].scale);
+                }
+                out.scaling = scaling;
+                localErrors.push_back(h.relativeError());
+                localAttempts += static_cast<std::uint64_t>(h.attempts);
+                localRate += out.history.sampleRateHz;
+                ++localRateCount;
+                encodeTime += threadCpuSeconds() - encodeStart;
+                // HAZUS probabilities and consequences from the suite's medians and spread.
+                const double lossStart = threadCpuSeconds();
+                const BuildingAttributes& a = tile->buildings[item.index].attributes;
+                const seismic::Exposure exposure =
+                    seismic::exposureFromAttributes(a, static_cast<int>(response.storeys));
+                const seismic::BuildingLoss loss =
+                    seismic::assessLoss(exposure, medianDrift, medianAcceleration / seismic::kGravityMps2, driftBeta,
+                                        accelerationBeta, options.timeOfDay);
+                out.loss = toSummaryLoss(loss);
+                localLosses.push_back(loss);
+                if (districts) {
+                  const auto lonLat =
+                      field.projection().reverse({a.centroidX + tile->originX, a.centroidY + tile->originY});
+                  localDistricts.push_back(districts->find(lonLat[0], lonLat[1]));
+                }
+                localLoss += threadCpuSeconds() - lossStart;
+                progress.update(++buildingsDone);
+              },
+              modelsY);
+          if (!solved.ok()) return setError("tile " + n.key() + ": " + solved.error());
         }
-        if (members.empty()) continue;
-        gather(r, members);
-        const Record& record = records[r];
-        const Status solved = historySolver.solve(
-            modelsX, shaking, record.x, record.hasY ? &record.y : nullptr,
-            [&](std::size_t m, const seismic::BuildingResponse& response) {
-              const double encodeStart = threadCpuSeconds();
-              const std::size_t i = members[m];
-              Analysed& item = analysed[i];
-              if (!suite) {
-                item.peaks = {peaksOf(response)};
-                unconverged[i] = response.nonConvergedSteps;
-                worstResidual[i] = response.worstResidualRatio;
-                localStoreySteps += response.storeys * response.frames * (response.hasY ? 2u : 1u);
-              }
-              BuildingResult& out = results[item.index];
-              const std::span<const float> y =
-                  response.hasY ? std::span<const float>(response.y.floorDisplacementM) : std::span<const float>();
-              EncodedHistory h = encodeHistory(response.x.floorDisplacementM, y, response.storeys, response.frames,
-                                               response.timeStepS, encoding);
-              out.history = std::move(h.history);
-              // Across the suite: medians and log standard deviations of the peaks.
-              std::vector<double> values(item.peaks.size());
-              auto stats = [&](auto pick, double floor) {
-                for (std::size_t q = 0; q < item.peaks.size(); ++q) values[q] = pick(item.peaks[q]);
-                return logStats(values, floor);
-              };
-              const auto [medianDrift, driftBeta] = stats([](const Peaks& p) { return p.maxDrift; }, kDriftFloor);
-              const auto [medianAcceleration, accelerationBeta] =
-                  stats([](const Peaks& p) { return p.maxAcceleration; }, kAccelerationFloor);
-              out.summary.source = ResponseSource::Model;
-              out.summary.storeys = static_cast<std::uint16_t>(response.storeys);
-              out.summary.damage = seismic::classifyDamage(medianDrift, item.x.damageDriftThresholds);
-              out.summary.peakDriftRatio = static_cast<float>(medianDrift);
-              out.summary.peakRoofDisplacementM = static_cast<float>(h.peakRoofM);
-              out.summary.peakFloorAccelerationMs2 = static_cast<float>(medianAcceleration);
-              const double appliedX = record.x.peakAbsMps2() * item.shaking[r].scale;
-              const double appliedY =
-                  record.hasY ? record.y.peakAbsMps2() *
-                                    (item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY : item.shaking[r].scale)
-                              : 0.0;
-              out.summary.pgaG = static_cast<float>(std::max(appliedX, appliedY) / seismic::kGravityMps2);
-              out.storeyPeakDrift.assign(response.storeys, 0.0f);
-              out.storeySpread.assign(response.storeys, StoreySpread{});
-              float residual = 0.0f;
-              for (std::size_t s = 0; s < response.storeys; ++s) {
-                const auto [drift, beta] = stats([s](const Peaks& p) { return p.storeyDrift[s]; }, kDriftFloor);
-                const auto [acceleration, aBeta] =
-                    stats([s](const Peaks& p) { return p.floorAcceleration[s]; }, kAccelerationFloor);
-                out.storeyPeakDrift[s] = static_cast<float>(drift);
-                out.storeySpread[s] = {static_cast<float>(beta), static_cast<float>(acceleration),
-                                       static_cast<float>(aBeta)};
-                float res =
-                    s < response.x.residualDriftRatio.size() ? std::abs(response.x.residualDriftRatio[s]) : 0.0f;
-                if (response.hasY && s < response.y.residualDriftRatio.size())
-                  res = std::max(res, std::abs(response.y.residualDriftRatio[s]));
-                residual = std::max(residual, res);
-              }
-              out.summary.residualDriftRatio = residual;
-              out.summary.noResultReason = NoResultReason::None;
-              out.summary.approximate = unconverged[i] > 0;
-              out.summary.unconvergedSteps = unconverged[i];
-              out.summary.worstResidualRatio = worstResidual[i];
-              out.spread = BuildingSpread{static_cast<std::uint16_t>(records.size()), static_cast<std::uint16_t>(r),
-                                          static_cast<float>(driftBeta), static_cast<float>(accelerationBeta)};
-              BuildingScaling scaling;
-              for (int d = 0; d < (record.hasY ? 2 : 1); ++d) {  // one component: Y is not analysed
-                scaling.periodS[d] = static_cast<float>(item.periodS[d]);
-                scaling.targetSaG[d] = static_cast<float>(item.targetSaG[d]);
-                scaling.recordSaG[d] = static_cast<float>(item.recordSaG[r][static_cast<std::size_t>(d)]);
-                scaling.scale[d] = static_cast<float>(d == 1 && item.shaking[r].scaleY > 0.0 ? item.shaking[r].scaleY
-                                                                                             : item.shaking[r].scale);
-              }
-              out.scaling = scaling;
-              localErrors.push_back(h.relativeError());
-              localAttempts += static_cast<std::uint64_t>(h.attempts);
-              localRate += out.history.sampleRateHz;
-              ++localRateCount;
-              encodeTime += threadCpuSeconds() - encodeStart;
-              // HAZUS probabilities and consequences from the suite's medians and spread.
-              const double lossStart = threadCpuSeconds();
-              const BuildingAttributes& a = tile->buildings[item.index].attributes;
-              const seismic::Exposure exposure = seismic::exposureFromAttributes(a, static_cast<int>(response.storeys));
-              const seismic::BuildingLoss loss =
-                  seismic::assessLoss(exposure, medianDrift, medianAcceleration / seismic::kGravityMps2, driftBeta,
-                                      accelerationBeta, options.timeOfDay);
-              out.loss = toSummaryLoss(loss);
-              localLosses.push_back(loss);
-              if (districts) {
-                const auto lonLat =
-                    field.projection().reverse({a.centroidX + tile->originX, a.centroidY + tile->originY});
-                localDistricts.push_back(districts->find(lonLat[0], lonLat[1]));
-              }
-              localLoss += threadCpuSeconds() - lossStart;
-              progress.update(++buildingsDone);
-            },
-            modelsY);
-        if (!solved.ok()) return setError("tile " + n.key() + ": " + solved.error());
       }
       localSolve += threadCpuSeconds() - solveStart - encodeTime;
       localEncode += encodeTime;
@@ -713,7 +816,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   info.sampleRateHz = rateCount > 0 ? rateSum / static_cast<double>(rateCount) : 0.0;
   // The input record for the viewer's plot: the largest |a| of every 0.1 s, in g.
   info.motionPreviewRateHz = 10.0;
-  const seismic::GroundMotion& preview = records[0].x;
+  const seismic::GroundMotion& preview = shapeSuites[commonShape][0].x;
   const auto perWindow = std::max<std::size_t>(1, static_cast<std::size_t>(std::lround(0.1 / preview.timeStepS)));
   for (std::size_t i = 0; i < preview.size(); i += perWindow) {
     double best = 0.0;

@@ -13,6 +13,7 @@
 #include "qv/core/Result.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/format/Tileset.h"
+#include "qv/prep/DefaultSuite.h"
 #include "qv/prep/Projection.h"
 #include "qv/prep/ResponseRun.h"
 #include "qv/prep/ShakeMap.h"
@@ -100,6 +101,17 @@ class ShakingField {
              sc.siteFactor;
     }
     return seismic::shakeMapTargetSaG(site.spectra, periodS);
+  }
+
+  /// Whether the default suite can be matched to the field's spectra: a scenario, or a ShakeMap
+  /// with PSA fields.
+  [[nodiscard]] bool matchable() const {
+    return options_.scenario.has_value() || (grid_.has_value() && grid_->hasSpectra());
+  }
+
+  /// The quantised shape of a site's target (DefaultSuite.h); only when matchable().
+  [[nodiscard]] SiteShape shape(const Site& site) const {
+    return options_.scenario ? scenarioSiteShape(site.distanceKm) : shakeMapSiteShape(site.spectra);
   }
 
   [[nodiscard]] double maxDelayS(const Tileset& tileset) const {

@@ -15,6 +15,7 @@
 
 #include "qv/core/Result.h"
 #include "qv/format/ResponseTile.h"
+#include "qv/prep/DefaultSuite.h"
 #include "qv/seismic/GroundMotion.h"
 #include "qv/seismic/GroundMotionModel.h"
 #include "qv/seismic/Loss.h"
@@ -23,11 +24,6 @@ namespace qv::prep {
 
 enum class ScaleBy { SpectralAcceleration, Pga };
 
-/// The built-in default suite (docs/seismic.md, "The default suite"): what `response` analyses
-/// under a ShakeMap or a scenario when no record is given: synthetic Kanai-Tajimi motions (two
-/// components each) of these seeds, each scaled per building and direction to the field's target
-/// like any suite. Named in the manifest's records as "built-in default suite: ...".
-inline constexpr std::uint64_t kDefaultSuiteSeeds[] = {1, 2, 3, 4, 5};
 enum class OutsideGrid { Error, Skip };
 
 struct ResponseRunOptions {
