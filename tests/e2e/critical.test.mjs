@@ -25,7 +25,8 @@ before(async () => {
   planted = source.features.filter((f) => f.properties.expect_category).map((f) => {
     const p = f.properties;
     const street = [p['addr:housenumber'], p['addr:street']].filter(Boolean).join(' ');
-    return { sourceId: p.id, name: p.name || '', street, expect: p.expect_category, use: p.expect_use };
+    return { sourceId: p.id, name: p.name || '', street, expect: p.expect_category, use: p.expect_use,
+      kind: p.expect_kind || '' };
   });
   server = await serveSite({ '/data': DATA });
   fs.mkdirSync(ARTIFACTS, { recursive: true });
@@ -95,6 +96,8 @@ test('the critical filter from a link returns exactly the planted essential faci
       const p = plantedOf(b);
       assert.equal(b.facility, p.expect, `${p.sourceId} (${p.name || p.street}) is ${p.expect}`);
       assert.equal(b.use, p.use, `${p.sourceId} is used as ${p.use}`);
+      // The kind that made it a facility (what the list shows where the use is generic).
+      assert.equal(b.facilityKind, p.kind, `${p.sourceId}'s facility kind is ${p.kind || 'none'}`);
     }
     // Categories by name in the link's critical field.
     const hazardous = await page.evaluate(() => {

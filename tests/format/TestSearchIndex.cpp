@@ -1,4 +1,4 @@
-// The search index codec (search.qvi, docs/formats.md): golden bytes pin version 3 (and version 2 still decodes),
+// The search index codec (search.qvi, docs/formats.md): golden bytes pin version 4 (and versions 2 and 3 still decode),
 // entries round-trip, and corrupt, truncated, old-version and out-of-range files are refused by name.
 #include <catch2/catch.hpp>
 
@@ -38,13 +38,44 @@ void requireError(const std::vector<std::uint8_t>& bytes, const std::string& fra
 
 }  // namespace
 
-TEST_CASE("Search index version 3 is pinned by golden bytes", "[format][search]") {
+TEST_CASE("A version 3 search index still decodes, its facility kind derived from the use", "[format][search]") {
   const std::vector<std::uint8_t> golden = {
       0x51, 0x56, 0x53, 0x49, 0x03, 0x00, 0x00, 0x00, 0x36, 0x00, 0x00, 0x00, 0x82, 0x67, 0xa9, 0x1d, 0x01, 0x00,
       0x00, 0x00, 0x02, 0x77, 0x31, 0x01, 0x41, 0x00, 0x06, 0x6f, 0x66, 0x66, 0x69, 0x63, 0x65, 0x00, 0x00, 0xc0,
       0x3f, 0x00, 0x00, 0x00, 0xc0, 0x00, 0x00, 0x20, 0x41, 0x03, 0x00, 0x01, 0x01, 0x04, 0x00, 0x00, 0x00, 0x01};
   SearchEntry entry = tinyEntry();
   entry.facility = FacilityCategory::Essential;
+  const auto decoded = decodeSearchIndex(golden, "golden.qvi");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->size() == 1);
+  CHECK((*decoded)[0] == entry);  // an office: its use does not give the kind, left unknown
+  CHECK((*decoded)[0].facilityKind.empty());
+  // A school's kind comes from its use.
+  const std::vector<SearchEntry> v3 = {[] {
+    SearchEntry e = tinyEntry();
+    e.use = "school";
+    e.facility = FacilityCategory::SchoolShelter;
+    return e;
+  }()};
+  auto bytes = encodeSearchIndex(v3);
+  bytes.pop_back();  // the empty kind's length: a version 3 entry ends after the category
+  bytes[4] = 3;
+  const auto school = decodeSearchIndex(fuzz::withValidSizeAndCrc(bytes), "v3.qvi");
+  REQUIRE(school.ok());
+  CHECK((*school)[0].facilityKind == "school");
+}
+
+TEST_CASE("Search index version 4 is pinned by golden bytes", "[format][search]") {
+  // x 1.5, y -2, height 10, storeys 3, critical, lod 1, leaf 4, essential, then the kind "hospital".
+  const std::vector<std::uint8_t> golden = {
+      0x51, 0x56, 0x53, 0x49, 0x04, 0x00, 0x00, 0x00, 0x41, 0x00, 0x00, 0x00, 0xd0, 0xe9, 0x87, 0x56, 0x01,
+      0x00, 0x00, 0x00, 0x02, 0x77, 0x31, 0x01, 0x41, 0x00, 0x08, 0x68, 0x6f, 0x73, 0x70, 0x69, 0x74, 0x61,
+      0x6c, 0x00, 0x00, 0xc0, 0x3f, 0x00, 0x00, 0x00, 0xc0, 0x00, 0x00, 0x20, 0x41, 0x03, 0x00, 0x01, 0x01,
+      0x04, 0x00, 0x00, 0x00, 0x01, 0x08, 0x68, 0x6f, 0x73, 0x70, 0x69, 0x74, 0x61, 0x6c};
+  SearchEntry entry = tinyEntry();
+  entry.use = "hospital";
+  entry.facility = FacilityCategory::Essential;
+  entry.facilityKind = "hospital";
   const std::vector<SearchEntry> entries = {entry};
   CHECK(encodeSearchIndex(entries) == golden);
   const auto decoded = decodeSearchIndex(golden, "golden.qvi");
@@ -80,6 +111,7 @@ TEST_CASE("Search entries round-trip, long strings and many entries included", "
     e.lod = i % 11 == 0 ? 2 : 1;
     e.leaf = i / 100;
     e.facility = static_cast<FacilityCategory>(i % static_cast<unsigned>(FacilityCategory::Count));
+    if (e.facility != FacilityCategory::None && i % 2 == 0) e.facilityKind = "kind_" + std::to_string(i % 13);
     entries.push_back(e);
   }
   const auto decoded = decodeSearchIndex(encodeSearchIndex(entries), "many.qvi");
@@ -128,9 +160,20 @@ TEST_CASE("Corrupt, truncated, old and out-of-range search indexes are refused w
   }
   SECTION("an unknown facility category") {
     auto b = good;
-    b.back() = 9;
+    b[b.size() - 2] = 9;  // the last entry's category, before its empty kind
     requireError(fuzz::withValidSizeAndCrc(b), "entry 1 at byte");
     requireError(fuzz::withValidSizeAndCrc(b), "unknown facility category");
+  }
+  SECTION("a facility kind without a category") {
+    SearchEntry e = tinyEntry();
+    e.facilityKind = "hospital";
+    requireError(encodeSearchIndex(std::vector<SearchEntry>{e}), "a facility kind without a facility category");
+  }
+  SECTION("a facility kind longer than 32 bytes") {
+    SearchEntry e = tinyEntry();
+    e.facility = FacilityCategory::Hazardous;
+    e.facilityKind = std::string(40, 'k');
+    requireError(encodeSearchIndex(std::vector<SearchEntry>{e}), "facility kind");
   }
   SECTION("an unknown level of detail") {
     SearchEntry e = tinyEntry();

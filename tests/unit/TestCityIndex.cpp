@@ -215,6 +215,29 @@ TEST_CASE("List rows name a building by its name, else its address, never only a
   const std::string plain = listRowText(e, 300.0, 400.0);
   CHECK(plain.find("(") == std::string::npos);  // no category for general stock
   CHECK(plain.find("| 0 m") != std::string::npos);
+  // A facility whose building tag is generic: its kind stands for the use.
+  e.use = "unknown";
+  e.facility = FacilityCategory::Hazardous;
+  e.facilityKind = "fuel";
+  CHECK(useAndFacilityText(e) == "fuel (hazardous)");
+  CHECK(listRowText(e, 0.0, 0.0).find("| fuel (hazardous) |") != std::string::npos);
+  e.use = "";
+  e.facility = FacilityCategory::Essential;
+  e.facilityKind = "ambulance_station";
+  CHECK(useAndFacilityText(e) == "ambulance station (essential)");
+  // A kind that says more than the use is added; one that says the same is not repeated.
+  e.use = "civic";
+  e.facility = FacilityCategory::SchoolShelter;
+  e.facilityKind = "community_centre";
+  CHECK(useAndFacilityText(e) == "civic (school or shelter: community centre)");
+  e.use = "hospital";
+  e.facility = FacilityCategory::Essential;
+  e.facilityKind = "hospital";
+  CHECK(useAndFacilityText(e) == "hospital (essential)");
+  // A category without a kind (a version 3 index whose use did not give it) keeps the old text.
+  e.use = "unknown";
+  e.facilityKind.clear();
+  CHECK(useAndFacilityText(e) == "unknown use (essential)");
 }
 
 TEST_CASE("With HAZUS probabilities the list filters and sorts by the probability of damage",

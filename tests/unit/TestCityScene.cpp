@@ -1059,6 +1059,7 @@ TEST_CASE("Critical facilities kept by a filter and the selection are marked on 
       if (e.id == MiniCity::idOf(0, j)) {
         e.use = "hospital";
         e.facility = FacilityCategory::Essential;
+        e.facilityKind = "hospital";
       }
     }
   }

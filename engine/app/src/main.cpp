@@ -274,7 +274,8 @@ void writeEntries(qv::JsonWriter& w, const std::vector<qv::BuildingListEntry>& l
   w.beginArray();
   for (const auto& e : list) {
     w.beginObject().field("id", e.id).field("name", e.name).field("address", e.address).field("use", e.use);
-    w.field("facility", qv::facilityCategoryName(e.facility)).field("label", qv::listName(e));
+    w.field("facility", qv::facilityCategoryName(e.facility)).field("facilityKind", e.facilityKind);
+    w.field("label", qv::listName(e));
     w.field("damageState", qv::damageStateName(e.damage)).field("peakDriftRatio", e.peakDriftRatio);
     // P(structural damage >= slight, moderate, extensive, complete); null without probabilities.
     if (e.loss) {

@@ -93,6 +93,14 @@ FacilityClass classifyFacility(const BuildingAttributes& a) {
   return classifyFacility(a.use, a.amenity, a.footprintAreaM2, a.storeys, a.importanceReasons);
 }
 
+std::string facilityKindLabel(std::string_view kind) {
+  std::string out(kind);
+  for (char& c : out) {
+    if (c == '_') c = ' ';
+  }
+  return out;
+}
+
 std::string_view facilityCategoryName(FacilityCategory category) {
   const auto i = static_cast<std::size_t>(category);
   return i < kNames.size() ? kNames[i] : kNames[0];

@@ -15,13 +15,13 @@ namespace qv {
 namespace {
 constexpr std::size_t kHeaderSize = 20;
 constexpr std::uint32_t kMaxEntries = 10u << 20;
-constexpr std::size_t kMinEntryBytes = 4 + 20;  // four empty strings and the fixed fields
+constexpr std::size_t kMinEntryBytes = 4 + 20;  // four empty strings and the fixed fields (version 2)
 }  // namespace
 
 // Layout: "QVSI", version u16, flags u16, file size u32, CRC-32 of [16, end) u32, entry count
 // u32; then per entry four LEB128-length UTF-8 strings (id, name, address, use) and x, y,
-// height (f32), storeys (u16), importance (u8), lod (u8), leaf (u32), and from version 3 the
-// facility category (u8).
+// height (f32), storeys (u16), importance (u8), lod (u8), leaf (u32), from version 3 the
+// facility category (u8) and from version 4 the facility kind (a LEB128-length string).
 std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries) {
   ByteWriter w;
   w.fourcc("QVSI");
@@ -43,6 +43,7 @@ std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries
     w.u8(e.lod);
     w.u32(e.leaf);
     w.u8(static_cast<std::uint8_t>(e.facility));
+    w.string(e.facilityKind);
   }
   w.patchU32(8, static_cast<std::uint32_t>(w.size()));
   w.patchU32(12, crc32(std::span(w.data()).subspan(16)));
@@ -56,7 +57,7 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
   }
   ByteReader h(bytes.subspan(4, kHeaderSize - 4), 4);
   const std::uint16_t version = h.u16("version");
-  if (version != kSearchIndexVersion && version != 2) {
+  if (version != kSearchIndexVersion && version != 3 && version != 2) {
     return Error{prefix + "unsupported search index version " + std::to_string(version) +
                  " (this build reads version " + std::to_string(kSearchIndexVersion) + ")"};
   }
@@ -95,6 +96,12 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
     e.leaf = r.u32("leaf");
     const std::uint8_t facility =
         version >= 3 ? r.u8("facility") : static_cast<std::uint8_t>(classifyFacility(e.use, {}, 0.0f, 0, 0).category);
+    if (version >= 4) {
+      e.facilityKind = r.string("facility kind", 32);
+    } else if (const FacilityClass derived = classifyFacility(e.use, {}, 0.0f, 0, 0);
+               derived.category == static_cast<FacilityCategory>(facility)) {
+      e.facilityKind = std::string(derived.kind);
+    }
     if (!r.ok()) break;
     const char* bad = nullptr;
     if (!std::isfinite(e.x) || !std::isfinite(e.y) || std::abs(e.x) > 1e7f || std::abs(e.y) > 1e7f)
@@ -107,6 +114,8 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
       bad = "unknown facility category";
     else if (e.lod != 1 && e.lod != 2)
       bad = "lod is neither 1 nor 2";
+    else if (facility == 0 && !e.facilityKind.empty())
+      bad = "a facility kind without a facility category";
     if (bad != nullptr) {
       return Error{prefix + "entry " + std::to_string(i) + " at byte " + std::to_string(at) + ": " + bad};
     }

@@ -48,6 +48,19 @@ std::string_view listName(const BuildingListEntry& entry) {
   return entry.id;
 }
 
+std::string useAndFacilityText(const BuildingListEntry& entry) {
+  const bool genericUse = entry.use.empty() || entry.use == "unknown" || entry.use == "other";
+  const bool facility = entry.facility != FacilityCategory::None;
+  const std::string kind = facilityKindLabel(entry.facilityKind);
+  if (!facility) return entry.use.empty() ? std::string("unknown use") : entry.use;
+  const std::string category(facilityCategoryLabel(entry.facility));
+  if (genericUse && !kind.empty()) return kind + " (" + category + ")";
+  if (kind.empty() || kind == facilityKindLabel(entry.use)) {
+    return (genericUse ? std::string("unknown use") : entry.use) + " (" + category + ")";
+  }
+  return entry.use + " (" + category + ": " + kind + ")";
+}
+
 std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY, int probabilityState) {
   std::string text(listName(entry));
   text += " | ";
@@ -64,10 +77,7 @@ std::string listRowText(const BuildingListEntry& entry, double fromX, double fro
     std::snprintf(drift, sizeof drift, " %.2f %%", static_cast<double>(entry.peakDriftRatio) * 100.0);
     text += drift;
   }
-  text += " | " + (entry.use.empty() ? std::string("unknown use") : entry.use);
-  if (entry.facility != FacilityCategory::None) {
-    text += " (" + std::string(facilityCategoryLabel(entry.facility)) + ")";
-  }
+  text += " | " + useAndFacilityText(entry);
   const double distanceM = std::hypot(entry.x - fromX, entry.y - fromY);
   char distance[32];
   if (distanceM < 999.5)
@@ -233,6 +243,7 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
   e.use = s.use;
   e.importance = s.importance;
   e.facility = s.facility;
+  e.facilityKind = s.facilityKind;
   e.heightM = s.heightM;
   e.storeys = s.storeys;
   e.x = s.x;

@@ -388,7 +388,10 @@ namespace {
 // how likely it is damaged.
 std::string markerLabel(const BuildingListEntry& e) {
   std::string label(listName(e));
-  if (e.facility != FacilityCategory::None) label += " (" + std::string(facilityCategoryLabel(e.facility)) + ")";
+  if (e.facility != FacilityCategory::None) {
+    const std::string kind = facilityKindLabel(e.facilityKind);
+    label += " (" + std::string(facilityCategoryLabel(e.facility)) + (kind.empty() ? "" : ": " + kind) + ")";
+  }
   if (e.loss) {
     label += ui::format(": P(moderate or worse) %.0f %%", static_cast<double>(e.loss->structuralAtLeast(2)) * 100.0);
   } else if (e.damage != DamageState::NoResult) {

@@ -494,7 +494,9 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       e.heightM = a.heightM;
       e.storeys = a.storeys;
       e.importance = a.importance;
-      e.facility = classifyFacility(a).category;
+      const FacilityClass facility = classifyFacility(a);
+      e.facility = facility.category;
+      e.facilityKind = std::string(facility.kind);
       e.lod = a.lod;
       e.leaf = static_cast<std::uint32_t>(k);
       search.push_back(std::move(e));

@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include "qv/format/BuildingAttributes.h"
@@ -72,6 +73,10 @@ FacilityClass classifyFacility(std::string_view use, std::string_view amenity, f
                                std::uint16_t storeys, unsigned reasons);
 /// classifyFacility on a building's stored attributes.
 FacilityClass classifyFacility(const BuildingAttributes& attributes);
+
+/// What a person reads for a kind: its words ("fire_station" -> "fire station", "large_hotel" ->
+/// "large hotel").
+std::string facilityKindLabel(std::string_view kind);
 
 /// "none", "essential", "school_shelter", "high_occupancy", "hazardous" (the names the link's
 /// filter, exports and `quakeview-prep info --json` use); "none" for out-of-range values.

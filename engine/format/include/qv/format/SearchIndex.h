@@ -19,9 +19,9 @@
 
 namespace qv {
 
-/// Version 3 adds the facility category; version 2 files still decode (their category is derived
-/// from the use alone).
-inline constexpr std::uint16_t kSearchIndexVersion = 3;
+/// Version 4 adds the facility kind, version 3 the facility category; version 2 and 3 files still
+/// decode (a version 2 category, and a version 2 or 3 kind, are derived from the use alone).
+inline constexpr std::uint16_t kSearchIndexVersion = 4;
 
 struct SearchEntry {
   std::string id;
@@ -34,6 +34,9 @@ struct SearchEntry {
   Importance importance = Importance::General;  ///< the stored importance (old meaning: see BuildingAttributes)
   /// classifyFacility of the building: the "critical facilities" and category filters.
   FacilityCategory facility = FacilityCategory::None;
+  /// The kind that gave the category (FacilityClass::kind: "hospital", "fuel", ...); empty for None
+  /// (a kind without a category is refused) and where unknown (older indexes).
+  std::string facilityKind;
   std::uint8_t lod = 1;    ///< 1 extruded footprint, 2 detailed model
   std::uint32_t leaf = 0;  ///< index into Tileset::nodes of its leaf tile
 

@@ -71,6 +71,7 @@ struct BuildingListEntry {
   std::string use;
   Importance importance = Importance::General;
   FacilityCategory facility = FacilityCategory::None;
+  std::string facilityKind;  ///< SearchEntry::facilityKind
   DamageState damage = DamageState::NoResult;
   float peakDriftRatio = 0.0f;
   float peakRoofDisplacementM = 0.0f;
@@ -81,6 +82,12 @@ struct BuildingListEntry {
   std::optional<BuildingLoss> loss;  ///< HAZUS probabilities and consequences, when the response has them
   BuildingSite site;                 ///< the shaking field at the site (source None without one)
 };
+
+/// What a list row and a map label say of a building's use and facility: "hospital (essential)";
+/// where its use is generic (unknown or other) the facility's kind stands for it, "fuel
+/// (hazardous)"; where the kind says more than the use, "civic (school or shelter: community
+/// centre)"; the use alone ("unknown use" when none) for a building that is no facility.
+std::string useAndFacilityText(const BuildingListEntry& entry);
 
 /// What a list row names a building by: its name, else its address, else (only when it has
 /// neither) its id.
