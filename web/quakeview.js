@@ -299,6 +299,62 @@
     },
   };
   Object.defineProperty(window, 'quakeview', { value: api, writable: false, configurable: false });
+
+  // Right-click "Save image as" / "Copy image" give the view, not a blank picture. The drawing
+  // buffer is not kept between frames (Browser.cpp: keeping it costs frames on software
+  // renderers), so a browser saving the canvas itself would read a cleared buffer. At a right-button
+  // press on the canvas the page draws the frame and lays its picture over the canvas
+  // (#qv-snapshot, exactly the canvas's size and place), and the context menu that follows (at
+  // the press on Linux and macOS, at the release on Windows) is the picture's. A right-drag still
+  // orbits: at the first move with the button held the picture goes and the canvas takes the
+  // pointer; a menu after a drag (Windows) is not shown. The picture goes when the pointer moves
+  // without a button, at the next press or wheel turn, or at a key.
+  const snapshot = document.createElement('img');
+  snapshot.id = 'qv-snapshot';
+  snapshot.alt = 'Picture of the city view';
+  snapshot.draggable = false;
+  snapshot.hidden = true;
+  document.body.appendChild(snapshot);
+  let rightPress = null; // {x, y, dragged} of the right button's press on the canvas
+  function hideSnapshot() {
+    if (snapshot.hidden) return;
+    snapshot.hidden = true;
+    snapshot.removeAttribute('src');
+  }
+  canvas.addEventListener('mousedown', (e) => {
+    if (e.button !== 2) { hideSnapshot(); return; }
+    rightPress = { x: e.clientX, y: e.clientY, dragged: false };
+    if (!engine) return;
+    engine._qv_draw_now(); // the frame drawn now and read in this task, as screenshot() does
+    const r = canvas.getBoundingClientRect();
+    Object.assign(snapshot.style, { left: `${r.left}px`, top: `${r.top}px`, width: `${r.width}px`, height: `${r.height}px` });
+    snapshot.src = canvas.toDataURL('image/png');
+    snapshot.hidden = false;
+  });
+  snapshot.addEventListener('pointermove', (e) => {
+    if ((e.buttons & 2) === 0) { hideSnapshot(); return; }
+    // A right-drag: the canvas takes the pointer (its mouse events follow) and orbits.
+    if (rightPress) rightPress.dragged = true;
+    hideSnapshot();
+    try { canvas.setPointerCapture(e.pointerId); } catch (err) { /* the press has ended */ }
+  });
+  canvas.addEventListener('pointermove', (e) => {
+    if (rightPress && (e.buttons & 2) !== 0 && Math.hypot(e.clientX - rightPress.x, e.clientY - rightPress.y) > 4) {
+      rightPress.dragged = true;
+    }
+  });
+  canvas.addEventListener('contextmenu', (e) => {
+    if (rightPress && rightPress.dragged) e.preventDefault(); // after an orbit, no menu
+  });
+  snapshot.addEventListener('mousedown', (e) => { if (e.button !== 2) hideSnapshot(); });
+  snapshot.addEventListener('wheel', hideSnapshot, { passive: true });
+  window.addEventListener('keydown', hideSnapshot, true);
+  window.addEventListener('mouseup', (e) => {
+    // (rightPress stays until the next press: on Windows the menu's event follows the release.)
+    if (e.button === 2 && rightPress && rightPress.dragged) hideSnapshot();
+  });
+  // Extension for tests: whether the view's picture lies over the canvas (a right-button press).
+  api.snapshotShown = () => !snapshot.hidden;
   let resolveBench;
   // Extension: resolves with benchResult when a ?bench=SECONDS flight ends.
   api.benchDone = new Promise((resolve) => { resolveBench = resolve; });
