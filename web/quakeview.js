@@ -355,6 +355,26 @@
   });
   // Extension for tests: whether the view's picture lies over the canvas (a right-button press).
   api.snapshotShown = () => !snapshot.hidden;
+
+  // Printing the page prints the view's picture with its caption (screenshot()), never a black
+  // canvas: a WebGL canvas is printed from its drawing buffer, which is not kept. Before the print
+  // the picture is made and shown in the canvas's place (print CSS in quakeview.css); after it the
+  // canvas is drawn again at the window's size (a frame drawn during the print would otherwise
+  // leave the drawing buffer at the paper's size until the next frame).
+  const printPicture = document.createElement('img');
+  printPicture.id = 'qv-print';
+  printPicture.alt = 'The city view with its caption';
+  document.body.appendChild(printPicture);
+  window.addEventListener('beforeprint', () => {
+    const url = api.screenshot();
+    if (url) printPicture.src = url;
+    document.body.classList.toggle('qv-printing', !!url);
+  });
+  window.addEventListener('afterprint', () => {
+    document.body.classList.remove('qv-printing');
+    printPicture.removeAttribute('src');
+    if (engine) engine._qv_draw_now();
+  });
   let resolveBench;
   // Extension: resolves with benchResult when a ?bench=SECONDS flight ends.
   api.benchDone = new Promise((resolve) => { resolveBench = resolve; });

@@ -5,6 +5,7 @@
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
+import zlib from 'node:zlib';
 import { after, before, test } from 'node:test';
 import { launchBrowser, openPage, openSection, settle, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng, luminanceStats } from './lib/pixels.mjs';
@@ -21,6 +22,25 @@ before(async () => {
 after(async () => {
   if (server) await server.close();
 });
+
+// A PDF's text with its compressed object streams opened (Firefox keeps its page objects there).
+function pdfText(buffer) {
+  const raw = buffer.toString('latin1');
+  let text = raw;
+  const streams = /stream\r?\n/g;
+  for (let m = streams.exec(raw); m; m = streams.exec(raw)) {
+    const start = m.index + m[0].length;
+    const end = raw.indexOf('endstream', start);
+    if (end < 0) break;
+    try {
+      text += zlib.inflateSync(buffer.subarray(start, end)).toString('latin1');
+    } catch {
+      // not a Flate stream
+    }
+    streams.lastIndex = end + 'endstream'.length;
+  }
+  return text;
+}
 
 const pngOf = (dataUrl) => Buffer.from(dataUrl.replace(/^data:image\/png;base64,/, ''), 'base64');
 
@@ -187,6 +207,73 @@ test('a right-click on the view gives the menu the picture to save; a right-drag
     const kept = await page.evaluate(() => document.getElementById('canvas').dispatchEvent(
       new MouseEvent('contextmenu', { bubbles: true, cancelable: true, button: 2 })));
     assert.equal(kept, false, 'no menu after an orbit');
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+test('printing the page prints the view with its caption, never a black canvas, and the view keeps its size', async (t) => {
+  const { context, close, browser } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await settle(page);
+    await page.evaluate(() => {
+      window.quakeview.pause();
+      window.quakeview.setTime(8);
+      window.__printEvents = [];
+      window.addEventListener('beforeprint', () => window.__printEvents.push('before'));
+      window.addEventListener('afterprint', () => window.__printEvents.push('after'));
+    });
+    await page.waitForTimeout(500);
+    const sizeOf = () => page.evaluate(() => {
+      const c = document.getElementById('canvas');
+      return { width: c.width, height: c.height, cssWidth: c.clientWidth, cssHeight: c.clientHeight };
+    });
+    const before = await sizeOf();
+
+    // The browser's own print (to PDF): one page holding the picture, and afterwards the canvas is
+    // drawn at the window's size again.
+    const pdf = Buffer.from(await page.pdf({ format: 'A4' }));
+    fs.writeFileSync(path.join(ARTIFACTS, `print-${browser}.pdf`), pdf);
+    const text = pdfText(pdf);
+    const pages = (text.match(/\/Type\s*\/Page[^s]/g) || []).length;
+    const images = [...text.matchAll(/\/Subtype\s*\/Image[^>]*?\/Width\s+(\d+)\s*\/Height\s+(\d+)/g)]
+      .map((m) => ({ width: Number(m[1]), height: Number(m[2]) }));
+    t.diagnostic(`${browser}: PDF ${pdf.length} bytes, ${pages} page(s), images ${JSON.stringify(images)}`);
+    assert.equal(pages, 1, 'one page');
+    // The picture with its caption band (taller than the canvas), not the canvas itself.
+    assert.ok(images.some((i) => i.width === before.width && i.height > before.height + 30),
+      `the page holds the view's picture with its caption: ${JSON.stringify(images)}`);
+    assert.deepEqual(await page.evaluate(() => window.__printEvents), ['before', 'after']);
+    await page.waitForTimeout(300);
+    assert.deepEqual(await sizeOf(), before, 'after printing, the canvas keeps the window\'s size');
+
+    // What the print shows: the picture (the view and its caption band), not the canvas. (Firefox
+    // over WebDriver BiDi cannot emulate the print media type: its PDF above is the check there.)
+    assert.deepEqual(problems, []);
+    if (browser !== 'chromium') return;
+    await page.emulateMedia({ media: 'print' });
+    await page.evaluate(() => window.dispatchEvent(new Event('beforeprint')));
+    const layout = await page.evaluate(() => {
+      const picture = document.getElementById('qv-print');
+      const r = picture.getBoundingClientRect();
+      return { canvasShown: getComputedStyle(document.getElementById('canvas')).display !== 'none',
+        picture: { width: r.width, height: r.height, natural: picture.naturalWidth, src: picture.src.slice(0, 22) } };
+    });
+    t.diagnostic(`${browser}: print layout ${JSON.stringify(layout)}`);
+    assert.equal(layout.canvasShown, false, 'the canvas is not printed');
+    assert.equal(layout.picture.src, 'data:image/png;base64,');
+    assert.equal(layout.picture.natural, before.width);
+    assert.ok(layout.picture.height > 100, 'the picture fills the page width');
+    const printed = await page.screenshot();
+    fs.writeFileSync(path.join(ARTIFACTS, `print-media-${browser}.png`), printed);
+    const shot = decodePng(printed);
+    const stats = luminanceStats(shot, { x: 0, y: 0, width: Math.min(shot.width, 800), height: Math.min(shot.height, 400) });
+    assert.ok(stats.mean > 60, `the printed view is not black: ${JSON.stringify(stats)}`);
+    await page.evaluate(() => window.dispatchEvent(new Event('afterprint')));
+    await page.emulateMedia({ media: 'screen' });
     assert.deepEqual(problems, []);
   } finally {
     await close();

@@ -11,7 +11,7 @@
 //   page.locator(selector).{innerText(), isVisible()}, page.waitForEvent('download', {timeout}) ->
 //   {suggestedFilename(), path()}, page.on('console' | 'pageerror'), page.setDefaultTimeout(ms),
 //   page.goto(url, {waitUntil: 'load'}), page.close(), page.touchscreen.tap(x, y) (with
-//   options.touch); context.newPage().
+//   options.touch), page.pdf({format}) -> Buffer, page.emulateMedia({media}); context.newPage().
 // One-finger swipes, which Playwright's API lacks, go through swipe(page, from, to) below in
 // either engine. Waiting for a condition in the page goes through waitForFunction(page, fn, arg,
 // options) below in either engine, never the drivers' own waitForFunction: both inject the
@@ -203,6 +203,9 @@ function wrapPuppeteerPage(page, downloads) {
     waitForFunction: (fn, arg, options = {}) => waitForFunction(wrapped, fn, arg, { timeout: defaultTimeout, ...options }),
     waitForTimeout: (ms) => sleep(ms),
     screenshot: async (options = {}) => Buffer.from(await page.screenshot(options)),
+    // Printing: browsingContext.print over BiDi; the print media type through puppeteer.
+    pdf: async (options = {}) => Buffer.from(await page.pdf(options)),
+    emulateMedia: async ({ media }) => page.emulateMediaType(media),
     focus: (selector) => page.focus(selector),
     goto: (url, options = {}) => page.goto(url, { timeout: defaultTimeout, waitUntil: options.waitUntil || 'load' }),
     close: () => page.close(),
