@@ -44,18 +44,32 @@ function pdfText(buffer) {
 
 const pngOf = (dataUrl) => Buffer.from(dataUrl.replace(/^data:image\/png;base64,/, ''), 'base64');
 
-test('screenshot() is the view with its caption, paused or playing, and Save image downloads it', async (t) => {
+// The canvas's drawing buffer (device px) and CSS size.
+const sizeOfCanvas = (page) => page.evaluate(() => {
+  const c = document.getElementById('canvas');
+  return { width: c.width, height: c.height, cssWidth: c.clientWidth, cssHeight: c.clientHeight };
+});
+
+// The 3,000-building test city, paused 8 s into the shaking (strong drift colours).
+async function openPausedCity() {
   const { context, close, browser } = await launchBrowser();
   try {
     const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
     assert.deepEqual(await waitReady(page), { ok: true });
     await settle(page);
     await page.evaluate(() => { window.quakeview.pause(); window.quakeview.setTime(8); });
+    return { page, problems, close, browser };
+  } catch (error) {
+    await close();
+    throw error;
+  }
+}
+
+test('screenshot() is the view with its caption, paused or playing, and Save image downloads it', async (t) => {
+  const { page, problems, close, browser } = await openPausedCity();
+  try {
     await page.waitForTimeout(800);
-    const canvasSize = await page.evaluate(() => {
-      const c = document.getElementById('canvas');
-      return { width: c.width, height: c.height, cssWidth: c.clientWidth, cssHeight: c.clientHeight };
-    });
+    const canvasSize = await sizeOfCanvas(page);
 
     // The picture: the canvas's size plus the caption band, the city in colour, not black.
     const dataUrl = await page.evaluate(() => window.quakeview.screenshot());
@@ -135,14 +149,9 @@ test('screenshot() is the view with its caption, paused or playing, and Save ima
 });
 
 test('a right-click on the view gives the menu the picture to save; a right-drag orbits without one', async (t) => {
-  const { context, close, browser } = await launchBrowser();
+  const { page, problems, close, browser } = await openPausedCity();
   try {
-    const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
-    assert.deepEqual(await waitReady(page), { ok: true });
-    await settle(page);
     await page.evaluate(() => {
-      window.quakeview.pause();
-      window.quakeview.setTime(8);
       // What the context menu would belong to: the element it opens on, and whether the page kept it.
       window.__menus = [];
       window.addEventListener('contextmenu', (e) => {
@@ -151,10 +160,7 @@ test('a right-click on the view gives the menu the picture to save; a right-drag
       });
     });
     await page.waitForTimeout(500);
-    const size = await page.evaluate(() => {
-      const c = document.getElementById('canvas');
-      return { width: c.width, height: c.height, cssWidth: c.clientWidth, cssHeight: c.clientHeight };
-    });
+    const size = await sizeOfCanvas(page);
     // In the city, right of the panel.
     const at = { x: Math.round(size.cssWidth * 0.68), y: Math.round(size.cssHeight * 0.6) };
 
@@ -214,24 +220,15 @@ test('a right-click on the view gives the menu the picture to save; a right-drag
 });
 
 test('printing the page prints the view with its caption, never a black canvas, and the view keeps its size', async (t) => {
-  const { context, close, browser } = await launchBrowser();
+  const { page, problems, close, browser } = await openPausedCity();
   try {
-    const { page, problems } = await openPage(context, `${server.url}/?data=/data/synth/tileset.json`);
-    assert.deepEqual(await waitReady(page), { ok: true });
-    await settle(page);
     await page.evaluate(() => {
-      window.quakeview.pause();
-      window.quakeview.setTime(8);
       window.__printEvents = [];
       window.addEventListener('beforeprint', () => window.__printEvents.push('before'));
       window.addEventListener('afterprint', () => window.__printEvents.push('after'));
     });
     await page.waitForTimeout(500);
-    const sizeOf = () => page.evaluate(() => {
-      const c = document.getElementById('canvas');
-      return { width: c.width, height: c.height, cssWidth: c.clientWidth, cssHeight: c.clientHeight };
-    });
-    const before = await sizeOf();
+    const before = await sizeOfCanvas(page);
 
     // The browser's own print (to PDF): one page holding the picture, and afterwards the canvas is
     // drawn at the window's size again.
@@ -248,7 +245,7 @@ test('printing the page prints the view with its caption, never a black canvas, 
       `the page holds the view's picture with its caption: ${JSON.stringify(images)}`);
     assert.deepEqual(await page.evaluate(() => window.__printEvents), ['before', 'after']);
     await page.waitForTimeout(300);
-    assert.deepEqual(await sizeOf(), before, 'after printing, the canvas keeps the window\'s size');
+    assert.deepEqual(await sizeOfCanvas(page), before, 'after printing, the canvas keeps the window\'s size');
 
     // What the print shows: the picture (the view and its caption band), not the canvas. (Firefox
     // over WebDriver BiDi cannot emulate the print media type: its PDF above is the check there.)
