@@ -198,6 +198,16 @@ Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options, bool 
   return records;
 }
 
+// Runs `work` on `threads` threads (0: all cores), this one included, and waits for them all.
+template <typename Work>
+void runOnThreads(unsigned threads, Work& work) {
+  const unsigned n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n; ++t) pool.emplace_back(std::ref(work));
+  work();
+  for (std::thread& t : pool) t.join();
+}
+
 // The response spectra a record's scaling by Sa(T1) reads.
 Status computeSpectra(Record& r) {
   auto x = seismic::ResponseSpectrum::compute(r.x);
@@ -257,11 +267,7 @@ Result<std::vector<std::vector<Record>>> matchDefaultSuite(const std::map<SiteSh
       progress.update(++done);
     }
   };
-  const unsigned threads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
+  runOnThreads(options.threads, work);
   progress.finish();
   if (interrupted()) return Error{"interrupted; the city's previous response is unchanged"};
   if (!firstError.empty()) return Error{firstError};
@@ -462,7 +468,6 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   std::sort(leaves.begin(), leaves.end(),
             [&](std::uint32_t a, std::uint32_t b) { return tileset.nodes[a].buildings > tileset.nodes[b].buildings; });
 
-  const unsigned threads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
   std::atomic<std::size_t> next{0};
   std::atomic<std::uint64_t> buildingsDone{0};
   std::mutex mutex;
@@ -778,10 +783,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     rateCount += localRateCount;
     report.nonConvergedSteps += historySolver.stats().nonConvergedSteps + peakSolver.stats().nonConvergedSteps;
   };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
+  runOnThreads(options.threads, worker);
   progress.finish();
   if (interrupted()) return Error{"interrupted; the city's previous response is unchanged"};
   if (!firstError.empty()) return Error{firstError};
