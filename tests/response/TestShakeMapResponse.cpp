@@ -141,11 +141,16 @@ TEST_CASE("response under the NYC ShakeMap: a record suite, HAZUS probabilities 
     {"type":"Feature","properties":{"name":"West"},"geometry":{"type":"Polygon","coordinates":[[[-74.02,40.70],[-74.0085,40.70],[-74.0085,40.72],[-74.02,40.72],[-74.02,40.70]]]}},
     {"type":"Feature","properties":{"name":"East"},"geometry":{"type":"MultiPolygon","coordinates":[[[[-74.0085,40.70],[-74.0,40.70],[-74.0,40.72],[-74.0085,40.72],[-74.0085,40.70]]]]}}]})";
   const auto response = run("response --city " + city.path() + " --shakemap '" + kNycGrid +
-                            "' --synthetic 1 2 3 --time-of-day night --districts '" + districts + "'");
+                            "' --synthetic 1 2 3 --time-of-day night --districts '" + districts +
+                            "' --population-night 900 --population-day 2500 --population-source 'a test census'");
   INFO(response.output);
   REQUIRE(response.exitCode == 0);
   CHECK(response.output.find("SCENARIO: ShakeMap NYC_M5.8_se") != std::string::npos);
   CHECK(response.output.find("consequences (HAZUS 5.1, night") != std::string::npos);
+  CHECK(response.output.find("population given") != std::string::npos);
+  const auto badPopulation = run("response --city " + city.path() + " --synthetic 1 --population-day lots");
+  CHECK(badPopulation.exitCode != 0);
+  CHECK(badPopulation.output.find("--population-day must be a number of people, not 'lots'") != std::string::npos);
 
   simdjson::dom::parser parser;
   const auto info = run("info " + city.path() + " --json");
@@ -198,6 +203,12 @@ TEST_CASE("response under the NYC ShakeMap: a record suite, HAZUS probabilities 
     CHECK(building["suite"]["shown_record"].get_uint64().value() < 3);
   }
   CHECK(number(totals["occupants"]["expected"]) == Approx(occupants).epsilon(1e-4));
+  // Occupants at every time of day, the run's (night) among them; the population given, with its source.
+  CHECK(number(totals["occupants_by_time"]["night"]) == Approx(occupants).epsilon(1e-4));
+  CHECK(number(totals["occupants_by_time"]["day"]) > number(totals["occupants_by_time"]["commute"]) * 0.5);
+  CHECK(number(totals["population"]["night"]) == 900);
+  CHECK(number(totals["population"]["day"]) == 2500);
+  CHECK(std::string(totals["population"]["source"].get_string().value()) == "a test census");
   CHECK(number(totals["repair_cost_usd"]["expected"]) == Approx(cost).epsilon(1e-4));
   CHECK(number(totals["deaths"]["expected"]) == Approx(deaths).epsilon(1e-4).margin(1e-9));
   CHECK(number(totals["damage_states"]["moderate"]["expected"]) == Approx(moderate).epsilon(1e-4).margin(1e-9));

@@ -152,10 +152,14 @@ TEST_CASE("Occupancy, time of day and the inferred tables", "[loss]") {
   CHECK(occupantsPresentShare(Occupancy::RES3, TimeOfDay::Day) == 0.53);
   CHECK(occupantsPresentShare(Occupancy::RES4, TimeOfDay::Night) == 1.0);
   CHECK(occupantsPresentShare(Occupancy::EDU1, TimeOfDay::Commute) == 0.5);
-  // IBC 2018 business: 150 ft² = 13.935 m² per occupant.
-  CHECK(occupantDensityM2PerPerson(Occupancy::COM4) == Approx(13.935456));
+  // Capacity, IBC 2018 business: 150 ft² = 13.935 m² per occupant; the usual density is sparser.
+  CHECK(occupantCapacityM2PerPerson(Occupancy::COM4) == Approx(13.935456));
+  CHECK(occupantDensityM2PerPerson(Occupancy::COM4) == Approx(45.0));
+  CHECK(occupantDensityM2PerPerson(Occupancy::RES3) == Approx(70.0));
   for (int o = 0; o < static_cast<int>(Occupancy::Count); ++o) {
-    CHECK(occupantDensityM2PerPerson(static_cast<Occupancy>(o)) > 1.0);
+    INFO(occupancyCode(static_cast<Occupancy>(o)));
+    CHECK(occupantDensityM2PerPerson(static_cast<Occupancy>(o)) >=
+          occupantCapacityM2PerPerson(static_cast<Occupancy>(o)));
     CHECK(replacementCostUsdPerM2(static_cast<Occupancy>(o)) > 100.0);
   }
 }
@@ -229,10 +233,47 @@ TEST_CASE("One building's injuries, repair cost, time and tags, worked by hand",
     const BuildingLoss inferred = assessLoss(office, 0.01, 0.5, 0, 0, TimeOfDay::Day);
     CHECK(inferred.occupantsInferred);
     CHECK(inferred.valueInferred);
-    // 3000 m² / (150 ft² = 13.935 m²) = 215.28 occupants.
-    CHECK(inferred.occupantsPresent == Approx(3000 / (150 * 0.09290304)));
+    // 3000 m² / 45 m² = 66.7 occupants by day, 1 % of them at night, 75 % at commute time.
+    CHECK(inferred.occupantsPresent == Approx(3000.0 / 45));
+    CHECK(inferred.occupantsAt[0] == Approx(0.01 * 3000.0 / 45));
+    CHECK(inferred.occupantsAt[1] == Approx(3000.0 / 45));
+    CHECK(inferred.occupantsAt[2] == Approx(0.75 * 3000.0 / 45));
     CHECK(inferred.replacementValueUsd == Approx(3000 * replacementCostUsdPerM2(Occupancy::COM4)));
   }
+}
+
+TEST_CASE("Occupants: usual densities by time of day, mixed use where the use is unknown, never over capacity",
+          "[loss][occupants]") {
+  Exposure flats;
+  flats.occupancy = Occupancy::RES3;
+  flats.storeys = 6;
+  flats.floorAreaM2 = 7000;
+  const BuildingOccupants f = buildingOccupants(flats);
+  CHECK(f.inferred);
+  CHECK_FALSE(f.capped);
+  CHECK(f.at[0] == Approx(100));  // 7000 m² / 70 m² a resident, all home at night
+  CHECK(f.at[1] == Approx(53));   // HAZUS: 53 % of residents at home by day
+  CHECK(f.at[2] == Approx(35));   // 35 % at commute time
+  CHECK(f.capacity == Approx(7000 / (200 * 0.09290304)));
+
+  // No use in the data: 25 % of the floor area lived in (RES3), 75 % offices (COM4), per time.
+  Exposure unknown = flats;
+  unknown.useKnown = false;
+  const BuildingOccupants u = buildingOccupants(unknown);
+  CHECK(u.at[0] == Approx(7000 * (0.25 * 1.0 / 70 + 0.75 * 0.01 / 45)));
+  CHECK(u.at[1] == Approx(7000 * (0.25 * 0.53 / 70 + 0.75 * 1.0 / 45)));
+  CHECK(u.at[2] == Approx(7000 * (0.25 * 0.35 / 70 + 0.75 * 0.75 / 45)));
+
+  // Tagged occupants beyond what the floor area allows are cut to its egress capacity.
+  Exposure crowded;
+  crowded.occupancy = Occupancy::COM4;
+  crowded.floorAreaM2 = 1000;
+  crowded.occupants = 5000;
+  const BuildingOccupants c = buildingOccupants(crowded);
+  CHECK_FALSE(c.inferred);
+  CHECK(c.capped);
+  CHECK(c.at[1] == Approx(1000 / 13.935456));
+  CHECK(c.at[0] == Approx(50));  // 1 % of 5000 at night: within capacity
 }
 
 TEST_CASE("City totals: expected values are sums, the interval holds them and repeats per seed", "[loss]") {

@@ -656,4 +656,34 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
   return tile;
 }
 
+double buildingFloorAreaM2(const CityTile& tile, const TileBuilding& building) {
+  const BuildingAttributes& a = building.attributes;
+  const double storeyM = a.storeyHeightM();
+  if (!(storeyM > 0) || a.storeys == 0) return 0;
+  double area = 0;
+  for (std::uint32_t p = building.firstPart; p < building.firstPart + building.partCount && p < tile.parts.size();
+       ++p) {
+    const TilePart& part = tile.parts[p];
+    const double bottom = std::max<double>(part.minHeightM, a.minHeightM);
+    const double top = std::min<double>(part.heightM, a.heightM);
+    const double levels = top > bottom ? std::round((top - bottom) / storeyM) : 0.0;
+    if (levels <= 0) continue;
+    double partArea = 0;
+    std::uint32_t v = part.firstVertex;
+    for (std::uint16_t r = 0; r < part.ringCount && part.firstRing + r < tile.ringVertexCounts.size(); ++r) {
+      const std::uint32_t n = tile.ringVertexCounts[part.firstRing + r];
+      if (v + n > tile.vertices.size()) break;
+      double twice = 0;  // shoelace
+      for (std::uint32_t i = 0; i < n; ++i) {
+        const glm::vec2 p0 = tile.vertices[v + i], p1 = tile.vertices[v + (i + 1) % n];
+        twice += static_cast<double>(p0.x) * p1.y - static_cast<double>(p1.x) * p0.y;
+      }
+      partArea += (r == 0 ? 0.5 : -0.5) * std::abs(twice);  // outer ring first, then holes
+      v += n;
+    }
+    area += std::max(partArea, 0.0) * std::min<double>(levels, a.storeys);
+  }
+  return area;
+}
+
 }  // namespace qv

@@ -9,6 +9,7 @@ namespace {
 
 constexpr const char* kStateKeys[5] = {"none", "slight", "moderate", "extensive", "complete"};
 constexpr const char* kTagKeys[3] = {"green", "yellow", "red"};
+constexpr const char* kTimeKeys[3] = {"night", "day", "commute"};
 constexpr const char* kSeverityKeys[4] = {"severity_1", "severity_2", "severity_3", "severity_4"};
 
 using simdjson::dom::array;
@@ -70,6 +71,15 @@ Result<LossTotals> readTotals(object o, const std::string& where) {
   if (!cost.ok()) return Error{cost.error()};
   t.collapsed = *collapsed;
   t.occupants = *occupants;
+  t.occupantsAt = {std::nan(""), std::nan(""), std::nan("")};
+  object byTime;
+  if (o["occupants_by_time"].get(byTime) == simdjson::SUCCESS) {
+    for (std::size_t k = 0; k < 3; ++k) {
+      if (byTime[kTimeKeys[k]].get_double().get(t.occupantsAt[k])) {
+        return Error{where + ": \"occupants_by_time\" needs numbers night, day and commute"};
+      }
+    }
+  }
   t.repairCostUsd = *cost;
   return t;
 }
@@ -84,6 +94,11 @@ void writeLossTotals(JsonWriter& w, const LossTotals& t) {
   writeEstimate(w, "moderate_or_worse", t.damaged);
   writeEstimate(w, "collapsed", t.collapsed);
   writeEstimate(w, "occupants", t.occupants);
+  if (std::isfinite(t.occupantsAt[0])) {
+    w.key("occupants_by_time").beginObject();
+    for (std::size_t k = 0; k < 3; ++k) w.field(kTimeKeys[k], t.occupantsAt[k]);
+    w.endObject();
+  }
   w.key("injuries").beginObject();
   for (int k = 0; k < 4; ++k) writeEstimate(w, kSeverityKeys[k], t.injuries[static_cast<std::size_t>(k)]);
   w.endObject();
@@ -99,6 +114,13 @@ std::string consequencesToJson(const ConsequenceTotals& totals) {
   w.field("format", "quakeview-consequences").field("version", 1);
   w.field("timeOfDay", totals.timeOfDay);
   w.field("interval", "90 % (5th to 95th percentile)");
+  if (totals.population.given()) {
+    w.key("population").beginObject();
+    if (totals.population.night >= 0) w.field("night", totals.population.night);
+    if (totals.population.day >= 0) w.field("day", totals.population.day);
+    if (!totals.population.source.empty()) w.field("source", totals.population.source);
+    w.endObject();
+  }
   w.key("city").beginObject();
   writeLossTotals(w, totals.city);
   w.endObject();
@@ -126,6 +148,17 @@ Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::st
     return Error{name + ": missing timeOfDay, city or districts"};
   }
   out.timeOfDay = std::string(timeOfDay);
+  object population;
+  if (root["population"].get(population) == simdjson::SUCCESS) {
+    for (const char* key : {"night", "day"}) {
+      double v = 0;
+      if (population[key].get_double().get(v) != simdjson::SUCCESS) continue;
+      if (!(v >= 0 && v < 1e10)) return Error{name + ": population \"" + key + "\" must be a count of people"};
+      (key[0] == 'n' ? out.population.night : out.population.day) = v;
+    }
+    std::string_view source;
+    if (population["source"].get(source) == simdjson::SUCCESS) out.population.source = std::string(source);
+  }
   auto c = readTotals(city, name + " city");
   if (!c.ok()) return Error{c.error()};
   out.city = *c;

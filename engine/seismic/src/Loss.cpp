@@ -17,43 +17,49 @@ namespace {
 static_assert(hazus::kOccupancies == static_cast<std::size_t>(Occupancy::Count));
 
 constexpr double kFt2ToM2 = 0.09290304;
+constexpr double kResidentialM2PerResident = 70.0;  // calibrated, docs/losses.md "Occupants"
+constexpr double kOfficeM2PerOccupant = 45.0;       // calibrated, docs/losses.md "Occupants"
 
 struct OccupancyAssumptions {
-  double m2PerPerson;   // gross floor area per occupant at peak occupancy (see Loss.h, docs/losses.md)
-  double costUsdPerM2;  // replacement cost, USD 2022 per m² of floor area (planning value)
+  double m2PerPerson;          // gross floor area per occupant at the class's usual peak presence (see Loss.h)
+  double capacityM2PerPerson;  // gross floor area per occupant at the code's egress load: the most it holds
+  double costUsdPerM2;         // replacement cost, USD 2022 per m² of floor area (planning value)
 };
 
-// Indexed by Occupancy. Densities: IBC 2018 Table 1004.5 occupant load factors (ft² per occupant,
-// converted) except RES1-RES3 (Census household size over typical dwelling areas); see Loss.h.
+// Indexed by Occupancy. Usual densities (first column): docs/losses.md "Occupants" gives each
+// source; they are calibrated so that the shared Manhattan extract holds its census residents at
+// night and its daytime population by day (tests/ingest/TestOccupants.cpp). Capacities: IBC 2018
+// Table 1004.5 occupant load factors (ft² per occupant, converted); RES1-RES3 at the code's
+// residential 200 ft² gross.
 constexpr OccupancyAssumptions kAssumptions[] = {
-    /* RES1  */ {60.0, 1400},            // ~150 m² house / 2.5 persons
-    /* RES2  */ {36.0, 700},             // ~90 m² mobile home / 2.5 persons
-    /* RES3  */ {40.0, 1800},            // ~100 m² flat incl. common areas / 2.5 persons
-    /* RES4  */ {200 * kFt2ToM2, 2200},  // residential 200 ft² gross
-    /* RES5  */ {200 * kFt2ToM2, 2300},  // residential 200 ft² gross
-    /* RES6  */ {120 * kFt2ToM2, 2400},  // institutional sleeping areas 120 ft² gross
-    /* COM1  */ {60 * kFt2ToM2, 1400},   // mercantile 60 ft² gross
-    /* COM2  */ {300 * kFt2ToM2, 1200},  // storage, stock, shipping 300 ft² gross
-    /* COM3  */ {150 * kFt2ToM2, 1600},  // business 150 ft² gross
-    /* COM4  */ {150 * kFt2ToM2, 2400},  // business
-    /* COM5  */ {150 * kFt2ToM2, 2800},  // business
-    /* COM6  */ {240 * kFt2ToM2, 4300},  // institutional inpatient treatment 240 ft² gross
-    /* COM7  */ {100 * kFt2ToM2, 2800},  // institutional outpatient 100 ft² gross
-    /* COM8  */ {30 * kFt2ToM2, 2300},   // assembly unconcentrated 15 ft² net (30 gross)
-    /* COM9  */ {14 * kFt2ToM2, 2500},   // assembly concentrated 7 ft² net (14 gross)
-    /* COM10 */ {200 * kFt2ToM2, 900},   // parking garages 200 ft² gross
-    /* IND1  */ {100 * kFt2ToM2, 1600},  // industrial 100 ft² gross
-    /* IND2  */ {100 * kFt2ToM2, 1300},
-    /* IND3  */ {100 * kFt2ToM2, 2000},
-    /* IND4  */ {100 * kFt2ToM2, 2000},
-    /* IND5  */ {100 * kFt2ToM2, 2600},
-    /* IND6  */ {100 * kFt2ToM2, 1200},
-    /* AGR1  */ {300 * kFt2ToM2, 900},   // agricultural 300 ft² gross
-    /* REL1  */ {30 * kFt2ToM2, 2300},   // assembly unconcentrated 15 ft² net (30 gross)
-    /* GOV1  */ {150 * kFt2ToM2, 2300},  // business
-    /* GOV2  */ {150 * kFt2ToM2, 2800},  // business
-    /* EDU1  */ {40 * kFt2ToM2, 2300},   // classrooms 20 ft² net (40 gross)
-    /* EDU2  */ {150 * kFt2ToM2, 2800},  // business: campuses are mostly offices, labs, libraries
+    /* RES1  */ {60.0, 200 * kFt2ToM2, 1400},                       // ~150 m² house / 2.5 persons (Census 2020)
+    /* RES2  */ {36.0, 200 * kFt2ToM2, 700},                        // ~90 m² mobile home / 2.5 persons
+    /* RES3  */ {kResidentialM2PerResident, 200 * kFt2ToM2, 1800},  // see kResidentialM2PerResident
+    /* RES4  */ {40.0, 200 * kFt2ToM2, 2200},   // hotel: ~45 m² gross a room, 1.7 guests, 85 % occupied, staff
+    /* RES5  */ {20.0, 50 * kFt2ToM2, 2300},    // dormitory: ~20 m² gross a bed
+    /* RES6  */ {40.0, 120 * kFt2ToM2, 2400},   // nursing home: residents and staff
+    /* COM1  */ {45.0, 60 * kFt2ToM2, 1400},    // retail: staff and customers at the busy hour
+    /* COM2  */ {150.0, 300 * kFt2ToM2, 1200},  // warehouse
+    /* COM3  */ {40.0, 150 * kFt2ToM2, 1600},   // personal and repair services
+    /* COM4  */ {kOfficeM2PerOccupant, 150 * kFt2ToM2, 2400},  // see kOfficeM2PerOccupant
+    /* COM5  */ {40.0, 150 * kFt2ToM2, 2800},                  // banks
+    /* COM6  */ {40.0, 240 * kFt2ToM2, 4300},                  // hospital: in-patients, staff, visitors
+    /* COM7  */ {25.0, 100 * kFt2ToM2, 2800},                  // clinic
+    /* COM8  */ {15.0, 30 * kFt2ToM2, 2300},                   // restaurants, entertainment
+    /* COM9  */ {6.0, 14 * kFt2ToM2, 2500},                    // theatres: seats mostly filled in the evening
+    /* COM10 */ {500.0, 200 * kFt2ToM2, 900},                  // parking garage: attendants and drivers
+    /* IND1  */ {80.0, 100 * kFt2ToM2, 1600},                  // industry: ~80 m² a worker
+    /* IND2  */ {80.0, 100 * kFt2ToM2, 1300},
+    /* IND3  */ {80.0, 100 * kFt2ToM2, 2000},
+    /* IND4  */ {80.0, 100 * kFt2ToM2, 2000},
+    /* IND5  */ {60.0, 100 * kFt2ToM2, 2600},
+    /* IND6  */ {60.0, 100 * kFt2ToM2, 1200},  // construction sites
+    /* AGR1  */ {500.0, 300 * kFt2ToM2, 900},
+    /* REL1  */ {40.0, 30 * kFt2ToM2, 2300},                   // religious: weekday staff and visitors
+    /* GOV1  */ {kOfficeM2PerOccupant, 150 * kFt2ToM2, 2300},  // government offices
+    /* GOV2  */ {40.0, 150 * kFt2ToM2, 2800},                  // fire, police: crews
+    /* EDU1  */ {10.0, 40 * kFt2ToM2, 2300},                   // schools: ~9 m² gross a pupil (NYC) with staff
+    /* EDU2  */ {25.0, 150 * kFt2ToM2, 2800},                  // colleges: students, faculty and staff on campus
 };
 static_assert(sizeof kAssumptions / sizeof kAssumptions[0] == static_cast<std::size_t>(Occupancy::Count));
 
@@ -235,6 +241,46 @@ double occupantDensityM2PerPerson(Occupancy occupancy) {
   return i < std::size(kAssumptions) ? kAssumptions[i].m2PerPerson : kAssumptions[2].m2PerPerson;
 }
 
+double occupantCapacityM2PerPerson(Occupancy occupancy) {
+  const auto i = static_cast<std::size_t>(occupancy);
+  return i < std::size(kAssumptions) ? kAssumptions[i].capacityM2PerPerson : kAssumptions[2].capacityM2PerPerson;
+}
+
+BuildingOccupants buildingOccupants(const Exposure& exposure) {
+  BuildingOccupants out;
+  const double floorArea = finiteOrZero(exposure.floorAreaM2);
+  const auto occ =
+      static_cast<Occupancy>(std::min(static_cast<std::size_t>(exposure.occupancy), hazus::kOccupancies - 1));
+  out.capacity = floorArea / occupantCapacityM2PerPerson(occ);
+  // People per m² present at each time: the class's usual peak density times HAZUS's share present.
+  std::array<double, 3> perM2{};
+  for (std::size_t t = 0; t < 3; ++t) {
+    const auto time = static_cast<TimeOfDay>(t);
+    if (exposure.occupants) {
+      perM2[t] = 0;
+    } else if (exposure.useKnown) {
+      perM2[t] = occupantsPresentShare(occ, time) / occupantDensityM2PerPerson(occ);
+    } else {  // no use in the data: the mixed-use profile
+      perM2[t] = kUnknownUseResidentialShare * occupantsPresentShare(Occupancy::RES3, time) /
+                     occupantDensityM2PerPerson(Occupancy::RES3) +
+                 (1 - kUnknownUseResidentialShare) * occupantsPresentShare(Occupancy::COM4, time) /
+                     occupantDensityM2PerPerson(Occupancy::COM4);
+    }
+  }
+  for (std::size_t t = 0; t < 3; ++t) {
+    const double wanted =
+        exposure.occupants ? finiteOrZero(*exposure.occupants) * occupantsPresentShare(occ, static_cast<TimeOfDay>(t))
+                           : floorArea * perM2[t];
+    out.at[t] = wanted;
+    if (wanted > out.capacity) {
+      out.at[t] = out.capacity;
+      out.capped = true;
+    }
+  }
+  out.inferred = !exposure.occupants.has_value();
+  return out;
+}
+
 double replacementCostUsdPerM2(Occupancy occupancy) {
   const auto i = static_cast<std::size_t>(occupancy);
   return i < std::size(kAssumptions) ? kAssumptions[i].costUsdPerM2 : kAssumptions[2].costUsdPerM2;
@@ -288,15 +334,11 @@ BuildingLoss assessLoss(const Exposure& exposure, double medianPeakDriftRatio, d
 
   out.collapse = out.structural.p[4] * type.collapseProbability;
 
-  // Occupants: tagged peak occupancy, else floor area over the density; times the share present.
-  double peakOccupants = 0;
-  if (exposure.occupants) {
-    peakOccupants = finiteOrZero(*exposure.occupants);
-  } else {
-    peakOccupants = floorArea / occupantDensityM2PerPerson(occ);
-    out.occupantsInferred = true;
-  }
-  out.occupantsPresent = peakOccupants * occupantsPresentShare(occ, time);
+  // Occupants present at the time of day (buildingOccupants: usual densities, capped by the floor area).
+  const BuildingOccupants occupants = buildingOccupants(exposure);
+  out.occupantsAt = occupants.at;
+  out.occupantsPresent = occupants.at[std::min(static_cast<std::size_t>(time), std::size_t{2})];
+  out.occupantsInferred = occupants.inferred;
 
   if (exposure.replacementValueUsd) {
     out.replacementValueUsd = finiteOrZero(*exposure.replacementValueUsd);
@@ -347,6 +389,7 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
     totals.damaged.expected += b.structural.p[2] + b.structural.p[3] + b.structural.p[4];
     totals.collapsed.expected += b.collapse;
     occupants += b.occupantsPresent;
+    for (std::size_t t = 0; t < 3; ++t) totals.occupantsAt[t] += b.occupantsAt[t];
     totals.repairCostUsd.expected += b.repairCostUsd;
     for (std::size_t s = 0; s < 4; ++s) totals.injuries[s].expected += b.injuries[s];
     for (std::size_t t = 0; t < 3; ++t) totals.tags[t].expected += b.tag[t];
@@ -440,13 +483,16 @@ LossSpread lossSpread(const BuildingLoss& b) {
   return out;
 }
 
-Exposure exposureFromAttributes(const BuildingAttributes& a, int storeys) {
+Exposure exposureFromAttributes(const BuildingAttributes& a, int storeys, double floorAreaM2) {
   Exposure e;
   e.storeys = std::max(storeys, 1);
   e.type = resolvedStructuralType(a.structuralType, e.storeys);
   e.era = resolvedCodeEra(e.type, a.codeEra);
   e.occupancy = occupancyFromUse(a.use, e.storeys);
-  e.floorAreaM2 = static_cast<double>(a.footprintAreaM2) * static_cast<double>(e.storeys);
+  e.useKnown = !a.use.empty() && a.use != "unknown";
+  e.floorAreaM2 = floorAreaM2 > 0 && std::isfinite(floorAreaM2)
+                      ? floorAreaM2
+                      : static_cast<double>(a.footprintAreaM2) * static_cast<double>(e.storeys);
   if (a.occupants > 0) e.occupants = static_cast<double>(a.occupants);
   if (a.replacementValueUsd > 0.0f) e.replacementValueUsd = static_cast<double>(a.replacementValueUsd);
   return e;

@@ -99,6 +99,32 @@ void drawQualityState(QualityState& q, ui::Widgets& w) {
   w.text(ui::format("detail step %d of %d below the preset (%s)", q.governorStep, q.governorMaxStep, why.c_str()));
 }
 
+// "Occupants: 1.78 million by day, 529800 at night, ... (inferred ...); population: ..." — the city's
+// people against its published population where the run was given it.
+std::string occupantsLine(const seismic::ConsequenceTotals& file) {
+  auto people = [](double n) {
+    return n >= 1e6 ? ui::format("%.2f million", n / 1e6) : ui::format("%.0f", std::round(n / 100) * 100);
+  };
+  const auto& at = file.city.occupantsAt;
+  std::string line = std::isfinite(at[0])
+                         ? "Occupants: " + people(at[1]) + " by day, " + people(at[0]) + " at night, " + people(at[2]) +
+                               " at commute time (inferred from floor area and use unless the data gives them)"
+                         : "Occupants: " + people(file.city.occupants.expected) + " at " + file.timeOfDay;
+  const seismic::PopulationFigures& p = file.population;
+  if (p.given()) {
+    line += "; population: ";
+    if (p.night >= 0) line += people(p.night) + " residents";
+    if (p.night >= 0 && p.day >= 0) line += ", ";
+    if (p.day >= 0) line += people(p.day) + " by day";
+    line += " (" + (p.source.empty() ? std::string("source not given") : p.source) + ")";
+    if (std::isfinite(at[0]) && p.night > 0 && p.day > 0) {
+      line += ui::format(": the city holds %.0f %% of them at night, %.0f %% by day", 100 * at[0] / p.night,
+                         100 * at[1] / p.day);
+    }
+  }
+  return line;
+}
+
 }  // namespace
 
 void ControlPanel::applyQuality(Viewer& viewer, QualityPreset preset, int governorStep) {
@@ -312,6 +338,7 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
     headline.push_back({"Repair cost", money(c.repairCostUsd)});
     w.table("##headline", {ui::format("HAZUS 5.1, occupants at %s", file->timeOfDay.c_str()), "City (90 % interval)"},
             headline);
+    w.textWrapped(occupantsLine(*file));
   }
   ImGui::Indent();
   const bool full = section(w, "All consequences: city, view, districts", false);

@@ -572,6 +572,13 @@ int runInfo(const CommandArgs& argv) {
         w.endObject();
         w.key("consequences").beginObject();
         w.field("time_of_day", consequences->timeOfDay);
+        if (consequences->population.given()) {
+          const seismic::PopulationFigures& p = consequences->population;
+          w.key("population").beginObject();
+          if (p.night >= 0) w.field("night", p.night);
+          if (p.day >= 0) w.field("day", p.day);
+          w.field("source", p.source).endObject();
+        }
         seismic::writeLossTotals(w, consequences->city);
         w.key("districts").beginArray();
         for (const seismic::ConsequenceTotals::District& d : consequences->districts) {

@@ -746,8 +746,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
                 // HAZUS probabilities and consequences from the suite's medians and spread.
                 const double lossStart = threadCpuSeconds();
                 const BuildingAttributes& a = tile->buildings[item.index].attributes;
-                const seismic::Exposure exposure =
-                    seismic::exposureFromAttributes(a, static_cast<int>(response.storeys));
+                const seismic::Exposure exposure = seismic::exposureFromAttributes(
+                    a, static_cast<int>(response.storeys), buildingFloorAreaM2(*tile, tile->buildings[item.index]));
                 const seismic::BuildingLoss loss =
                     seismic::assessLoss(exposure, medianDrift, medianAcceleration / seismic::kGravityMps2, driftBeta,
                                         accelerationBeta, options.timeOfDay);
@@ -831,6 +831,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   const double totalsStart = threadCpuSeconds();
   seismic::ConsequenceTotals totals;
   totals.timeOfDay = info.timeOfDay;
+  totals.population = options.population;
   totals.city = seismic::totalLosses(losses);
   if (districts) {
     for (std::size_t d = 0; d < districts->names.size(); ++d) {

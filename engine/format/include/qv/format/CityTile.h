@@ -125,6 +125,13 @@ struct CityTile {
   std::vector<TileMesh> meshes;
 };
 
+/// A building's gross floor area, m²: over its parts, each part's area times the whole storeys
+/// (the building's storey height) between its bottom and top, both clipped to the building's
+/// structural span [minHeightM, heightM] (so masts, spires and roof structures above it, or parts
+/// lower than half a storey, add nothing). 0 when the building has no parts; callers then fall back
+/// to footprint x storeys. A setback tower's floor area is its tiers', not its base's times its storeys.
+double buildingFloorAreaM2(const CityTile& tile, const TileBuilding& building);
+
 /// Serializes a tile (version kCityTileVersion). Vertices outside [0, extent] are clamped (mesh z outside [0, topM]
 /// too); the caller chooses origin and extent to cover its buildings and meshes (quantization step = extent / 65535).
 /// Meshes must satisfy the contract of TileMesh (sizes, indices, order). The decoder accepts |origin| <= 1e7 m and

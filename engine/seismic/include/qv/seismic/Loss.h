@@ -125,16 +125,26 @@ DamageProbabilities nonStructuralDriftDamage(double medianPeakDriftRatio, double
 DamageProbabilities nonStructuralAccelerationDamage(CodeEra era, double medianPeakFloorAccelerationG,
                                                     double demandBeta = 0);
 
-/// Floor area per occupant at the class's peak occupancy, m² (gross floor area). Non-residential:
-/// the occupant load factors of the International Building Code 2018, Table 1004.5 (business 150,
-/// mercantile 60, industrial 100, storage 300, parking 200, agricultural 300, institutional
-/// inpatient 240 and sleeping 120, dormitories 50 ft² gross; classrooms 20 and unconcentrated
-/// assembly 15 ft² net, taken as 40 and 30 ft² gross with half the gross area net). These are design
-/// maxima for egress, so peak occupancy and casualties are upper bounds. Residential (RES1, RES2,
-/// RES3): about 2.5 persons per household (US Census 2020) in a typical dwelling of 150, 90 and
-/// 100 m² gross including common areas (~60, 36, 40 m² per person) rather than the code's 200 ft²,
-/// which is far denser than housing is lived in. docs/losses.md lists every row.
+/// Floor area per occupant at the class's usual peak presence, m² of gross floor area: residents
+/// for the residential classes (present at night), workers, pupils, patients and visitors for the
+/// others (present by day). Usual, not design, densities: US Census household sizes over dwelling
+/// areas, office and school space per person as surveyed, hotel rooms at their occupancy. RES3 and
+/// COM4 (and GOV1, offices) are calibrated so that the shared Manhattan extract holds its census
+/// residents at night and its daytime population by day. docs/losses.md ("Occupants") lists every
+/// row and its source.
 double occupantDensityM2PerPerson(Occupancy occupancy);
+
+/// Floor area per occupant at the most the class may hold, m² gross: the occupant load factors of
+/// the International Building Code 2018, Table 1004.5 (business 150, mercantile 60, industrial 100,
+/// storage 300, parking 200, agricultural 300, institutional inpatient 240 and sleeping 120,
+/// dormitories 50, residential 200 ft² gross; classrooms 20 and unconcentrated assembly 15 ft² net,
+/// taken as 40 and 30 ft² gross). No building holds more people than its floor area over this.
+double occupantCapacityM2PerPerson(Occupancy occupancy);
+
+/// A building with no use in the data (OSM `building=yes`) is taken as mixed use: this share of
+/// its floor area residential (RES3), the rest offices (COM4), for its occupants only (damage and
+/// repair cost use its occupancy class). Calibrated with the densities (docs/losses.md).
+inline constexpr double kUnknownUseResidentialShare = 0.25;
 
 /// Replacement cost per m² of floor area, US dollars at a 2022 price level: planning values of this
 /// project, rounded, of the order of the RSMeans square-foot construction costs that the Hazus 5.1
@@ -159,6 +169,7 @@ struct Exposure {
   int storeys = 1;                            ///< >= 1; picks the height class of an Unknown type
   double floorAreaM2 = 0;                     ///< total over storeys (footprint x storeys when nothing better)
   std::optional<double> occupants;            ///< people at peak occupancy, tagged; else floor area / density
+  bool useKnown = true;                       ///< false: the data gives no use (mixed-use occupants)
   std::optional<double> replacementValueUsd;  ///< given; else floor area x cost per m²
 };
 
@@ -173,12 +184,26 @@ struct ConditionalConsequences {
   std::array<double, 5> nsAccelerationCostUsd{};  ///< given the acceleration-sensitive state
 };
 
+/// The people in one building at night, by day and at commute time (index: TimeOfDay). Tagged
+/// occupants (Exposure::occupants, people at peak) times HAZUS's share present at the time;
+/// otherwise floor area over the class's usual density (occupantDensityM2PerPerson) times the share,
+/// a building of unknown use by the mixed-use profile (kUnknownUseResidentialShare). Never more
+/// than `capacity`, floor area over occupantCapacityM2PerPerson.
+struct BuildingOccupants {
+  std::array<double, 3> at{};
+  double capacity = 0;
+  bool inferred = false;  ///< from floor area, not the data
+  bool capped = false;    ///< some time's count was cut to the capacity
+};
+BuildingOccupants buildingOccupants(const Exposure& exposure);
+
 /// The expected consequences for one building.
 struct BuildingLoss {
   DamageProbabilities structural, nonStructuralDrift, nonStructuralAcceleration;
-  double collapse = 0;             ///< P(collapse)
-  double occupantsPresent = 0;     ///< people in the building at the time of day
-  bool occupantsInferred = false;  ///< from floor area and the density table, not from the data
+  double collapse = 0;                  ///< P(collapse)
+  double occupantsPresent = 0;          ///< people in the building at the time of day
+  std::array<double, 3> occupantsAt{};  ///< at night, by day, at commute time (buildingOccupants)
+  bool occupantsInferred = false;       ///< from floor area and the density table, not from the data
   /// Expected people at severity 1..4 (HAZUS: 1 first aid, 2 hospital care, 3 life-threatening,
   /// 4 dead): occupantsPresent x sum over states of P(state) x rate(state) / 100, the complete state
   /// split into collapse (P_collapse of it) and no collapse, as the Hazus 5.1 Technical Manual's
@@ -219,6 +244,9 @@ struct LossTotals {
   /// bounds are NaN when read from a consequences file written before it existed.
   Estimate damaged;
   Estimate collapsed, occupants, repairCostUsd;
+  /// People present at night, by day and at commute time (sums of BuildingLoss::occupantsAt); NaN
+  /// when read from a consequences file written before it existed.
+  std::array<double, 3> occupantsAt{};
   std::array<Estimate, 4> injuries;  ///< severity 1..4
   std::array<Estimate, 3> tags;      ///< green, yellow, red building counts
 };
@@ -252,8 +280,9 @@ LossSpread lossSpread(const BuildingLoss& building);
 
 /// A building's exposure from its attributes, as `quakeview-prep response` assesses it: the type and
 /// code era the building model resolves (resolvedStructuralType, resolvedCodeEra), the occupancy
-/// from its use, floor area = footprint x storeys, and the occupants and replacement value the data
-/// gives (BuildingAttributes; inferred when 0).
-Exposure exposureFromAttributes(const BuildingAttributes& attributes, int storeys);
+/// from its use, the floor area given (> 0: e.g. buildingFloorAreaM2 over its parts) else footprint
+/// x storeys, and the occupants and replacement value the data gives (BuildingAttributes; inferred
+/// when 0).
+Exposure exposureFromAttributes(const BuildingAttributes& attributes, int storeys, double floorAreaM2 = 0);
 
 }  // namespace qv::seismic

@@ -16,6 +16,7 @@
 #include "qv/core/Result.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/prep/DefaultSuite.h"
+#include "qv/seismic/ConsequencesFile.h"
 #include "qv/seismic/GroundMotion.h"
 #include "qv/seismic/GroundMotionModel.h"
 #include "qv/seismic/Loss.h"
@@ -43,6 +44,8 @@ struct ResponseRunOptions {
   double shearWaveSpeedKmPerS = 3.5;                       ///< travel time from a ShakeMap's epicentre
   seismic::TimeOfDay timeOfDay = seismic::TimeOfDay::Day;  ///< for the occupants of the consequences
   std::string districts;                                   ///< --districts FILE.geojson: totals per district
+  /// --population-night/-day/-source: the published population the occupants are shown against
+  seismic::PopulationFigures population;
   /// --accurate-steps: accepted and ignored. The solver's defaults are the accurate path (the exact
   /// Bouc–Wen update; yielding frames within 0.5 % of converged peaks, docs/seismic.md
   /// "Sub-stepping"); the flag once turned on the hysteretic error bound, now the default.
