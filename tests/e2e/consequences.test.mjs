@@ -94,6 +94,8 @@ test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool w
     assert.match(panel, /\| City \| In view/);
     assert.match(panel, /Repair cost \| \$/);
     assert.match(panel, /West of -73.9995 \|/);
+    // The city's people at every time of day (inferred from floor area and use: OSM gives no counts).
+    assert.match(panel, /Occupants: [\d.,]+( million)? by day, [\d.,]+( million)? at night, [\d.,]+( million)? at commute time \(inferred/);
     // A suite of two records: its spread over the city is reported.
     assert.match(panel, /Record-to-record spread: peak drifts vary by a log standard deviation of \d\.\d\d/);
     await page.screenshot({ path: path.join(ARTIFACTS, 'consequences-panel.png') });

@@ -338,7 +338,6 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
     headline.push_back({"Repair cost", money(c.repairCostUsd)});
     w.table("##headline", {ui::format("HAZUS 5.1, occupants at %s", file->timeOfDay.c_str()), "City (90 % interval)"},
             headline);
-    w.textWrapped(occupantsLine(*file));
   }
   ImGui::Indent();
   const bool full = section(w, "All consequences: city, view, districts", false);
@@ -359,6 +358,7 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
       ui::format("HAZUS 5.1, occupants at %s; expected value (90 %% interval). Occupants and values "
                  "are inferred from floor area and use unless the data gives them.",
                  file->timeOfDay.c_str()));
+  w.textWrapped(occupantsLine(*file));
   std::vector<std::vector<std::string>> rows;
   rows.push_back({"Buildings (with a result)", ui::format("%llu", static_cast<unsigned long long>(c.buildings)),
                   ui::format("%llu", static_cast<unsigned long long>(view.buildings))});
