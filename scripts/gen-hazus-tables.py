@@ -20,6 +20,9 @@ out = os.path.join(root, "engine", "seismic", "src", "HazusTables.cpp")
 
 TYPES = ["W1", "W2", "S1L", "S1M", "S1H", "S2L", "S2M", "S2H", "C1L", "C1M", "C1H", "C2L", "C2M", "C2H",
          "C3L", "C3M", "C3H", "PC1", "RM1L", "RM1M", "URML", "URMM", "MH"]  # qv::StructuralType 1..23
+# The file's other Hazus types, shipped for the type mixtures (qv/seismic/TypeMixture.h): no
+# qv::StructuralType models them, but a building whose type is inferred may be one of them.
+EXTRA_TYPES = ["S3", "S4L", "S4M", "S4H", "S5L", "S5M", "S5H", "PC2L", "PC2M", "PC2H", "RM2L", "RM2M", "RM2H"]
 ERAS = ["Pre_code", "Low_code", "Moderate_code", "High_code"]  # qv::CodeEra 1..4
 OCC = ["RES1", "RES2", "RES3", "RES4", "RES5", "RES6", "COM1", "COM2", "COM3", "COM4", "COM5", "COM6", "COM7",
        "COM8", "COM9", "COM10", "IND1", "IND2", "IND3", "IND4", "IND5", "IND6", "AGR1", "REL1", "GOV1", "GOV2",
@@ -57,16 +60,24 @@ w("namespace qv::seismic::hazus {")
 w("")
 w("const std::array<double, kCodeEras> kStructuralBeta = " + arr(s["Fragility_beta"][e] for e in ERAS) + ";")
 w("")
+def structural_rows(types):
+    for t in types:
+        limits, infile = [], []
+        for e in ERAS:
+            row = s["EDP_limits"][e].get(t)
+            infile.append("true" if row is not None else "false")
+            limits.append(arr(row if row is not None else s["EDP_limits"]["Low_code"][t]))
+        inj = [arr(s["Injury_rates"][k][t]) for k in ["DS1", "DS2", "DS3", "DS4", "Collapse"]]
+        w('    {"%s", {{%s}}, {%s}, %s, {{%s}}},' % (t, ", ".join(limits), ", ".join(infile),
+                                                  num(s["P_collapse"][t]), ", ".join(inj)))
+
+
 w("const std::array<StructuralRow, kStructuralTypes> kStructural = {{")
-for t in TYPES:
-    limits, infile = [], []
-    for e in ERAS:
-        row = s["EDP_limits"][e].get(t)
-        infile.append("true" if row is not None else "false")
-        limits.append(arr(row if row is not None else s["EDP_limits"]["Low_code"][t]))
-    inj = [arr(s["Injury_rates"][k][t]) for k in ["DS1", "DS2", "DS3", "DS4", "Collapse"]]
-    w('    {"%s", {{%s}}, {%s}, %s, {{%s}}},' % (t, ", ".join(limits), ", ".join(infile), num(s["P_collapse"][t]),
-                                              ", ".join(inj)))
+structural_rows(TYPES)
+w("}};")
+w("")
+w("const std::array<StructuralRow, kExtraStructuralTypes> kExtraStructural = {{")
+structural_rows(EXTRA_TYPES)
 w("}};")
 w("")
 w("const std::array<OccupancyRow, kOccupancies> kOccupancy = {{")

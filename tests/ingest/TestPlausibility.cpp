@@ -207,6 +207,18 @@ TEST_CASE("Masonry eras: before 1890 and old religious buildings, towers and chi
   CHECK(inferStructuralType("religious", 100.5f, 17, "", "", 1878) == T::URMM);
   CHECK(inferStructuralType("religious", 30, 5, "stone", "", 0) == T::URMM);
   CHECK(inferStructuralType("religious", 12, 2, "", "", 0) == T::URML);
+  // Only use, height and era deciding: a guess (kNoteTypeFromUse, the damage is a type mixture).
+  bool fromUse = false;
+  inferStructuralType("office", 40, 10, "", "", 0, &fromUse);
+  CHECK(fromUse);
+  inferStructuralType("office", 40, 10, "glass", "", 0, &fromUse);  // cladding says nothing of the frame
+  CHECK(fromUse);
+  inferStructuralType("office", 40, 10, "", "steel_frame", 0, &fromUse);
+  CHECK_FALSE(fromUse);
+  inferStructuralType("house", 9, 3, "wood", "", 0, &fromUse);
+  CHECK_FALSE(fromUse);
+  inferStructuralType("residential", 20, 5, "", "", 1868, &fromUse);  // pre-frame masonry: the era says
+  CHECK_FALSE(fromUse);
   CHECK(inferStructuralType("religious", 30, 5, "concrete", "", 1965) == T::C1M);
   CHECK(inferStructuralType("tower", 60, 15, "", "", 1920) == T::URMM);
   CHECK(normalizeUse("chimney", "") == "tower");

@@ -59,11 +59,15 @@ TEST_CASE("Every shipped HAZUS value equals the SimCenter file's", "[loss][hazus
   const auto str = at(file.doc, "Structural_Fragility_Groups");
 
   // Structural rows follow qv::StructuralType and carry its codes.
+  // ... then the file's other types (for type mixtures), each found by its code.
   int compared = 0;
-  for (std::size_t t = 0; t < hazus::kStructuralTypes; ++t) {
-    const hazus::StructuralRow& row = hazus::kStructural[t];
+  for (std::size_t t = 0; t < hazus::kStructuralTypes + hazus::kExtraStructuralTypes; ++t) {
+    const bool extra = t >= hazus::kStructuralTypes;
+    const hazus::StructuralRow& row =
+        extra ? hazus::kExtraStructural[t - hazus::kStructuralTypes] : hazus::kStructural[t];
     INFO(row.code);
-    CHECK(row.code == structuralTypeCode(static_cast<StructuralType>(t + 1)));
+    if (!extra) CHECK(row.code == structuralTypeCode(static_cast<StructuralType>(t + 1)));
+    CHECK(hazus::structuralRowByCode(row.code) == &row);
     for (std::size_t e = 0; e < hazus::kCodeEras; ++e) {
       simdjson::dom::element limits;
       const bool present = at(at(str, "EDP_limits"), kEras[e])[row.code].get(limits) == simdjson::SUCCESS;
@@ -130,5 +134,5 @@ TEST_CASE("Every shipped HAZUS value equals the SimCenter file's", "[loss][hazus
     }
   }
   CHECK(hours == 24);
-  CHECK(compared == 23 * (16 + 21) + 28 * 16);
+  CHECK(compared == (23 + 13) * (16 + 21) + 28 * 16);
 }

@@ -9,6 +9,7 @@
 #include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/ConsequencesFile.h"
 #include "qv/seismic/Loss.h"
+#include "qv/seismic/TypeMixture.h"
 
 using namespace qv;
 using namespace qv::seismic;
@@ -274,6 +275,130 @@ TEST_CASE("Occupants: usual densities by time of day, mixed use where the use is
   CHECK(c.capped);
   CHECK(c.at[1] == Approx(1000 / 13.935456));
   CHECK(c.at[0] == Approx(50));  // 1 % of 5000 at night: within capacity
+}
+
+TEST_CASE("A type mixture's damage and consequences are the weighted sums over its types, worked by hand",
+          "[loss][mixture]") {
+  // 60 % URMM, 40 % S4H (a type we do not model, shipped for mixtures), low code, drift 0.006, one
+  // record, 100 occupants by day, $1,000,000. Low-code medians: URMM .002 .004 .01 .0233 (P_collapse
+  // .15), S4H .002 .0032 .008 .0219 (P_collapse .03); beta .4. P(DS = k) by hand (Phi of
+  // ln(0.006 / m) / 0.4): URMM .003011 .152360 .743838 .100443 .000347; S4H .003011 .055019 .705962
+  // .235403 .000604.
+  static constexpr TypeShare kShares[] = {{"URMM", 0.6}, {"S4H", 0.4}};
+  Exposure mixed;
+  mixed.type = StructuralType::URMM;  // the modelled type: ignored by the damage when a mixture is given
+  mixed.era = CodeEra::LowCode;
+  mixed.occupancy = Occupancy::COM4;
+  mixed.storeys = 9;
+  mixed.floorAreaM2 = 5000;
+  mixed.occupants = 100;
+  mixed.replacementValueUsd = 1e6;
+  mixed.typeMixture = kShares;
+  const BuildingLoss loss = assessLoss(mixed, 0.006, 0.3, 0, 0, TimeOfDay::Day);
+  const std::array<double, 5> expected{0.003011462, 0.113423952, 0.728687794, 0.154426695, 0.000450096};
+  checkProbabilities(loss.structural, expected);
+  CHECK(loss.collapse == Approx(0.6 * 0.000347258 * 0.15 + 0.4 * 0.000604353 * 0.03).epsilon(1e-5));
+  // Injuries: 100 x sum over types of w x sum_k P_k rate_k / 100 (rates of each type by hand).
+  CHECK(loss.injuries[0] == Approx(0.45164936).epsilon(1e-6));
+  CHECK(loss.injuries[1] == Approx(0.20982077).epsilon(1e-6));
+  CHECK(loss.injuries[2] == Approx(0.00085941).epsilon(1e-5));
+  CHECK(loss.injuries[3] == Approx(0.00105194).epsilon(1e-5));
+
+  // The same as the weighted sum of the two types assessed alone (S4H via a one-type mixture).
+  static constexpr TypeShare kUrmm[] = {{"URMM", 1.0}};
+  static constexpr TypeShare kS4h[] = {{"S4H", 1.0}};
+  Exposure a = mixed, b = mixed;
+  a.typeMixture = kUrmm;
+  b.typeMixture = kS4h;
+  const BuildingLoss la = assessLoss(a, 0.006, 0.3, 0, 0, TimeOfDay::Day);
+  const BuildingLoss lb = assessLoss(b, 0.006, 0.3, 0, 0, TimeOfDay::Day);
+  Exposure single = mixed;
+  single.typeMixture = {};
+  const BuildingLoss alone = assessLoss(single, 0.006, 0.3, 0, 0, TimeOfDay::Day);
+  for (std::size_t k = 0; k < 5; ++k) CHECK(la.structural.p[k] == Approx(alone.structural.p[k]));
+  for (std::size_t s = 0; s < 4; ++s) {
+    CHECK(loss.injuries[s] == Approx(0.6 * la.injuries[s] + 0.4 * lb.injuries[s]).epsilon(1e-9));
+  }
+  CHECK(loss.repairCostUsd == Approx(0.6 * la.repairCostUsd + 0.4 * lb.repairCostUsd).epsilon(1e-9));
+  CHECK(loss.repairTimeDays == Approx(0.6 * la.repairTimeDays + 0.4 * lb.repairTimeDays).epsilon(1e-9));
+  for (std::size_t t = 0; t < 3; ++t) CHECK(loss.tag[t] == Approx(0.6 * la.tag[t] + 0.4 * lb.tag[t]).epsilon(1e-9));
+  // Totals sample the mixture: the expected values are the sums, the spread is exact per building.
+  const LossTotals totals = totalLosses(std::span<const BuildingLoss>(&loss, 1));
+  CHECK(totals.injuries[0].expected == Approx(loss.injuries[0]));
+  const LossSpread spread = lossSpread(loss);
+  CHECK(spread.repairCostUsd > 0);
+}
+
+TEST_CASE("A building of unknown year is judged 75 % at pre-code and 25 % at low code, wood at low code",
+          "[loss][mixture]") {
+  Exposure e;
+  e.type = StructuralType::C1M;
+  e.era = CodeEra::ModerateCode;  // the modelled era
+  e.eraKnown = false;
+  e.occupancy = Occupancy::COM4;
+  e.storeys = 5;
+  e.floorAreaM2 = 2000;
+  const double drift = 0.007;
+  const BuildingLoss unknown = assessLoss(e, drift, 0.3, 0, 0, TimeOfDay::Day);
+  // C1M medians: pre-code .0027 .0043 .0107 .0267, low code .0033 .0053 .0133 .0333; beta .4.
+  const DamageProbabilities pre = fragilityProbabilities({0.0027, 0.0043, 0.0107, 0.0267}, 0.4, drift, 0);
+  const DamageProbabilities low = fragilityProbabilities({0.0033, 0.0053, 0.0133, 0.0333}, 0.4, drift, 0);
+  for (std::size_t k = 0; k < 5; ++k) CHECK(unknown.structural.p[k] == Approx(0.75 * pre.p[k] + 0.25 * low.p[k]));
+  e.eraKnown = true;  // a known year keeps the one era
+  const BuildingLoss known = assessLoss(e, drift, 0.3, 0, 0, TimeOfDay::Day);
+  checkProbabilities(known.structural, structuralDamage(StructuralType::C1M, CodeEra::ModerateCode, drift).p);
+  // Wood frame (W1) has no pre-code row in Hazus's New York scheme: low code.
+  e.type = StructuralType::W1;
+  e.eraKnown = false;
+  const BuildingLoss wood = assessLoss(e, drift, 0.3, 0, 0, TimeOfDay::Day);
+  checkProbabilities(wood.structural, structuralDamage(StructuralType::W1, CodeEra::LowCode, drift).p);
+}
+
+TEST_CASE("The Hazus East Coast mapping: shares that sum to one for every class and height, as published",
+          "[loss][mixture]") {
+  for (int o = 0; o < static_cast<int>(Occupancy::Count); ++o) {
+    for (int storeys : {1, 2, 3, 5, 7, 8, 40}) {
+      const TypeMixtureInfo m = hazusTypeMixture(static_cast<Occupancy>(o), storeys);
+      INFO(occupancyCode(static_cast<Occupancy>(o)) << " at " << storeys << " storeys");
+      REQUIRE_FALSE(m.shares.empty());
+      double sum = 0;
+      for (const TypeShare& t : m.shares) {
+        CHECK(hazus::structuralRowByCode(t.code) != nullptr);
+        CHECK(t.share > 0);
+        sum += t.share;
+        // Unreinforced masonry by storeys: URML up to 2, URMM from 3.
+        if (t.code.starts_with("URM")) CHECK(t.code == (storeys <= 2 ? "URML" : "URMM"));
+      }
+      CHECK(sum == Approx(1.0).epsilon(1e-12));
+    }
+  }
+  // Table A-16 (East Coast, high-rise), COM4: S2H 36 %, S1H 15 %, S4H 15 %, C1H 15 %, RM2H 9 %, C2H 8 %, PC2H 2 %.
+  const TypeMixtureInfo office = hazusTypeMixture(Occupancy::COM4, 30);
+  CHECK(office.heightClass == "high-rise");
+  CHECK_FALSE(office.substituted);
+  REQUIRE(office.shares.size() == 7);
+  CHECK(office.shares[0].code == "S2H");
+  CHECK(office.shares[0].share == Approx(0.36));
+  // Table A-21, RES1 in New York: W1 85 %, URM 14 %, C2 1 %.
+  const TypeMixtureInfo house = hazusTypeMixture(Occupancy::RES1, 2);
+  REQUIRE(house.shares.size() == 3);
+  CHECK(house.shares[0].code == "W1");
+  CHECK(house.shares[0].share == Approx(0.85));
+  CHECK(house.shares[1].code == "URML");
+  // RES3 mid-rise: URMM 57 %. COM1 high-rise has none in the source: COM4's, marked substituted.
+  CHECK(hazusTypeMixture(Occupancy::RES3, 5).shares[0].code == "URMM");
+  CHECK(hazusTypeMixture(Occupancy::RES3, 5).shares[0].share == Approx(0.57));
+  CHECK(hazusTypeMixture(Occupancy::COM1, 12).substituted);
+  CHECK(hazusTypeMixture(Occupancy::COM1, 12).shares[0].code == "S2H");
+  // A building whose type was guessed carries the mixture into its exposure; a stated type does not.
+  BuildingAttributes attrs;
+  attrs.use = "office";
+  attrs.structuralType = StructuralType::S1H;
+  attrs.storeys = 30;
+  attrs.footprintAreaM2 = 1000;
+  CHECK(exposureFromAttributes(attrs, 30).typeMixture.empty());
+  attrs.notes = kNoteTypeFromUse;
+  CHECK(exposureFromAttributes(attrs, 30).typeMixture.size() == 7);
 }
 
 TEST_CASE("City totals: expected values are sums, the interval holds them and repeats per seed", "[loss]") {

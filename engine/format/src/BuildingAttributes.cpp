@@ -110,6 +110,9 @@ constexpr NoteRow kNotes[] = {
     {kNoteRoofAppendage, "roof-appendage",
      "height and storeys stop at the roof: a spire, mast or antenna part above it is drawn but is not "
      "structure"},
+    {kNoteTypeFromUse, "type-from-use",
+     "no structure or material tag: the modelled type is a guess from use and height, and the damage "
+     "is the mixture over the Hazus building types of its occupancy and height"},
 };
 }  // namespace
 

@@ -2,6 +2,7 @@
 
 #include "qv/core/JsonWriter.h"
 #include "qv/format/FacilityCategory.h"
+#include "qv/seismic/TypeMixture.h"
 
 namespace qv {
 
@@ -58,6 +59,19 @@ std::string buildingInfoJson(const BuildingInfo& info) {
   // Informative extras.
   w.field("minHeightM", a.minHeightM).field("footprintAreaM2", a.footprintAreaM2);
   w.field("structuralTypeDescription", structuralTypeDescription(a.structuralType));
+  // Where the type is a guess, the damage is the mixture over Hazus types (TypeMixture.h).
+  if (seismic::hasTypeMixture(a)) {
+    const seismic::TypeMixtureInfo m =
+        seismic::hazusTypeMixture(seismic::occupancyFromUse(a.use, a.storeys), static_cast<int>(a.storeys));
+    w.key("typeMixture").beginObject().field("source", seismic::kTypeMixtureSource);
+    w.field("heightClass", m.heightClass).field("substituted", m.substituted);
+    w.key("shares").beginArray();
+    for (const seismic::TypeShare& t : m.shares)
+      w.beginObject().field("type", t.code).field("share", t.share).endObject();
+    w.endArray().endObject();
+  } else {
+    w.key("typeMixture").null();
+  }
   w.key("importanceReasons").beginArray();
   for (const std::string_view name : importanceReasonNames(a.importanceReasons)) w.value(name);
   w.endArray();

@@ -23,6 +23,18 @@ std::array<double, 4> hazusDriftThresholds(StructuralType type, CodeEra era, int
   return row.driftLimits[column];
 }
 
+namespace hazus {
+const StructuralRow* structuralRowByCode(std::string_view code) {
+  for (const StructuralRow& row : kStructural) {
+    if (row.code == code) return &row;
+  }
+  for (const StructuralRow& row : kExtraStructural) {
+    if (row.code == code) return &row;
+  }
+  return nullptr;
+}
+}  // namespace hazus
+
 DamageState classifyDamage(double peakDriftRatio, const std::array<double, 4>& thresholds) {
   int state = 0;
   for (int k = 0; k < 4; ++k) {

@@ -10,6 +10,7 @@
 #include "qv/seismic/BuildingModel.h"
 #include "qv/seismic/Damage.h"
 #include "qv/seismic/HazusTables.h"
+#include "qv/seismic/TypeMixture.h"
 
 namespace qv::seismic {
 namespace {
@@ -134,6 +135,54 @@ Estimate interval(std::vector<double>& values, double expected) {
   e.low = std::min(quantile(0.05), expected);
   e.high = std::max(quantile(0.95), expected);
   return e;
+}
+
+// One structural type of a building's damage: its weight (a mixture's share, or 1), its damage-state
+// probabilities at the building's drift, and its Hazus row (collapse share, injury rates).
+struct TypePart {
+  double weight = 0;
+  DamageProbabilities damage;
+  const hazus::StructuralRow* row = nullptr;
+};
+constexpr std::size_t kMaxMixtureTypes = 32;  // the mapping's widest row has 13 types, x 2 design levels
+
+// Fills `parts` for an exposure: the mixture's types (renormalised over the known codes; an empty
+// or unusable mixture: the modelled type alone), each at the exposure's era (a type Hazus has only
+// up to low code, C3, S5 and URM, at low code above it) or, with the year unknown, split between
+// pre-code and low code (kUnknownEraPreCodeShare; W1 at low code). Returns how many parts.
+std::size_t typeParts(const Exposure& exposure, int storeys, double drift, double demandBeta,
+                      std::array<TypePart, kMaxMixtureTypes>& parts) {
+  std::array<TypeShare, kMaxMixtureTypes / 2> types{};
+  std::size_t count = 0;
+  double total = 0;
+  for (const TypeShare& share : exposure.typeMixture) {
+    if (hazus::structuralRowByCode(share.code) == nullptr || !(share.share > 0) || count == types.size()) continue;
+    types[count++] = share;
+    total += share.share;
+  }
+  if (count == 0) {
+    types[count++] = {structuralRow(exposure.type, storeys).code, 1.0};
+    total = 1.0;
+  }
+  std::size_t n = 0;
+  auto add = [&](const hazus::StructuralRow* row, double weight, std::size_t column) {
+    const std::size_t c = row->inFile[column] ? column : 1;  // 1: low code
+    parts[n++] = {weight, fragilityProbabilities(row->driftLimits[c], hazus::kStructuralBeta[c], drift, demandBeta),
+                  row};
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const hazus::StructuralRow* row = hazus::structuralRowByCode(types[i].code);
+    const double w = types[i].share / total;
+    if (exposure.eraKnown) {
+      add(row, w, eraColumn(exposure.era));
+    } else if (row->code == "W1") {
+      add(row, w, 1);
+    } else {
+      add(row, w * kUnknownEraPreCodeShare, 0);
+      add(row, w * (1 - kUnknownEraPreCodeShare), 1);
+    }
+  }
+  return n;
 }
 
 }  // namespace
@@ -322,17 +371,30 @@ BuildingLoss assessLoss(const Exposure& exposure, double medianPeakDriftRatio, d
                         double demandBetaDrift, double demandBetaAcceleration, TimeOfDay time) {
   BuildingLoss out;
   const int storeys = std::max(exposure.storeys, 1);
-  out.structural = structuralDamage(exposure.type, exposure.era, medianPeakDriftRatio, demandBetaDrift, storeys);
+  // The structural types judged: the mixture's where the type is not stated, else the modelled one.
+  std::array<TypePart, kMaxMixtureTypes> parts{};
+  const std::size_t n = typeParts(exposure, storeys, medianPeakDriftRatio, demandBetaDrift, parts);
+  out.structural.p = {0, 0, 0, 0, 0};
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t k = 0; k < 5; ++k) out.structural.p[k] += parts[i].weight * parts[i].damage.p[k];
+  }
   out.nonStructuralDrift = nonStructuralDriftDamage(medianPeakDriftRatio, demandBetaDrift);
   out.nonStructuralAcceleration =
       nonStructuralAccelerationDamage(exposure.era, medianPeakFloorAccelerationG, demandBetaAcceleration);
-  const hazus::StructuralRow& type = structuralRow(exposure.type, storeys);
   const auto occupancyIndex = std::min(static_cast<std::size_t>(exposure.occupancy), hazus::kOccupancies - 1);
   const hazus::OccupancyRow& occupancy = hazus::kOccupancy[occupancyIndex];
   const Occupancy occ = static_cast<Occupancy>(occupancyIndex);
   const double floorArea = finiteOrZero(exposure.floorAreaM2);
 
-  out.collapse = out.structural.p[4] * type.collapseProbability;
+  // P(collapse) and P(collapse | complete) over the types: sum w P4 Pc, and that over sum w P4.
+  double complete = 0, collapse = 0, meanCollapseShare = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    complete += parts[i].weight * parts[i].damage.p[4];
+    collapse += parts[i].weight * parts[i].damage.p[4] * parts[i].row->collapseProbability;
+    meanCollapseShare += parts[i].weight * parts[i].row->collapseProbability;
+  }
+  out.collapse = collapse;
+  const double collapseGivenComplete = complete > 0 ? collapse / complete : meanCollapseShare;
 
   // Occupants present at the time of day (buildingOccupants: usual densities, capped by the floor area).
   const BuildingOccupants occupants = buildingOccupants(exposure);
@@ -350,10 +412,29 @@ BuildingLoss assessLoss(const Exposure& exposure, double medianPeakDriftRatio, d
   // Consequences given each outcome (index 0 none .. 4 complete; injuries 4 complete without
   // collapse, 5 collapse). Rates and ratios are in percent.
   ConditionalConsequences& g = out.given;
-  g.collapseGivenComplete = type.collapseProbability;
+  g.collapseGivenComplete = collapseGivenComplete;
   for (std::size_t k = 1; k <= 5; ++k) {
-    for (std::size_t s = 0; s < 4; ++s)
-      g.injuries[k][s] = out.occupantsPresent * type.injuryRatesPercent[k - 1][s] / 100;
+    // The injury rates given outcome k: the types' rates weighted by how likely each type is to be
+    // in that outcome (w P_k; complete split into w P4 (1 - Pc) and w P4 Pc), so that the expected
+    // injuries below are exactly the mixture of the types' expected injuries.
+    std::array<double, 4> rate{};
+    double weight = 0;
+    for (int pass = 0; pass < 2 && weight <= 0; ++pass) {
+      rate = {};
+      for (std::size_t i = 0; i < n; ++i) {
+        const double pc = parts[i].row->collapseProbability;
+        const double inOutcome = k <= 3   ? parts[i].damage.p[k]
+                                 : k == 4 ? parts[i].damage.p[4] * (1 - pc)
+                                          : parts[i].damage.p[4] * pc;
+        // Second pass, the outcome impossible for every type: the types' shares alone.
+        const double wi = parts[i].weight * (pass == 0 ? inOutcome : 1.0);
+        weight += wi;
+        for (std::size_t s = 0; s < 4; ++s) rate[s] += wi * parts[i].row->injuryRatesPercent[k - 1][s];
+      }
+    }
+    for (std::size_t s = 0; s < 4; ++s) {
+      g.injuries[k][s] = weight > 0 ? out.occupantsPresent * rate[s] / weight / 100 : 0.0;
+    }
   }
   for (std::size_t k = 1; k <= 4; ++k) {
     g.structuralCostUsd[k] = out.replacementValueUsd * occupancy.structuralRepairCostPercent[k - 1] / 100;
@@ -366,7 +447,7 @@ BuildingLoss assessLoss(const Exposure& exposure, double medianPeakDriftRatio, d
   for (std::size_t s = 0; s < 4; ++s) {
     double e = 0;
     for (std::size_t k = 1; k <= 3; ++k) e += ps[k] * g.injuries[k][s];
-    e += ps[4] * ((1 - type.collapseProbability) * g.injuries[4][s] + type.collapseProbability * g.injuries[5][s]);
+    e += ps[4] * ((1 - collapseGivenComplete) * g.injuries[4][s] + collapseGivenComplete * g.injuries[5][s]);
     out.injuries[s] = e;
   }
   for (std::size_t k = 1; k <= 4; ++k) {
@@ -488,8 +569,10 @@ Exposure exposureFromAttributes(const BuildingAttributes& a, int storeys, double
   e.storeys = std::max(storeys, 1);
   e.type = resolvedStructuralType(a.structuralType, e.storeys);
   e.era = resolvedCodeEra(e.type, a.codeEra);
+  e.eraKnown = a.codeEra != CodeEra::Unknown && a.codeEra < CodeEra::Count;
   e.occupancy = occupancyFromUse(a.use, e.storeys);
   e.useKnown = !a.use.empty() && a.use != "unknown";
+  if (hasTypeMixture(a)) e.typeMixture = hazusTypeMixture(e.occupancy, e.storeys).shares;
   e.floorAreaM2 = floorAreaM2 > 0 && std::isfinite(floorAreaM2)
                       ? floorAreaM2
                       : static_cast<double>(a.footprintAreaM2) * static_cast<double>(e.storeys);

@@ -12,6 +12,7 @@
 #include "qv/scene/InspectionValues.h"
 #include "qv/scene/Palette.h"
 #include "qv/seismic/Damage.h"
+#include "qv/seismic/TypeMixture.h"
 #include "qv/ui/ControlPanel.h"
 
 namespace qv {
@@ -224,10 +225,33 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
                                                           ? std::string(" (tagged)")
                                                           : std::string(" (inferred from height and use)")));
     if (a.minHeightM > 0.0f) w.field("Base", lengthText(viewer, a.minHeightM));
-    w.field("Structure", std::string(structuralTypeCode(a.structuralType)) + ", " +
-                             std::string(structuralTypeDescription(a.structuralType)) + " (inferred)");
-    w.field("Code era", std::string(codeEraName(a.codeEra)) + (a.startYear > 0 ? ui::format(" (built %d)", a.startYear)
-                                                                               : std::string(" (year unknown)")));
+    if (seismic::hasTypeMixture(a)) {
+      // The type is a guess from use and height: the damage spreads over the Hazus types.
+      const seismic::Occupancy occupancy = seismic::occupancyFromUse(a.use, a.storeys);
+      const seismic::TypeMixtureInfo m = seismic::hazusTypeMixture(occupancy, static_cast<int>(a.storeys));
+      w.field("Structure", "not in the data; modelled as " + std::string(structuralTypeCode(a.structuralType)) + " (" +
+                               std::string(structuralTypeDescription(a.structuralType)) + ", a guess)");
+      std::string shares;
+      for (const seismic::TypeShare& t : m.shares) {
+        shares += (shares.empty() ? "" : ", ") + std::string(t.code) + ui::format(" %.0f %%", 100 * t.share);
+      }
+      w.textWrapped(ui::format("Damage is the mixture over the Hazus types of a %s %s building: ",
+                               std::string(seismic::occupancyCode(occupancy)).c_str(),
+                               std::string(m.heightClass).c_str()) +
+                    shares + " (" + std::string(seismic::kTypeMixtureSource) +
+                    (m.substituted ? "; none published for this class and height, the nearest class's" : "") + ")");
+    } else {
+      w.field("Structure", std::string(structuralTypeCode(a.structuralType)) + ", " +
+                               std::string(structuralTypeDescription(a.structuralType)) +
+                               (a.structure.empty() && a.material.empty() ? " (inferred)" : " (from its tags)"));
+    }
+    w.field("Code era",
+            a.codeEra == CodeEra::Unknown
+                ? ui::format("year unknown: damage judged %.0f %% pre-code, %.0f %% low code (Hazus's New "
+                             "York default; wood frame at low code)",
+                             100 * seismic::kUnknownEraPreCodeShare, 100 * (1 - seismic::kUnknownEraPreCodeShare))
+                : std::string(codeEraName(a.codeEra)) +
+                      (a.startYear > 0 ? ui::format(" (built %d)", a.startYear) : std::string()));
     // The facility category (FacilityCategory.h), never height or parts.
     const FacilityClass facility = classifyFacility(a);
     if (facility.category == FacilityCategory::None) {

@@ -55,6 +55,7 @@ struct CitySummary {
   std::vector<std::string> lod2Ids;  // the first kMaxLod2Ids, in tile order
   double totalStoreys = 0;
   std::map<std::string, std::uint64_t> types, eras, uses;
+  std::uint64_t typeMixtures = 0;  // types guessed from use and height: damage as Hazus type mixtures
 };
 
 // The building's attributes as fields of the object `w` is writing.
@@ -454,6 +455,7 @@ int runInfo(const CommandArgs& argv) {
       if ((facilityCategoryBit(facility) & kCriticalCategories) != 0) ++s.critical;
       if (a.lod == 2 && ++s.lod2 <= kMaxLod2Ids) s.lod2Ids.push_back(a.id);
       ++s.types[std::string(structuralTypeCode(a.structuralType))];
+      if ((a.notes & kNoteTypeFromUse) != 0) ++s.typeMixtures;
       ++s.eras[std::string(codeEraName(a.codeEra))];
       ++s.uses[a.use.empty() ? "unknown" : a.use];
     }
@@ -521,6 +523,7 @@ int runInfo(const CommandArgs& argv) {
     w.key("structural_types").beginObject();
     for (const auto& [k, v] : s.types) w.field(k, v);
     w.endObject();
+    w.field("type_mixture_buildings", s.typeMixtures);
     w.key("code_eras").beginObject();
     for (const auto& [k, v] : s.eras) w.field(k, v);
     w.endObject();
@@ -645,6 +648,10 @@ int runInfo(const CommandArgs& argv) {
               static_cast<unsigned long long>(s.storeysTagged), static_cast<unsigned long long>(s.storeysInferred));
   std::printf("types      ");
   for (const auto& [k, v] : s.types) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(v));
+  std::printf(
+      "\n           %llu guessed from use and height: their damage is the Hazus type mixture of their "
+      "occupancy and height",
+      static_cast<unsigned long long>(s.typeMixtures));
   std::printf("\ncode eras  ");
   for (const auto& [k, v] : s.eras) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(v));
   std::printf("\ntiles       %zu (%llu leaves, depth %d), %s\n", t.nodes.size(),

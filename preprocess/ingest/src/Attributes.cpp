@@ -565,7 +565,7 @@ ResolvedHeights resolveHeights(const HeightTags& tags, std::string_view use, std
 }
 
 StructuralType inferStructuralType(std::string_view use, float heightM, int storeys, std::string_view material,
-                                   std::string_view structure, int startYear) {
+                                   std::string_view structure, int startYear, bool* fromUse) {
   if (storeys <= 0) {
     storeys = heightM > 0.0f ? std::max(1, static_cast<int>(std::lround(heightM / 3.5f))) : 1;
   }
@@ -585,7 +585,9 @@ StructuralType inferStructuralType(std::string_view use, float heightM, int stor
   Family family = resolve(familyFromStructure(structure));
   if (family == Family::None) family = resolve(masonryEraFamily(use, material, startYear, nullptr));
   if (family == Family::None) family = resolve(familyFromMaterial(material, use, storeys));
-  if (family == Family::None || family == Family::Cladding) family = familyFromUse(use, storeys, startYear);
+  const bool guessed = family == Family::None || family == Family::Cladding;
+  if (guessed) family = familyFromUse(use, storeys, startYear);
+  if (fromUse != nullptr) *fromUse = guessed;
   return withHeightClass(family, storeys);
 }
 
@@ -643,8 +645,12 @@ void inferSeismicAttributes(BuildingAttributes& attributes, bool hasParts) {
   if (familyFromStructure(attributes.structure) == Family::None) {
     masonryEraFamily(attributes.use, attributes.material, attributes.startYear, &attributes.notes);
   }
-  attributes.structuralType = inferStructuralType(attributes.use, attributes.heightM, attributes.storeys,
-                                                  attributes.material, attributes.structure, attributes.startYear);
+  bool fromUse = false;
+  attributes.structuralType =
+      inferStructuralType(attributes.use, attributes.heightM, attributes.storeys, attributes.material,
+                          attributes.structure, attributes.startYear, &fromUse);
+  attributes.notes =
+      static_cast<std::uint8_t>((attributes.notes & ~kNoteTypeFromUse) | (fromUse ? kNoteTypeFromUse : 0));
   attributes.codeEra = inferCodeEra(attributes.startYear);
   classifyImportance(attributes, hasParts);
 }

@@ -75,6 +75,7 @@ enum AttributeNote : std::uint8_t {
   kNotePreFrameMasonry = 16,     ///< built before 1890, before steel and concrete frames: masonry
   kNoteTraditionalMasonry = 32,  ///< a religious building, tower or chimney before 1950 (or undated): masonry
   kNoteRoofAppendage = 64,       ///< a spire, mast or antenna part above the roof: drawn, not in the height
+  kNoteTypeFromUse = 128,        ///< no structure or material tag: the type is a guess from use and height
 };
 
 struct BuildingAttributes {

@@ -5,9 +5,9 @@
 // engine/seismic/data/LICENSE-DamageAndLossModelLibrary), whose values come from the FEMA Hazus 5.1
 // Earthquake Model Technical Manual (2022). src/HazusTables.cpp is generated from that file by
 // scripts/gen-hazus-tables.py; tests/seismic/TestHazusTables.cpp checks every value against it.
-// Only what our types use is shipped: the 23 structural types of qv::StructuralType and the 28
-// occupancy classes (the file's S3, S4, S5, PC2, RM2 types and lifeline and ground-failure groups
-// are not).
+// Shipped: the 23 structural types of qv::StructuralType, the file's 13 other building types (S3,
+// S4, S5, PC2, RM2: no model of ours, but a type mixture may hold them) and the 28 occupancy classes
+// (the lifeline and ground-failure groups are not).
 #pragma once
 
 #include <array>
@@ -17,7 +17,8 @@
 
 namespace qv::seismic::hazus {
 
-inline constexpr std::size_t kStructuralTypes = 23;   ///< rows: qv::StructuralType 1..23 (W1 .. MH) at 0..22
+inline constexpr std::size_t kStructuralTypes = 23;       ///< rows: qv::StructuralType 1..23 (W1 .. MH) at 0..22
+inline constexpr std::size_t kExtraStructuralTypes = 13;  ///< S3, S4L..H, S5L..H, PC2L..H, RM2L..H
 inline constexpr std::size_t kCodeEras = 4;           ///< columns: qv::CodeEra 1..4 (pre, low, moderate, high) at 0..3
 inline constexpr std::size_t kOccupancies = 28;       ///< rows: qv::seismic::Occupancy (RES1 .. EDU2)
 inline constexpr std::size_t kPopulationClasses = 5;  ///< Residential, Commercial, Educational, Industrial, Hotels
@@ -54,6 +55,10 @@ struct PopulationRow {
 
 extern const std::array<double, kCodeEras> kStructuralBeta;  ///< lognormal beta per era (ln units)
 extern const std::array<StructuralRow, kStructuralTypes> kStructural;
+extern const std::array<StructuralRow, kExtraStructuralTypes> kExtraStructural;
+/// The row of a Hazus building type by its code ("C1M", "S5L", ...) in kStructural or
+/// kExtraStructural; nullptr for a code Hazus does not have.
+const StructuralRow* structuralRowByCode(std::string_view code);
 extern const std::array<OccupancyRow, kOccupancies> kOccupancy;
 extern const std::array<double, 4> kNsDriftLimits;  ///< median peak inter-storey drift ratios
 extern const double kNsDriftBeta;

@@ -161,15 +161,35 @@ std::size_t populationClass(Occupancy occupancy);
 /// The share (0..1) of an occupancy's occupants present at a time of day.
 double occupantsPresentShare(Occupancy occupancy, TimeOfDay time);
 
+/// Where a building's year is unknown, the share of each Hazus type judged at pre-code, the rest at
+/// low code (W1 always at low code): Hazus's default mapping scheme for New York (NY1, "based on
+/// low seismic design", the FEMA Hazus state database) puts 74.5 % of the non-wood types' shares at
+/// pre-code and the rest at low code, and all of W1 at low code. docs/losses.md "Types as
+/// distributions".
+inline constexpr double kUnknownEraPreCodeShare = 0.75;
+
+/// One Hazus building type's share of a building whose type the data does not state.
+struct TypeShare {
+  std::string_view code;  ///< a Hazus building type: "W1", "S2H", "URMM", ... (hazus::structuralRowByCode)
+  double share = 0;       ///< 0..1
+};
+
 /// What is known about one building for its consequences.
 struct Exposure {
   StructuralType type = StructuralType::Unknown;
   CodeEra era = CodeEra::Unknown;
   Occupancy occupancy = Occupancy::RES3;
-  int storeys = 1;                            ///< >= 1; picks the height class of an Unknown type
-  double floorAreaM2 = 0;                     ///< total over storeys (footprint x storeys when nothing better)
-  std::optional<double> occupants;            ///< people at peak occupancy, tagged; else floor area / density
-  bool useKnown = true;                       ///< false: the data gives no use (mixed-use occupants)
+  int storeys = 1;                  ///< >= 1; picks the height class of an Unknown type
+  double floorAreaM2 = 0;           ///< total over storeys (footprint x storeys when nothing better)
+  std::optional<double> occupants;  ///< people at peak occupancy, tagged; else floor area / density
+  bool useKnown = true;             ///< false: the data gives no use (mixed-use occupants)
+  /// Non-empty: the type is not stated, and the structural damage, collapse and injuries are the
+  /// mixture over these Hazus types (shares summing to 1; hazusTypeMixture), each at `era` (C3, S5
+  /// and URM at most low code, as Hazus has them). `type` is then only the modelled one.
+  std::span<const TypeShare> typeMixture;
+  /// False: the data gives no year. `era` then holds the modelled era (moderate code), and the
+  /// structural fragilities are spread over design levels (kUnknownEraPreCodeShare).
+  bool eraKnown = true;
   std::optional<double> replacementValueUsd;  ///< given; else floor area x cost per m²
 };
 
@@ -280,7 +300,8 @@ LossSpread lossSpread(const BuildingLoss& building);
 
 /// A building's exposure from its attributes, as `quakeview-prep response` assesses it: the type and
 /// code era the building model resolves (resolvedStructuralType, resolvedCodeEra), the occupancy
-/// from its use, the floor area given (> 0: e.g. buildingFloorAreaM2 over its parts) else footprint
+/// from its use, the type mixture of its occupancy and storeys where the type is a guess
+/// (hasTypeMixture, TypeMixture.h), the floor area given (> 0: e.g. buildingFloorAreaM2 over its parts) else footprint
 /// x storeys, and the occupants and replacement value the data gives (BuildingAttributes; inferred
 /// when 0).
 Exposure exposureFromAttributes(const BuildingAttributes& attributes, int storeys, double floorAreaM2 = 0);

@@ -129,8 +129,10 @@ std::vector<std::string> applyStoreyRules(BuildingAttributes& attributes, const 
 /// frame), then use × storeys × construction year. `storeys` <= 0 means unknown (then estimated
 /// from heightM at 3.5 m a storey); `startYear` 0 means unknown. Height class: steel and concrete
 /// L 1–3, M 4–7, H 8+; URM L 1–2, M 3+; RM1 L 1–3, M 4+.
+/// `fromUse` (optional) is set to whether only the use, height and era decided (no structure or
+/// material tag said anything): the type is then a guess (kNoteTypeFromUse).
 StructuralType inferStructuralType(std::string_view use, float heightM, int storeys, std::string_view material,
-                                   std::string_view structure, int startYear);
+                                   std::string_view structure, int startYear, bool* fromUse = nullptr);
 
 /// HAZUS design level from the construction year (docs/attributes.md "Code era"): before 1941
 /// pre-code, 1941–1975 low-code, 1976–1994 moderate-code, 1995 on high-code; 0 (or a year before
