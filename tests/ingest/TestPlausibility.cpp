@@ -45,7 +45,7 @@ TEST_CASE("Underground buildings are left out and counted, and height=0 above gr
   const BuildingAttributes& zero = attributesOf(model, "w4");
   CHECK(zero.heightSource == ValueSource::Inferred);
   CHECK(zero.heightM == Approx(defaultHeightForUse("unknown")));
-  CHECK(zero.notes == kNoteZeroHeight);
+  CHECK((zero.notes & ~kNoteTypeFromUse) == kNoteZeroHeight);  // its type is a guess too
   CHECK(hasWarning(model, "w4: height=0 is not above the ground; inferred instead"));
   CHECK(model.warningCounts.at("underground") == 2);
 }
@@ -89,7 +89,7 @@ TEST_CASE("Tagged height and levels in conflict: the height wins, storeys inferr
   CHECK(tall.storeys == 5);  // 21 m / 3.9 m (office)
   CHECK(tall.storeysSource == ValueSource::Inferred);
   CHECK(tall.heightSource == ValueSource::Tagged);
-  CHECK(tall.notes == kNoteLevelsConflict);
+  CHECK((tall.notes & ~kNoteTypeFromUse) == kNoteLevelsConflict);
   CHECK(hasWarning(model,
                    "w8: height 21.0 m with 1 tagged storeys gives 21.0 m storeys (over 7 m); 5 storeys "
                    "inferred from the height"));
@@ -97,12 +97,12 @@ TEST_CASE("Tagged height and levels in conflict: the height wins, storeys inferr
   const BuildingAttributes& squat = attributesOf(model, "w9");
   CHECK(squat.storeys == 3);  // 10 m / 3.1 m (residential)
   CHECK(squat.storeysSource == ValueSource::Inferred);
-  CHECK(squat.notes == kNoteLevelsConflict);
+  CHECK((squat.notes & ~kNoteTypeFromUse) == kNoteLevelsConflict);
   // 30 m with 8 levels (3.75 m): both tags kept.
   const BuildingAttributes& fine = attributesOf(model, "w10");
   CHECK(fine.storeys == 8);
   CHECK(fine.storeysSource == ValueSource::Tagged);
-  CHECK(fine.notes == kNoteNone);
+  CHECK((fine.notes & ~kNoteTypeFromUse) == kNoteNone);
   CHECK(model.warningCounts.at("height and levels in conflict") == 2);
 }
 
@@ -211,8 +211,10 @@ TEST_CASE("Masonry eras: before 1890 and old religious buildings, towers and chi
   bool fromUse = false;
   inferStructuralType("office", 40, 10, "", "", 0, &fromUse);
   CHECK(fromUse);
-  inferStructuralType("office", 40, 10, "glass", "", 0, &fromUse);  // cladding says nothing of the frame
+  inferStructuralType("office", 40, 10, "brick", "", 0, &fromUse);  // masonry at 8+ storeys: cladding
   CHECK(fromUse);
+  inferStructuralType("office", 40, 10, "glass", "", 0, &fromUse);  // curtain walls: a steel frame, by rule
+  CHECK_FALSE(fromUse);
   inferStructuralType("office", 40, 10, "", "steel_frame", 0, &fromUse);
   CHECK_FALSE(fromUse);
   inferStructuralType("house", 9, 3, "wood", "", 0, &fromUse);
@@ -235,7 +237,7 @@ TEST_CASE("Masonry eras: before 1890 and old religious buildings, towers and chi
   CHECK(a.notes == kNotePreFrameMasonry);
   a.startYear = 1990;
   inferSeismicAttributes(a, false);
-  CHECK(a.notes == kNoteNone);
+  CHECK(a.notes == kNoteTypeFromUse);  // no masonry era: the type is a guess from use
 }
 
 TEST_CASE("A spire, mast or antenna part is drawn but is not structure: height and storeys stop at the roof",
