@@ -180,6 +180,15 @@ TEST_CASE("response under the NYC ShakeMap: a record suite, HAZUS probabilities 
     const auto b = run("info " + city.path() + " --building w" + std::to_string(id) + " --json");
     REQUIRE(b.exitCode == 0);
     const auto building = parse(p, b.output);
+    // No structure or material tag: the damage is the Hazus type mixture of its occupancy and height.
+    double shares = 0.0;
+    const simdjson::dom::object mixture = building["type_mixture"]["shares"].get_object().value();
+    for (const auto field : mixture) shares += number(field.value);
+    CHECK(shares == Approx(1.0).epsilon(1e-9));
+    if (id == 2) {  // a 45 m office: COM4 high-rise, S2H 36 % (Hazus 6, Table A-16)
+      CHECK(std::string(building["type_mixture"]["height_class"].get_string().value()) == "high-rise");
+      CHECK(number(building["type_mixture"]["shares"]["S2H"]) == Approx(0.36));
+    }
     double sum = 0.0;
     for (const char* k : {"none", "slight", "moderate", "extensive", "complete"})
       sum += number(building["damage_probabilities"][k]);

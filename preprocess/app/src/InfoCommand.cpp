@@ -16,6 +16,7 @@
 #include "qv/prep/Consequences.h"
 #include "qv/prep/Files.h"
 #include "qv/prep/ResponseWriter.h"
+#include "qv/seismic/TypeMixture.h"
 
 namespace qv::prep {
 namespace {
@@ -66,6 +67,18 @@ void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNod
   w.field("min_height_m", a.minHeightM).field("footprint_area_m2", a.footprintAreaM2);
   w.field("structural_type", structuralTypeCode(a.structuralType));
   w.field("structural_type_description", structuralTypeDescription(a.structuralType));
+  // Where the type is a guess, the Hazus types its damage is the mixture of (TypeMixture.h).
+  if (seismic::hasTypeMixture(a)) {
+    const seismic::TypeMixtureInfo m =
+        seismic::hazusTypeMixture(seismic::occupancyFromUse(a.use, a.storeys), static_cast<int>(a.storeys));
+    w.key("type_mixture").beginObject().field("source", seismic::kTypeMixtureSource);
+    w.field("height_class", m.heightClass).field("substituted", m.substituted);
+    w.key("shares").beginObject();
+    for (const seismic::TypeShare& t : m.shares) w.field(t.code, t.share);
+    w.endObject().endObject();
+  } else {
+    w.key("type_mixture").null();
+  }
   w.field("code_era", codeEraName(a.codeEra)).field("importance", importanceName(a.importance));
   w.key("importance_reasons").beginArray();
   for (const std::string_view name : importanceReasonNames(a.importanceReasons)) w.value(name);
@@ -394,6 +407,16 @@ int runInfo(const CommandArgs& argv) {
                       a.lod, node.key().c_str());
           for (unsigned bit = 1; bit < 256; bit <<= 1) {
             if ((a.notes & bit) != 0) std::printf("  note: %s\n", std::string(attributeNoteText(bit)).c_str());
+          }
+          if (seismic::hasTypeMixture(a)) {
+            const seismic::TypeMixtureInfo m =
+                seismic::hazusTypeMixture(seismic::occupancyFromUse(a.use, a.storeys), static_cast<int>(a.storeys));
+            std::printf("  damage over Hazus types (%s, %s):", std::string(m.heightClass).c_str(),
+                        std::string(seismic::kTypeMixtureSource).c_str());
+            for (const seismic::TypeShare& share : m.shares) {
+              std::printf(" %s %.0f %%", std::string(share.code).c_str(), 100 * share.share);
+            }
+            std::printf("\n");
           }
           if (r) printSite(r->site);
           if (hasResult) {
