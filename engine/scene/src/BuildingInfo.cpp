@@ -60,9 +60,7 @@ std::string buildingInfoJson(const BuildingInfo& info) {
   w.field("minHeightM", a.minHeightM).field("footprintAreaM2", a.footprintAreaM2);
   w.field("structuralTypeDescription", structuralTypeDescription(a.structuralType));
   // Where the type is a guess, the damage is the mixture over Hazus types (TypeMixture.h).
-  if (seismic::hasTypeMixture(a)) {
-    const seismic::TypeMixtureInfo m =
-        seismic::hazusTypeMixture(seismic::occupancyFromUse(a.use, a.storeys), static_cast<int>(a.storeys));
+  if (const seismic::TypeMixtureInfo m = seismic::buildingTypeMixture(a); !m.shares.empty()) {
     w.key("typeMixture").beginObject().field("source", seismic::kTypeMixtureSource);
     w.field("heightClass", m.heightClass).field("substituted", m.substituted);
     w.key("shares").beginArray();

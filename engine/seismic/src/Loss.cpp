@@ -572,7 +572,7 @@ Exposure exposureFromAttributes(const BuildingAttributes& a, int storeys, double
   e.eraKnown = a.codeEra != CodeEra::Unknown && a.codeEra < CodeEra::Count;
   e.occupancy = occupancyFromUse(a.use, e.storeys);
   e.useKnown = !a.use.empty() && a.use != "unknown";
-  if (hasTypeMixture(a)) e.typeMixture = hazusTypeMixture(e.occupancy, e.storeys).shares;
+  if (hasTypeMixture(a)) e.typeMixture = hazusTypeMixture(e.occupancy, e.storeys).shares;  // at the run's storeys
   e.floorAreaM2 = floorAreaM2 > 0 && std::isfinite(floorAreaM2)
                       ? floorAreaM2
                       : static_cast<double>(a.footprintAreaM2) * static_cast<double>(e.storeys);

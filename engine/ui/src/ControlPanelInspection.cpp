@@ -225,10 +225,8 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
                                                           ? std::string(" (tagged)")
                                                           : std::string(" (inferred from height and use)")));
     if (a.minHeightM > 0.0f) w.field("Base", lengthText(viewer, a.minHeightM));
-    if (seismic::hasTypeMixture(a)) {
+    if (const seismic::TypeMixtureInfo m = seismic::buildingTypeMixture(a); !m.shares.empty()) {
       // The type is a guess from use and height: the damage spreads over the Hazus types.
-      const seismic::Occupancy occupancy = seismic::occupancyFromUse(a.use, a.storeys);
-      const seismic::TypeMixtureInfo m = seismic::hazusTypeMixture(occupancy, static_cast<int>(a.storeys));
       w.field("Structure", "not in the data; modelled as " + std::string(structuralTypeCode(a.structuralType)) + " (" +
                                std::string(structuralTypeDescription(a.structuralType)) + ", a guess)");
       std::string shares;
@@ -236,7 +234,7 @@ void ControlPanel::drawInspection(Viewer& viewer, ui::Widgets& w, UiHost& host) 
         shares += (shares.empty() ? "" : ", ") + std::string(t.code) + ui::format(" %.0f %%", 100 * t.share);
       }
       w.textWrapped(ui::format("Damage is the mixture over the Hazus types of a %s %s building: ",
-                               std::string(seismic::occupancyCode(occupancy)).c_str(),
+                               std::string(seismic::occupancyCode(m.occupancy)).c_str(),
                                std::string(m.heightClass).c_str()) +
                     shares + " (" + std::string(seismic::kTypeMixtureSource) +
                     (m.substituted ? "; none published for this class and height, the nearest class's" : "") + ")");

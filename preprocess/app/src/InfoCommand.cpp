@@ -68,9 +68,7 @@ void writeBuildingJson(JsonWriter& w, const BuildingAttributes& a, const TileNod
   w.field("structural_type", structuralTypeCode(a.structuralType));
   w.field("structural_type_description", structuralTypeDescription(a.structuralType));
   // Where the type is a guess, the Hazus types its damage is the mixture of (TypeMixture.h).
-  if (seismic::hasTypeMixture(a)) {
-    const seismic::TypeMixtureInfo m =
-        seismic::hazusTypeMixture(seismic::occupancyFromUse(a.use, a.storeys), static_cast<int>(a.storeys));
+  if (const seismic::TypeMixtureInfo m = seismic::buildingTypeMixture(a); !m.shares.empty()) {
     w.key("type_mixture").beginObject().field("source", seismic::kTypeMixtureSource);
     w.field("height_class", m.heightClass).field("substituted", m.substituted);
     w.key("shares").beginObject();
@@ -408,9 +406,7 @@ int runInfo(const CommandArgs& argv) {
           for (unsigned bit = 1; bit < 256; bit <<= 1) {
             if ((a.notes & bit) != 0) std::printf("  note: %s\n", std::string(attributeNoteText(bit)).c_str());
           }
-          if (seismic::hasTypeMixture(a)) {
-            const seismic::TypeMixtureInfo m =
-                seismic::hazusTypeMixture(seismic::occupancyFromUse(a.use, a.storeys), static_cast<int>(a.storeys));
+          if (const seismic::TypeMixtureInfo m = seismic::buildingTypeMixture(a); !m.shares.empty()) {
             std::printf("  damage over Hazus types (%s, %s):", std::string(m.heightClass).c_str(),
                         std::string(seismic::kTypeMixtureSource).c_str());
             for (const seismic::TypeShare& share : m.shares) {

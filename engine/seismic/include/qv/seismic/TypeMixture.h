@@ -41,7 +41,8 @@ inline constexpr std::string_view kTypeMixtureSource =
     "RES1: New York, Table A-21)";
 
 struct TypeMixtureInfo {
-  std::span<const TypeShare> shares;
+  std::span<const TypeShare> shares;  ///< empty: not a mixture
+  Occupancy occupancy = Occupancy::RES3;
   bool substituted = false;      ///< the class has no shares at this height in the source (see MappingRow)
   std::string_view heightClass;  ///< "low-rise", "mid-rise", "high-rise" (Hazus: 1-3, 4-7, 8+ storeys)
 };
@@ -53,5 +54,9 @@ TypeMixtureInfo hazusTypeMixture(Occupancy occupancy, int storeys);
 [[nodiscard]] inline bool hasTypeMixture(const BuildingAttributes& attributes) {
   return (attributes.notes & kNoteTypeFromUse) != 0;
 }
+
+/// A building's mixture: that of the occupancy of its use (occupancyFromUse) at its storeys where
+/// hasTypeMixture, else empty shares. The one place the attributes pick the shares.
+TypeMixtureInfo buildingTypeMixture(const BuildingAttributes& attributes);
 
 }  // namespace qv::seismic
