@@ -73,6 +73,25 @@ macro(quakeview_find_dependencies)
     add_library(simdjson::quakeview ALIAS quakeview_simdjson)
   endif()
 
+  # Zstandard (response files are stored as zstd frames, docs/formats.md "Compressed files"):
+  # Debian's library natively; in WASM Debian's source package 1.5.4 in portable C (no x86
+  # assembly), without threads. The viewer links only the decoder (a static library's unused
+  # objects stay out); the wasm unit tests make frames with its encoder. No project warnings.
+  if(EMSCRIPTEN)
+    quakeview_require_deps_file(zstd/lib/zstd.h "Zstandard 1.5.4 sources")
+    set(zstd_lib "${QUAKEVIEW_DEPS_DIR}/zstd/lib")
+    file(GLOB zstd_sources "${zstd_lib}/common/*.c" "${zstd_lib}/compress/*.c" "${zstd_lib}/decompress/*.c")
+    add_library(quakeview_zstd STATIC ${zstd_sources})
+    target_include_directories(quakeview_zstd SYSTEM PUBLIC "${zstd_lib}")
+    target_compile_definitions(quakeview_zstd PRIVATE ZSTD_DISABLE_ASM=1 ZSTD_LEGACY_SUPPORT=0)
+  else()
+    find_path(QUAKEVIEW_ZSTD_INCLUDE zstd.h REQUIRED)
+    find_library(QUAKEVIEW_ZSTD_LIBRARY zstd REQUIRED)
+    add_library(quakeview_zstd INTERFACE)
+    target_link_libraries(quakeview_zstd INTERFACE "${QUAKEVIEW_ZSTD_LIBRARY}")
+  endif()
+  add_library(zstd::quakeview ALIAS quakeview_zstd)
+
   # GeographicLib (transverse Mercator, for lon/lat in the viewer and the tools): Debian's library
   # natively; in WASM the two source files it needs, from Debian's source package 2.1.2, with a
   # Config.h written here (the package generates it at configure time).

@@ -4,7 +4,7 @@
 #
 # - Debian packages (apt, as root or through sudo);
 # - Dear ImGui 1.86 sources from Debian's source package (and simdjson's single-header sources and
-#   GeographicLib's, used by the WebAssembly build), unpacked under .deps/ (git-ignored, never
+#   GeographicLib's and Zstandard's, used by the WebAssembly build), unpacked under .deps/ (git-ignored, never
 #   committed);
 # - npm packages pinned by tests/e2e/package-lock.json (playwright-core for Chromium, puppeteer-core
 #   for Firefox ESR; never a browser download).
@@ -33,10 +33,10 @@ packages=(
   build-essential cmake ninja-build pkg-config git ca-certificates dpkg-dev clang-format
   emscripten clang-14 libclang-rt-14-dev
   libglm-dev libgeographiclib-dev libsimdjson-dev catch2
-  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev liblz4-dev
+  libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev liblz4-dev libzstd-dev
   libproj-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev libtinyobjloader-dev libeigen3-dev
   libmimalloc-dev
-  osmium-tool
+  osmium-tool zstd
   chromium fonts-dejavu-core
   firefox-esr libgl1-mesa-dri libegl1 libegl-mesa0
 )
@@ -47,7 +47,8 @@ if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>
 Install these by hand (names are Debian's; other systems have equivalents):
   ${packages[*]}
 plus Node.js >= 18 with npm, Dear ImGui 1.86 sources in $deps/imgui,
-simdjson 3.0.1 sources in $deps/simdjson, GeographicLib 2.1.2 sources in $deps/geographiclib, then run:
+simdjson 3.0.1 sources in $deps/simdjson, GeographicLib 2.1.2 sources in $deps/geographiclib,
+Zstandard 1.5.4 sources in $deps/zstd, then run:
   (cd $root/tests/e2e && npm ci)
 MSG
   exit 1
@@ -126,6 +127,7 @@ fetch_source() {
 fetch_source imgui imgui imgui.cpp
 fetch_source simdjson simdjson singleheader/simdjson.cpp
 fetch_source geographiclib geographiclib src/TransverseMercator.cpp
+fetch_source libzstd zstd lib/zstd.h
 
 # npm packages, pinned by the lockfile. A stamp of the lockfile's hash makes the re-run free.
 e2e="$root/tests/e2e"

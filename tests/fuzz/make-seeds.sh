@@ -21,6 +21,16 @@ for t in city_tile city_tile_roundtrip tileset search_index search_index_roundtr
   if [ -d "$root/tests/fuzz/seeds/$t" ]; then cp "$root/tests/fuzz/seeds/$t"/* "$out/$t/" 2>/dev/null; fi
 done
 
+# A stored file as written, and expanded when it is a Zstandard frame (zstd from Debian's package).
+add_stored() {  # add_stored TARGET TAG FILE
+  local dest
+  dest="$out/$1/$2-$(basename "$3")"
+  cp "$3" "$dest"
+  if command -v zstd >/dev/null 2>&1 && zstd -t -q "$3" 2>/dev/null; then
+    zstd -d -q -c "$3" >"$dest.raw" || warn "cannot expand $3"
+  fi
+}
+
 # Ground motions: the first byte of an input chooses the caller's options (FuzzGroundMotion.cpp):
 # 0 = auto, units and step from the file; 36 = auto, units g, step 0.02 s.
 add_motion() {  # add_motion OPTION_BYTE FILE
@@ -91,8 +101,9 @@ if [ -n "$prep" ] && [ -x "$prep" ]; then
     cp "$c/tileset.json" "$out/tileset/$tag-tileset.json"
     [ -f "$c/search.qvi" ] && cp "$c/search.qvi" "$out/search_index/$tag.qvi"
     for f in "$c"/tiles/*.qvt; do [ -f "$f" ] && cp "$f" "$out/city_tile/$tag-$(basename "$f")"; done
-    for f in "$c"/response-*/*.qvs; do [ -f "$f" ] && cp "$f" "$out/response_summary/$tag-$(basename "$f")"; done
-    for f in "$c"/response-*/*.qvh; do [ -f "$f" ] && cp "$f" "$out/response_history/$tag-$(basename "$f")"; done
+    # Response tiles as written (Zstandard frames) and expanded (the decoder behind the frame).
+    for f in "$c"/response-*/*.qvs; do [ -f "$f" ] && add_stored response_summary "$tag" "$f"; done
+    for f in "$c"/response-*/*.qvh; do [ -f "$f" ] && add_stored response_history "$tag" "$f"; done
   done
 else
   warn "no quakeview-prep: no seeds of city tiles, manifests, search indexes or response tiles"

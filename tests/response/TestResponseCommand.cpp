@@ -13,7 +13,9 @@
 
 #include "ResponseTestCity.h"
 #include "ToolRun.h"
+#include "qv/core/Crc32.h"
 #include "qv/format/ResponseTile.h"
+#include "qv/format/StoredFile.h"
 #include "qv/format/Tileset.h"
 
 namespace {
@@ -119,6 +121,37 @@ TEST_CASE("response gives rooftop parts no result with a reason, and publishes o
     CHECK(withSeries >= 2);
     REQUIRE(tileset->response->summaryIndex);
     CHECK(summaryOf(tileset->response->summaryIndex->file).driftSeries.empty());
+  }
+
+  SECTION("the response files are stored as Zstandard frames, as the manifest describes them") {
+    CHECK(response.output.find("before compression") != std::string::npos);
+    const auto tileset = qv::parseTileset(readText(dir + "/city/tileset.json"), "tileset.json");
+    REQUIRE(tileset.ok());
+    auto storedAs = [&dir](const std::string& file, std::uint64_t bytes, std::uint32_t crc) {
+      INFO(file);
+      std::ifstream in(dir + "/city/" + file, std::ios::binary);
+      const std::vector<std::uint8_t> stored((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      CHECK(qv::isCompressedFile(stored));
+      CHECK(stored.size() == bytes);
+      CHECK(qv::crc32(stored) == crc);
+      const auto raw = qv::unpackStoredFile(stored, file);
+      REQUIRE(raw.ok());
+      CHECK(raw->size() > stored.size());
+    };
+    int files = 0;
+    for (const qv::TileNode& n : tileset->nodes) {
+      REQUIRE(n.response);
+      storedAs(n.response->summaryFile, n.response->summaryBytes, n.response->summaryCrc32);
+      ++files;
+      if (!n.response->historyFile.empty()) {
+        storedAs(n.response->historyFile, n.response->historyBytes, n.response->historyCrc32);
+        ++files;
+      }
+    }
+    REQUIRE(tileset->response->summaryIndex);
+    const qv::CityFile& index = *tileset->response->summaryIndex;
+    storedAs(index.file, index.bytes, index.crc32);
+    CHECK(files >= 2);
   }
 
   SECTION("no response file carries the record's directory") {

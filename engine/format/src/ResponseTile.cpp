@@ -10,6 +10,7 @@
 #include "qv/anim/HistorySampling.h"
 #include "qv/core/ByteIO.h"
 #include "qv/core/Crc32.h"
+#include "qv/format/StoredFile.h"
 
 namespace qv {
 namespace {
@@ -517,7 +518,8 @@ float BuildingLoss::expectedState() const {
   return sum;
 }
 
-Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> bytes, std::string_view name) {
+namespace {
+Result<ResponseSummaryTile> decodeSummaryFile(std::span<const std::uint8_t> bytes, std::string_view name) {
   const std::string prefix = std::string(name) + ": ";
   auto header = parseHeader(bytes, "QVRS", kResponseSummaryVersion, "response summary tile", prefix);
   if (!header.ok()) return Error{header.error()};
@@ -599,6 +601,14 @@ Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> 
     return Error{optional.error()};
   return tile;
 }
+}  // namespace
+
+Result<ResponseSummaryTile> decodeResponseSummary(std::span<const std::uint8_t> bytes, std::string_view name) {
+  std::vector<std::uint8_t> storage;
+  auto file = storedFileBytes(bytes, name, storage);
+  if (!file.ok()) return Error{file.error()};
+  return decodeSummaryFile(*file, name);
+}
 
 std::vector<std::uint8_t> encodeResponseHistory(const ResponseHistoryTile& tile) {
   ByteWriter hist;
@@ -636,7 +646,8 @@ std::vector<std::uint8_t> encodeResponseHistory(const ResponseHistoryTile& tile)
   return assemble("QVRH", kResponseHistoryVersion, static_cast<std::uint32_t>(tile.buildings.size()), 0, sections);
 }
 
-Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> bytes, std::string_view name) {
+namespace {
+Result<ResponseHistoryTile> decodeHistoryFile(std::span<const std::uint8_t> bytes, std::string_view name) {
   const std::string prefix = std::string(name) + ": ";
   auto header = parseHeader(bytes, "QVRH", kResponseHistoryVersion, "response history tile", prefix);
   if (!header.ok()) return Error{header.error()};
@@ -720,6 +731,14 @@ Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> 
   }
   if (!r.ok()) return Error{prefix + "section HIST: " + r.error()};
   return tile;
+}
+}  // namespace
+
+Result<ResponseHistoryTile> decodeResponseHistory(std::span<const std::uint8_t> bytes, std::string_view name) {
+  std::vector<std::uint8_t> storage;
+  auto file = storedFileBytes(bytes, name, storage);
+  if (!file.ok()) return Error{file.error()};
+  return decodeHistoryFile(*file, name);
 }
 
 void sampleHistory(const BuildingHistory& h, double t, std::span<float> floorsX, std::span<float> floorsY) {

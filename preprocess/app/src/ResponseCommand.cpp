@@ -267,10 +267,11 @@ int runResponse(const CommandArgs& argv) {
   }
   std::printf("frames      %zu at %.3f s (%.1f s)\n", r.frames, r.timeStepS,
               static_cast<double>(r.frames - 1) * r.timeStepS);
-  std::printf("bytes       %s summaries, %s histories (%.0f B per building), mean rate %.1f Hz\n",
-              humanBytes(r.summaryBytes).c_str(), humanBytes(r.historyBytes).c_str(),
-              r.buildings > 0 ? static_cast<double>(r.historyBytes) / static_cast<double>(r.buildings) : 0.0,
-              r.meanSampleRateHz);
+  std::printf(
+      "bytes       %s summaries, %s histories (%.0f B per building), mean rate %.1f Hz; %s before compression\n",
+      humanBytes(r.summaryBytes).c_str(), humanBytes(r.historyBytes).c_str(),
+      r.buildings > 0 ? static_cast<double>(r.historyBytes) / static_cast<double>(r.buildings) : 0.0,
+      r.meanSampleRateHz, humanBytes(r.uncompressedBytes).c_str());
   std::printf(
       "far series  %s of drift series in the tile summaries (%.0f B per building and tile holding it, %.0f "
       "windows a second)\n",

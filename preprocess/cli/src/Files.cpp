@@ -3,12 +3,14 @@
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include <zstd.h>
 
 #include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
+#include <memory>
 
 namespace qv::prep {
 namespace fs = std::filesystem;
@@ -107,6 +109,20 @@ Status writeStagedFile(const std::string& path, std::span<const std::uint8_t> by
 
 Status writeStagedFile(const std::string& path, const std::string& text) {
   return writeStagedFile(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
+Result<std::vector<std::uint8_t>> compressStoredFile(std::span<const std::uint8_t> bytes, int level) {
+  const std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> cctx(ZSTD_createCCtx(), &ZSTD_freeCCtx);
+  if (!cctx) return Error{"cannot compress: out of memory"};
+  ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, level);
+  ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_checksumFlag, 1);
+  ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_contentSizeFlag, 1);
+  std::vector<std::uint8_t> out(ZSTD_compressBound(bytes.size()));
+  const std::size_t n = ZSTD_compress2(cctx.get(), out.data(), out.size(), bytes.data(), bytes.size());
+  if (ZSTD_isError(n)) return Error{std::string("cannot compress: ") + ZSTD_getErrorName(n)};
+  out.resize(n);
+  out.shrink_to_fit();
+  return out;
 }
 
 Status makeDirectories(const std::string& path) {

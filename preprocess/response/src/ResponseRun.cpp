@@ -855,6 +855,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   report.approximateBuildings = written->approximate;
   report.summaryBytes = written->summaryBytes;
   report.historyBytes = written->historyBytes;
+  report.uncompressedBytes = written->uncompressedBytes;
   report.driftSeriesBytes = written->driftSeriesBytes;
   report.driftSeriesBuildings = written->driftSeriesBuildings;
   report.folder = written->folder;

@@ -236,8 +236,14 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
     }
     history.buildings.push_back(std::move(r.history));
   }
-  const std::vector<std::uint8_t> summaryBytes = encodeResponseSummary(summary.finish());
-  const std::vector<std::uint8_t> historyBytes = encodeResponseHistory(history);
+  const std::vector<std::uint8_t> summaryRaw = encodeResponseSummary(summary.finish());
+  const std::vector<std::uint8_t> historyRaw = encodeResponseHistory(history);
+  auto summaryStored = compressStoredFile(summaryRaw);
+  if (!summaryStored.ok()) return Error{summaryStored.error()};
+  auto historyStored = compressStoredFile(historyRaw);
+  if (!historyStored.ok()) return Error{historyStored.error()};
+  const std::vector<std::uint8_t>& summaryBytes = *summaryStored;
+  const std::vector<std::uint8_t>& historyBytes = *historyStored;
   TileResponseFiles files;
   files.summaryFile = folder_ + "/" + tileStem(n) + ".qvs";
   files.summaryBytes = summaryBytes.size();
@@ -252,6 +258,7 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
   tileset_.nodes[node].response = files;
   report_.summaryBytes += summaryBytes.size();
   report_.historyBytes += historyBytes.size();
+  report_.uncompressedBytes += summaryRaw.size() + historyRaw.size();
   report_.driftSeriesBytes += summary.seriesBytes();
   report_.driftSeriesBuildings += summary.seriesBuildings();
   for (std::size_t b = 0; b < tile.buildings.size(); ++b) {
@@ -298,7 +305,11 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
       const auto it = byId_.find(b.attributes.id);
       summary.add(it != byId_.end() ? &it->second : nullptr);
     }
-    const auto encoded = encodeResponseSummary(summary.finish());
+    const auto raw = encodeResponseSummary(summary.finish());
+    auto stored = compressStoredFile(raw);
+    if (!stored.ok()) return Error{stored.error()};
+    const std::vector<std::uint8_t>& encoded = *stored;
+    report_.uncompressedBytes += raw.size();
     TileResponseFiles files;
     files.summaryFile = folder_ + "/" + tileStem(n) + ".qvs";
     files.summaryBytes = encoded.size();
@@ -321,7 +332,11 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
       const auto it = byId_.find(e.id);
       summary.add(it != byId_.end() ? &it->second : nullptr);
     }
-    const auto encoded = encodeResponseSummary(summary.finish());
+    const auto raw = encodeResponseSummary(summary.finish());
+    auto stored = compressStoredFile(raw);
+    if (!stored.ok()) return Error{stored.error()};
+    const std::vector<std::uint8_t>& encoded = *stored;
+    report_.uncompressedBytes += raw.size();
     CityFile f{folder_ + "/index.qvs", encoded.size(), crc32(encoded)};
     if (Status s = writeFileAtomic(cityDir_ + "/" + f.file, encoded); !s.ok()) return Error{s.error()};
     info.summaryIndex = f;

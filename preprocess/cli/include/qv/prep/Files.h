@@ -28,6 +28,14 @@ Status writeFileAtomic(const std::string& path, const std::string& text);
 Status writeStagedFile(const std::string& path, std::span<const std::uint8_t> bytes);
 Status writeStagedFile(const std::string& path, const std::string& text);
 
+/// Zstandard level of the files the tools compress (response tiles): fast to write, and on the
+/// 100,000-building synth-city a quarter to a half of the raw size (docs/formats.md).
+inline constexpr int kStoredFileLevel = 6;
+
+/// `bytes` as one Zstandard frame that declares its content size and carries zstd's checksum (the
+/// stored form qv::unpackStoredFile reads; docs/formats.md "Compressed files").
+Result<std::vector<std::uint8_t>> compressStoredFile(std::span<const std::uint8_t> bytes, int level = kStoredFileLevel);
+
 /// Creates directories as needed (like mkdir -p).
 Status makeDirectories(const std::string& path);
 

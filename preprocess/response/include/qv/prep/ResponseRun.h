@@ -62,9 +62,10 @@ struct ResponseRunReport {
   std::uint64_t approximateBuildings = 0;                   ///< buildings with such steps (listed in the notes)
   std::map<NoResultReason, std::uint64_t> noResultReasons;  ///< buildings without a result, by reason
   double seconds = 0.0;
-  double solveSeconds = 0.0;   ///< CPU time in the solver (the encoder excluded), all threads
-  double encodeSeconds = 0.0;  ///< CPU time of the history encoder, all threads
-  std::uint64_t summaryBytes = 0, historyBytes = 0;
+  double solveSeconds = 0.0;                         ///< CPU time in the solver (the encoder excluded), all threads
+  double encodeSeconds = 0.0;                        ///< CPU time of the history encoder, all threads
+  std::uint64_t summaryBytes = 0, historyBytes = 0;  ///< as stored (Zstandard frames)
+  std::uint64_t uncompressedBytes = 0;               ///< the same before compression
   std::uint64_t driftSeriesBytes = 0, driftSeriesBuildings = 0;  ///< the far view's series (ResponseWriteReport)
   double worstRelativeError = 0.0;                               ///< history vs full rate, / peak roof
   double p99RelativeError = 0.0;

@@ -69,6 +69,8 @@ struct ResponseWriteReport {
   std::uint64_t driftSeriesBytes = 0;
   std::uint64_t driftSeriesBuildings = 0;
   std::uint64_t historyBytes = 0;
+  /// The summaries and histories before compression (the files are stored as Zstandard frames).
+  std::uint64_t uncompressedBytes = 0;
   std::uint64_t damage[6] = {0, 0, 0, 0, 0, 0};             ///< none … complete, no_result
   std::map<NoResultReason, std::uint64_t> noResultReasons;  ///< buildings without a result, by reason
   std::uint64_t approximate = 0;                            ///< buildings with an approximate result
