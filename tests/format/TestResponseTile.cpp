@@ -1,8 +1,10 @@
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <iterator>
 #include <limits>
 #include <vector>
 
@@ -379,4 +381,75 @@ TEST_CASE("The site section keeps the field's values, 'not given' as NaN, with o
   const auto unknown = decodeResponseSummary(patched(0, [](std::uint8_t* p) { *p = 9; }), "future.qvs");
   REQUIRE(unknown.ok());
   CHECK_FALSE(unknown->sites[0].given());
+}
+
+TEST_CASE("The drawing probabilities (DPRB) round-trip to 1/65535, come from LOSS where a file has it, and are checked",
+          "[format][response]") {
+  ResponseSummaryTile t = tinySummary();
+  BuildingDamageOdds o;
+  const float atLeast[4] = {0.75f, 0.5f, 0.25f, 0.125f};
+  const float tags[3] = {0.5f, 0.3f, 0.2f};
+  std::copy(std::begin(atLeast), std::end(atLeast), o.atLeast);
+  std::copy(std::begin(tags), std::end(tags), o.tag);
+  t.odds = {o, BuildingDamageOdds{}};
+  std::vector<std::uint8_t> bytes = encodeResponseSummary(t);
+  // One more section table entry and two records of 14 bytes (28: already on a 4-byte boundary).
+  CHECK(bytes.size() == encodeResponseSummary(tinySummary()).size() + 12 + 2 * 14);
+  const auto decoded = decodeResponseSummary(bytes, "slim.qvs");
+  REQUIRE(decoded.ok());
+  REQUIRE(decoded->odds.size() == 2);
+  CHECK(decoded->losses.empty());
+  for (int k = 0; k < 4; ++k) CHECK(decoded->odds[0].atLeast[k] == Approx(atLeast[k]).margin(1.0 / 131070.0));
+  for (int k = 0; k < 3; ++k) CHECK(decoded->odds[0].tag[k] == Approx(tags[k]).margin(1.0 / 131070.0));
+  CHECK(decoded->odds[0].expectedState() == Approx(1.625).margin(1e-4));
+  CHECK(decoded->odds[0].likelyTag() == 0);
+  CHECK(decoded->odds[0].structuralAtLeast(0) == 1.0f);
+  CHECK(decoded->odds[0].structuralAtLeast(5) == 0.0f);
+
+  // The record as docs/formats.md lays it out: u16 round(65535 p), P(>= slight) first.
+  std::size_t at = 0;
+  const std::uint16_t sections = static_cast<std::uint16_t>(bytes[24] | (bytes[25] << 8));
+  for (std::uint16_t s = 0; s < sections; ++s) {
+    const std::size_t entry = 28 + 12 * static_cast<std::size_t>(s);
+    if (std::memcmp(&bytes[entry], "DPRB", 4) == 0) std::memcpy(&at, &bytes[entry + 4], 4);
+  }
+  REQUIRE(at > 0);
+  CHECK(bytes[at] == 0xFF);  // 0.75 x 65535 = 49151.25 -> 49151 = 0xBFFF
+  CHECK(bytes[at + 1] == 0xBF);
+  CHECK(bytes[at + 2] == 0x00);  // 0.5 -> 32768 (rounded half up) = 0x8000
+  CHECK(bytes[at + 3] == 0x80);
+
+  SECTION("a file with LOSS gives the exact probabilities; the encoder never writes both sections") {
+    BuildingLoss loss;
+    const float p[5] = {0.25f, 0.25f, 0.25f, 0.125f, 0.125f};
+    for (int k = 0; k < 5; ++k)
+      loss.structural[k] = loss.nonStructuralDrift[k] = loss.nonStructuralAcceleration[k] = p[k];
+    loss.tag[0] = 0.25f;
+    loss.tag[1] = 0.5f;
+    loss.tag[2] = 0.25f;
+    t.losses = {loss, BuildingLoss{}};
+    const auto both = decodeResponseSummary(encodeResponseSummary(t), "full.qvs");
+    REQUIRE(both.ok());
+    REQUIRE(both->odds.size() == 2);
+    CHECK(both->odds[0] == BuildingDamageOdds::of(loss));
+    CHECK(both->odds[0].atLeast[1] == 0.5f);
+    CHECK(both->odds[0].likelyTag() == 1);
+  }
+  SECTION("P(DS >= k) growing with k is refused") {
+    bytes[at + 2] = 0xFF;
+    bytes[at + 3] = 0xFF;  // P(>= moderate) = 1 > P(>= slight)
+    const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bytes).subspan(16));
+    std::memcpy(&bytes[12], &crc, 4);
+    const auto bad = decodeResponseSummary(bytes, "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("bad.qvs") && Catch::Contains("DPRB") && Catch::Contains("grows"));
+  }
+  SECTION("tag probabilities over 1 are refused") {
+    for (int k = 0; k < 6; ++k) bytes[at + 8 + static_cast<std::size_t>(k)] = 0xFF;
+    const std::uint32_t crc = crc32(std::span<const std::uint8_t>(bytes).subspan(16));
+    std::memcpy(&bytes[12], &crc, 4);
+    const auto bad = decodeResponseSummary(bytes, "bad.qvs");
+    REQUIRE_FALSE(bad.ok());
+    CHECK_THAT(bad.error(), Catch::Contains("DPRB") && Catch::Contains("tag"));
+  }
 }

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -154,9 +155,83 @@ TEST_CASE("response gives rooftop parts no result with a reason, and publishes o
     CHECK(files >= 2);
   }
 
+  SECTION("tile summaries carry the drawing probabilities; the index the full losses and sites") {
+    const auto tileset = qv::parseTileset(readText(dir + "/city/tileset.json"), "tileset.json");
+    REQUIRE(tileset.ok());
+    auto summaryOf = [&dir](const std::string& file) {
+      std::ifstream in(dir + "/city/" + file, std::ios::binary);
+      const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      auto decoded = qv::decodeResponseSummary(bytes, file);
+      REQUIRE(decoded.ok());
+      return std::move(decoded).value();
+    };
+    REQUIRE(tileset->response->summaryIndex);
+    const qv::ResponseSummaryTile index = summaryOf(tileset->response->summaryIndex->file);
+    REQUIRE(index.losses.size() == index.buildings.size());
+    REQUIRE(index.spread.size() == index.buildings.size());
+    REQUIRE_FALSE(index.storeySpread.empty());
+    int compared = 0;
+    for (const qv::TileNode& n : tileset->nodes) {
+      const qv::ResponseSummaryTile s = summaryOf(n.response->summaryFile);
+      CHECK(s.losses.empty());
+      CHECK(s.sites.empty());
+      CHECK(s.spread.empty());
+      CHECK(s.storeySpread.empty());
+      REQUIRE(s.odds.size() == s.buildings.size());
+      CHECK_FALSE(s.scaling.empty());  // the sway periods
+      // The same building's probabilities in the index, to 1/65535 (the index is in the search
+      // index's order: the buildings are matched by their peak drift).
+      for (std::size_t b = 0; b < s.buildings.size(); ++b) {
+        if (s.buildings[b].source == qv::ResponseSource::None) continue;
+        for (std::size_t i = 0; i < index.buildings.size(); ++i) {
+          if (index.buildings[i].peakDriftRatio != s.buildings[b].peakDriftRatio) continue;
+          const qv::BuildingDamageOdds full = qv::BuildingDamageOdds::of(index.losses[i]);
+          for (int k = 0; k < 4; ++k) CHECK(s.odds[b].atLeast[k] == Approx(full.atLeast[k]).margin(1.0 / 65535.0));
+          ++compared;
+        }
+      }
+    }
+    CHECK(compared >= 2);
+  }
+
   SECTION("no response file carries the record's directory") {
     CHECK(readText(dir + "/city/tileset.json").find(kRecords) == std::string::npos);
     CHECK(readText(dir + "/city/tileset.json").find("TAK000.AT2") != std::string::npos);
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("response writes the same files, intervals included, whatever the number of threads", "[response][cli]") {
+  const std::string dir = "/tmp/qv-response-threads-" + std::to_string(getpid());
+  std::filesystem::remove_all(dir);
+  const auto made = run("synth-city --buildings 300 --seed 4 --max-leaf-buildings 25 --out '" + dir + "'", true);
+  INFO(made.output);
+  REQUIRE(made.exitCode == 0);
+  // Each run's response files (a new run replaces the city's response): file name -> bytes.
+  std::vector<std::map<std::string, std::vector<std::uint8_t>>> runs;
+  for (const char* threads : {"1", "3"}) {
+    const auto response = run("response --city '" + dir + "' --synthetic 1 --threads " + std::string(threads), true);
+    INFO(response.output);
+    REQUIRE(response.exitCode == 0);
+    auto& files = runs.emplace_back();
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+      if (entry.path().filename().string().rfind("response-", 0) != 0) continue;
+      for (const auto& file : std::filesystem::directory_iterator(entry.path())) {
+        std::ifstream in(file.path(), std::ios::binary);
+        files[file.path().filename().string()] =
+            std::vector<std::uint8_t>((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      }
+    }
+  }
+  const auto& first = runs[0];
+  const auto& second = runs[1];
+  REQUIRE(first.size() == second.size());
+  REQUIRE(first.count("consequences.json") == 1);
+  CHECK(first.size() > 10);
+  for (const auto& [name, bytes] : first) {
+    INFO(name);
+    REQUIRE(second.count(name) == 1);
+    CHECK(second.at(name) == bytes);
   }
   std::filesystem::remove_all(dir);
 }

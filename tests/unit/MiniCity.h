@@ -102,10 +102,13 @@ struct MiniCity {
   /// a large city's coarse tiles hold only some of theirs. `heightsM`: cells (i, j) whose prism
   /// rises to another height than kStoreys x kStoreyHeight (towers; still kStoreys storeys).
   /// `withSeries`: the tile summaries carry the far view's drift series (DSER), made from the
-  /// histories as quakeview-prep makes them (appendDriftSeries).
+  /// histories as quakeview-prep makes them (appendDriftSeries). `withLosses`: HAZUS losses
+  /// (lossOf) laid out as quakeview-prep lays them out for a city with an index: in full in the
+  /// index's summary (LOSS), as drawing probabilities only in the tile summaries (DPRB).
   explicit MiniCity(bool withResponse = true, bool withLod2 = false, std::size_t rootLimit = kSide * kSide,
-                    std::map<std::pair<int, int>, float> heightsM = {}, bool withSeries = false)
-      : withLod2_(withLod2), withSeries_(withSeries), heightsM_(std::move(heightsM)) {
+                    std::map<std::pair<int, int>, float> heightsM = {}, bool withSeries = false,
+                    bool withLosses = false)
+      : withLod2_(withLod2), withSeries_(withSeries), withLosses_(withLosses), heightsM_(std::move(heightsM)) {
     const std::string prefix = "city/";
     tileset.generator = "test";
     tileset.originLon = -74.0;
@@ -162,6 +165,7 @@ struct MiniCity {
         for (int k = 0; k < kStoreys; ++k) summary.storeyPeakDrift.push_back(storeyDrift(r, k));
         summary.buildings.push_back(r);
         if (withResponse) summary.sites.push_back(siteOf(i, j));
+        if (withResponse && withLosses_) summary.losses.push_back(lossOf(i, j));
       }
     }
     const auto indexBytes = encodeSearchIndex(index);
@@ -202,6 +206,24 @@ struct MiniCity {
     s.psa30G = 0.1f * s.pgaG;
     s.vs30Mps = 400.0f;
     return s;
+  }
+  /// HAZUS losses of building (i, j): P(DS >= slight) from 0.103 up by 0.01 a building, repair cost
+  /// 1000 USD times its number.
+  static BuildingLoss lossOf(int i, int j) {
+    const int n = i * kSide + j;
+    const float a = 0.103f + 0.01f * static_cast<float>(n);  // P(DS >= moderate) never a whole percent
+    BuildingLoss l;
+    const float states[5] = {1.0f - a, 0.5f * a, 0.3f * a, 0.15f * a, 0.05f * a};
+    for (int k = 0; k < 5; ++k) l.structural[k] = l.nonStructuralDrift[k] = l.nonStructuralAcceleration[k] = states[k];
+    l.occupants = 10.0f;
+    l.injuries[0] = 0.01f * a;
+    l.replacementValueUsd = 1.0e6f;
+    l.repairCostUsd = 1000.0f * static_cast<float>(n + 1);
+    l.repairTimeDays = 10.0f * a;
+    l.tag[0] = 1.0f - 0.5f * a;
+    l.tag[1] = 0.3f * a;
+    l.tag[2] = 0.2f * a;
+    return l;
   }
   static float storeyDrift(const BuildingResponse& r, int storey) {
     return r.peakDriftRatio * (1.0f + 0.1f * static_cast<float>(storey));
@@ -277,7 +299,9 @@ struct MiniCity {
       r.firstStorey = static_cast<std::uint32_t>(summary.storeyPeakDrift.size());
       for (int s = 0; s < kStoreys; ++s) summary.storeyPeakDrift.push_back(storeyDrift(r, s));
       summary.buildings.push_back(r);
-      summary.sites.push_back(siteOf(i, j));
+      // A slim tile (withLosses_) leaves the site and the losses to the index, as quakeview-prep does.
+      if (!withLosses_) summary.sites.push_back(siteOf(i, j));
+      if (withLosses_) summary.odds.push_back(BuildingDamageOdds::of(lossOf(i, j)));
 
       BuildingHistory h;
       h.floors = kStoreys;
@@ -338,6 +362,7 @@ struct MiniCity {
 
   bool withLod2_ = false;
   bool withSeries_ = false;
+  bool withLosses_ = false;
   std::map<std::pair<int, int>, float> heightsM_;
 };
 

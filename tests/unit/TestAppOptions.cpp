@@ -200,7 +200,7 @@ TEST_CASE("Filter text: a fourth field state:percent filters by the probability 
   const Result<BuildingFilters> ten = parseFilters(",,,2:10");
   REQUIRE(ten.ok());
   CHECK(ten->passes(FacilityCategory::None, "office", &r, &loss));
-  CHECK_FALSE(ten->passes(FacilityCategory::None, "office", &r, nullptr));
+  CHECK_FALSE(ten->passes(FacilityCategory::None, "office", &r, static_cast<const BuildingLoss*>(nullptr)));
   const Result<BuildingFilters> eleven = parseFilters(",,,2:11");
   REQUIRE(eleven.ok());
   CHECK_FALSE(eleven->passes(FacilityCategory::None, "office", &r, &loss));

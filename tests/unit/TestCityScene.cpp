@@ -1169,3 +1169,64 @@ TEST_CASE("The first view plays from the shaking's arrival and frames the city b
     CHECK(rig.viewer.time() == Approx(0.5));
   }
 }
+
+TEST_CASE("Tile summaries without losses: colours, the probability filter, the view's totals and the inspection",
+          "[scene][city][losses]") {
+  // As quakeview-prep writes a city with an index: tiles carry the drawing probabilities (DPRB),
+  // the index's summary the full losses and sites.
+  SceneRig rig(MiniCity(true, false, MiniCity::kSide * MiniCity::kSide, {}, false, true));
+  rig.open(1000.0f);
+  Viewer& viewer = rig.viewer;
+  viewer.setCamera(CameraState{0.0, 0.0, 2500.0, 0.0, 85.0, 45.0});  // from above: the whole city in view
+  viewer.pause();
+  runFrames(viewer, 30);
+  REQUIRE(viewer.settled());
+  CityScene& city = *viewer.city();
+
+  // Every drawn building's colour code carries its P(DS >= moderate) from the tile's DPRB.
+  int coded = 0;
+  for (const auto& [slot, row] : rig.device.buildings) {
+    if (row.damageState < 0.0f) continue;
+    REQUIRE(row.lossCode >= 0.0f);
+    ++coded;
+  }
+  CHECK(coded >= MiniCity::kSide * MiniCity::kSide);
+
+  // The view's totals add the index's losses of the buildings in view: all of them here.
+  const seismic::LossTotals inView = city.consequencesInView();
+  CHECK(inView.buildings == MiniCity::kSide * MiniCity::kSide);
+  double repair = 0.0;
+  for (int i = 0; i < MiniCity::kSide; ++i) {
+    for (int j = 0; j < MiniCity::kSide; ++j) repair += MiniCity::lossOf(i, j).repairCostUsd;
+  }
+  CHECK(inView.repairCostUsd.expected == Approx(repair));
+
+  // The inspection shows the building's losses and site shaking from the index.
+  const auto ref = city.find(MiniCity::idOf(3, 5));
+  REQUIRE(ref.has_value());
+  const auto info = city.info(*ref);
+  REQUIRE(info.has_value());
+  REQUIRE(info->loss.has_value());
+  CHECK(info->loss->repairCostUsd == MiniCity::lossOf(3, 5).repairCostUsd);
+  CHECK(info->loss->structuralAtLeast(2) == Approx(MiniCity::lossOf(3, 5).structuralAtLeast(2)));
+  REQUIRE(info->site.has_value());
+  CHECK(info->site->pgaG == MiniCity::siteOf(3, 5).pgaG);
+
+  // The probability filter dims by the tiles' probabilities: P(DS >= moderate) >= 22 %.
+  BuildingFilters filters;
+  filters.probabilityState = 2;
+  filters.minProbabilityPercent = 22;
+  city.setFilters(filters);
+  runFrames(viewer, 2);
+  int dimmed = 0, kept = 0;
+  for (const auto& [slot, row] : rig.device.buildings) {
+    if (row.lossCode < 0.0f) continue;
+    const float moderate = static_cast<float>(static_cast<int>(row.lossCode) % kLossCodeExpectedFactor) / 255.0f;
+    const bool isDimmed = (static_cast<unsigned>(row.flags) & kFlagDimmed) != 0;
+    if (moderate < 0.21f) CHECK(isDimmed);
+    if (moderate > 0.23f) CHECK_FALSE(isDimmed);
+    (isDimmed ? dimmed : kept) += 1;
+  }
+  CHECK(dimmed > 0);
+  CHECK(kept > 0);
+}

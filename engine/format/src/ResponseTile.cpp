@@ -133,6 +133,8 @@ constexpr std::size_t kSpreadRecordSize = 12;
 constexpr std::size_t kStoreySpreadRecordSize = 12;
 constexpr std::size_t kLossRecordSize = 132;
 constexpr std::size_t kSiteRecordSize = 32;
+constexpr std::size_t kOddsRecordSize = 14;
+constexpr float kOddsLevels = 65535.0f;
 
 // The optional summary sections (SPEC, SITE, SUIT, SSPR, LOSS): sizes match the counts, values are finite,
 // non-negative, and probabilities lie in [0, 1].
@@ -249,6 +251,27 @@ Status decodeOptionalSections(std::span<const std::uint8_t> bytes, const Parsed&
         if (!value(v)) return bad("LOSS", r, "invalid consequence value");
       }
     }
+  }
+  auto odds = sized("DPRB", n, kOddsRecordSize);
+  if (!odds.ok()) return Error{odds.error()};
+  if (*odds && !tile.losses.empty()) {
+    return Error{prefix + "sections LOSS and DPRB are both present (a file has one or the other)"};
+  }
+  if (*odds) {
+    ByteReader& r = **odds;
+    tile.odds.resize(n);
+    for (BuildingDamageOdds& o : tile.odds) {
+      for (float& p : o.atLeast) p = static_cast<float>(r.u16("damage probability")) / kOddsLevels;
+      for (float& p : o.tag) p = static_cast<float>(r.u16("tag probability")) / kOddsLevels;
+      if (!r.ok()) return bad("DPRB", r, "truncated");
+      for (int k = 1; k < 4; ++k) {
+        if (o.atLeast[k] > o.atLeast[k - 1]) return bad("DPRB", r, "P(DS >= k) grows with k");
+      }
+      if (o.tag[0] + o.tag[1] + o.tag[2] > 1.0f + 4.0f / kOddsLevels) return bad("DPRB", r, "tag probabilities over 1");
+    }
+  } else if (!tile.losses.empty()) {
+    tile.odds.reserve(n);
+    for (const BuildingLoss& l : tile.losses) tile.odds.push_back(BuildingDamageOdds::of(l));
   }
   if (const auto dser = findSection(header, tag("DSER"))) {
     ByteReader r(bytes.subspan(dser->first, dser->second), dser->first);
@@ -480,6 +503,23 @@ std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile)
     }
     sections.push_back({tag("LOSS"), &loss});
   }
+  ByteWriter dprb;
+  if (tile.losses.empty() && !tile.odds.empty() && tile.odds.size() == tile.buildings.size()) {
+    auto fraction = [](float p) {
+      const float c = std::isfinite(p) ? std::clamp(p, 0.0f, 1.0f) : 0.0f;
+      return static_cast<std::uint16_t>(std::lround(c * kOddsLevels));
+    };
+    for (const BuildingDamageOdds& o : tile.odds) {
+      // Quantized from the largest state down, each no more than the one before (a reader checks).
+      std::uint16_t previous = 65535;
+      for (const float p : o.atLeast) {
+        previous = std::min(previous, fraction(p));
+        dprb.u16(previous);
+      }
+      for (const float p : o.tag) dprb.u16(fraction(p));
+    }
+    sections.push_back({tag("DPRB"), &dprb});
+  }
   ByteWriter dser;
   const DriftSeries& d = tile.driftSeries;
   if (!d.empty() && d.spans.size() == tile.buildings.size()) {
@@ -510,6 +550,31 @@ float BuildingLoss::structuralAtLeast(int k) const {
   float sum = 0.0f;
   for (int j = std::min(k, 5); j < 5; ++j) sum += structural[j];
   return std::min(sum, 1.0f);
+}
+
+float BuildingDamageOdds::structuralAtLeast(int k) const {
+  if (k <= 0) return 1.0f;
+  if (k > 4) return 0.0f;
+  return atLeast[k - 1];
+}
+
+float BuildingDamageOdds::expectedState() const {
+  return atLeast[0] + atLeast[1] + atLeast[2] + atLeast[3];
+}
+
+int BuildingDamageOdds::likelyTag() const {
+  int best = 0;
+  for (int k = 1; k < 3; ++k) {
+    if (tag[k] > tag[best]) best = k;
+  }
+  return best;
+}
+
+BuildingDamageOdds BuildingDamageOdds::of(const BuildingLoss& loss) {
+  BuildingDamageOdds o;
+  for (int k = 1; k <= 4; ++k) o.atLeast[k - 1] = loss.structuralAtLeast(k);
+  for (int k = 0; k < 3; ++k) o.tag[k] = loss.tag[k];
+  return o;
 }
 
 float BuildingLoss::expectedState() const {

@@ -22,6 +22,13 @@ bool BuildingFilters::usePasses(std::string_view buildingUse) const {
 
 bool BuildingFilters::passes(FacilityCategory facility, std::string_view buildingUse, const BuildingResponse* r,
                              const BuildingLoss* loss) const {
+  if (loss == nullptr) return passes(facility, buildingUse, r, static_cast<const BuildingDamageOdds*>(nullptr));
+  const BuildingDamageOdds odds = BuildingDamageOdds::of(*loss);
+  return passes(facility, buildingUse, r, &odds);
+}
+
+bool BuildingFilters::passes(FacilityCategory facility, std::string_view buildingUse, const BuildingResponse* r,
+                             const BuildingDamageOdds* loss) const {
   if (const unsigned mask = categoryMask(); mask != 0 && (mask & facilityCategoryBit(facility)) == 0) return false;
   if (!usePasses(buildingUse)) return false;
   if (minDamage >= 0) {
@@ -102,11 +109,19 @@ std::uint32_t CityIndex::pendingFiles() const {
 }
 
 const SearchEntry* CityIndex::entry(std::string_view id) const {
-  if (search_.state != TileState::Loaded) return nullptr;
-  for (const SearchEntry& e : entries_) {
-    if (e.id == id) return &e;
-  }
-  return nullptr;
+  const auto at = position(id);
+  return at ? &entries_[*at] : nullptr;
+}
+
+std::optional<std::uint32_t> CityIndex::position(std::string_view id) const {
+  if (search_.state != TileState::Loaded) return std::nullopt;
+  const auto it = positions_.find(id);
+  if (it == positions_.end()) return std::nullopt;
+  return it->second;
+}
+
+const ResponseSummaryTile* CityIndex::summary() const {
+  return summary_ ? &*summary_ : nullptr;
 }
 
 void CityIndex::fetch(FileLoad& load, FileKind kind, const CityFile& file,
@@ -162,7 +177,10 @@ void CityIndex::request() {
             }
           }
           entries_ = std::move(decoded).value();
-          bytes_ = entries_.size() * sizeof(SearchEntry);
+          positions_.clear();
+          positions_.reserve(entries_.size());
+          for (std::uint32_t i = 0; i < entries_.size(); ++i) positions_.emplace(entries_[i].id, i);
+          bytes_ = entries_.size() * (sizeof(SearchEntry) + 2 * sizeof(void*) + sizeof(std::string_view) + 4);
           for (const SearchEntry& e : entries_) {
             for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
               if (text->size() >= sizeof(std::string)) bytes_ += text->size() + 1;
@@ -196,7 +214,10 @@ void CityIndex::requestSummary() {
             medianDriftBeta_ = betas[betas.size() / 2];
           }
           bytes_ +=
-              summary_->buildings.size() * sizeof(BuildingResponse) + summary_->storeyPeakDrift.size() * sizeof(float);
+              summary_->buildings.size() * sizeof(BuildingResponse) + summary_->storeyPeakDrift.size() * sizeof(float) +
+              summary_->scaling.size() * sizeof(BuildingScaling) + summary_->sites.size() * sizeof(BuildingSite) +
+              summary_->spread.size() * sizeof(BuildingSpread) + summary_->storeySpread.size() * sizeof(StoreySpread) +
+              summary_->losses.size() * sizeof(BuildingLoss) + summary_->odds.size() * sizeof(BuildingDamageOdds);
           return {};
         });
 }
@@ -220,14 +241,12 @@ const BuildingResponse* CityIndex::response(std::uint32_t index) const {
 }
 
 std::optional<BuildingListEntry> CityIndex::listEntryOf(std::string_view id) const {
-  if (search_.state != TileState::Loaded) return std::nullopt;
-  for (std::uint32_t i = 0; i < entries_.size(); ++i) {
-    if (entries_[i].id == id) return listEntry(i);
-  }
-  return std::nullopt;
+  const auto at = position(id);
+  if (!at) return std::nullopt;
+  return listEntry(*at);
 }
 
-const BuildingLoss* CityIndex::loss(std::uint32_t index) const {
+const BuildingLoss* CityIndex::lossAt(std::uint32_t index) const {
   const BuildingResponse* r = response(index);
   if (r == nullptr || r->source == ResponseSource::None || !summary_ || index >= summary_->losses.size())
     return nullptr;
@@ -253,7 +272,7 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
     e.peakDriftRatio = r->peakDriftRatio;
     e.peakRoofDisplacementM = r->peakRoofDisplacementM;
     e.pgaG = r->pgaG;
-    if (const BuildingLoss* l = loss(index)) e.loss = *l;
+    if (const BuildingLoss* l = lossAt(index)) e.loss = *l;
   }
   if (summary_ && index < summary_->sites.size()) e.site = summary_->sites[index];
   return e;
@@ -326,7 +345,7 @@ std::vector<BuildingListEntry> CityIndex::filteredList(const BuildingFilters& fi
   std::vector<Key> keys;
   for (std::uint32_t i = 0; i < entries_.size(); ++i) {
     const BuildingResponse* r = response(i);
-    const BuildingLoss* loss = this->loss(i);
+    const BuildingLoss* loss = lossAt(i);
     if (!filters.passes(entries_[i].facility, entries_[i].use, r, loss)) continue;
     const int damage = r != nullptr && r->damage != DamageState::NoResult ? static_cast<int>(r->damage) : -1;
     keys.push_back({loss != nullptr, loss != nullptr ? static_cast<double>(loss->structuralAtLeast(state)) : 0.0,

@@ -407,6 +407,22 @@ bool CityScene::preparePrisms(std::uint32_t node, bool mayBuild) {
   return true;
 }
 
+const BuildingLoss* CityScene::indexLoss(std::uint32_t node, std::uint32_t building) {
+  TileRuntime& t = *tiles_[node];
+  if (!t.loaded || index_.summary() == nullptr) return nullptr;
+  LoadedTile& tile = *t.loaded;
+  if (tile.indexPosition.empty()) {
+    tile.indexPosition.assign(tile.buildingCount(), LoadedTile::kNoIndexPosition);
+    for (std::uint32_t b = 0; b < tile.buildingCount(); ++b) {
+      if (const auto at = index_.position(tile.data.buildings[b].attributes.id)) tile.indexPosition[b] = *at;
+    }
+  }
+  if (building >= tile.indexPosition.size() || tile.indexPosition[building] == LoadedTile::kNoIndexPosition) {
+    return nullptr;
+  }
+  return index_.lossAt(tile.indexPosition[building]);
+}
+
 void CityScene::countDamageInView() {
   // Damage states in view (for the panel), from the summaries of the drawn tiles: counted again
   // only when the visible sets or the summaries behind them changed.
@@ -424,6 +440,7 @@ void CityScene::countDamageInView() {
     for (const IndexRange& r : t.inView) mix((static_cast<std::uint64_t>(r.begin) << 32) | r.end);
   }
   mix(residencyGeneration_);
+  mix(index_.summary() != nullptr ? 1 : 0);  // the view's losses come from it where tiles have none
   const bool viewChanged = viewSignature != viewSignature_;
   viewSignature_ = viewSignature;
   if (viewChanged) {
@@ -447,8 +464,12 @@ void CityScene::countDamageInView() {
           const DamageState d =
               t.summary && b < t.summary->buildings.size() ? t.summary->buildings[b].damage : DamageState::NoResult;
           ++damageInView_[d == DamageState::NoResult ? 5 : static_cast<std::size_t>(d)];
-          if (d != DamageState::NoResult && t.summary && b < t.summary->losses.size()) {
-            lossInView_.add(t.summary->losses[b]);
+          if (d != DamageState::NoResult && t.summary) {
+            if (b < t.summary->losses.size()) {
+              lossInView_.add(t.summary->losses[b]);
+            } else if (const BuildingLoss* l = indexLoss(i, b)) {
+              lossInView_.add(*l);  // a tile summary without losses: the index has them
+            }
           }
         }
       }

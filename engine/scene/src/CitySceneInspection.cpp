@@ -18,11 +18,10 @@ void CityScene::applyFlags(std::uint32_t node) {
     BuildingGpuRecord& row = table_.row(tile.slotBase + tile.positionOf[b]);
     const BuildingAttributes& a = tile.data.buildings[b].attributes;
     const BuildingResponse* r = t.summary && b < t.summary->buildings.size() ? &t.summary->buildings[b] : nullptr;
-    const BuildingLoss* loss = r != nullptr && r->source != ResponseSource::None && b < t.summary->losses.size()
-                                   ? &t.summary->losses[b]
-                                   : nullptr;
+    const BuildingDamageOdds* odds =
+        r != nullptr && r->source != ResponseSource::None && b < t.summary->odds.size() ? &t.summary->odds[b] : nullptr;
     BuildingTable::setFlag(row, kFlagSelected, !selected_.empty() && a.id == selected_);
-    BuildingTable::setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r, loss));
+    BuildingTable::setFlag(row, kFlagDimmed, filtering && !filters_.passes(a, r, odds));
     BuildingTable::setFlag(row, kFlagHidden, hiddenByLod(a.lod));
   }
   table_.changed(tile.slotBase, tile.buildingCount());
@@ -117,6 +116,18 @@ std::optional<BuildingInfo> CityScene::info(BuildingRef ref) const {
     if (index < summary.sites.size() && summary.sites[index].given()) info.site = summary.sites[index];
     if (index < summary.spread.size()) info.spread = summary.spread[index];
     if (index < summary.losses.size()) info.loss = summary.losses[index];
+  }
+  // What tile summaries leave out when the city has its index (docs/formats.md, DPRB): the
+  // building's site, suite spread and losses from the summary in the index's order.
+  if (info.hasResponse && (!info.site || !info.spread || !info.loss)) {
+    const ResponseSummaryTile* all = index_.summary();
+    const auto at = all != nullptr ? index_.position(info.attributes.id) : std::nullopt;
+    if (at) {
+      const bool result = info.response.source != ResponseSource::None;
+      if (!info.site && *at < all->sites.size() && all->sites[*at].given()) info.site = all->sites[*at];
+      if (!info.spread && result && *at < all->spread.size()) info.spread = all->spread[*at];
+      if (!info.loss && result && *at < all->losses.size()) info.loss = all->losses[*at];
+    }
   }
   return info;
 }

@@ -71,13 +71,10 @@ void CityScene::applySummary(std::uint32_t node) {
         hasPeriods && t.summary->scaling[b].periodS[1] > 0.0f ? t.summary->scaling[b].periodS[1] : row.swayPeriodXS;
     row.damageState = r.damage == DamageState::NoResult ? -1.0f : static_cast<float>(r.damage);
     row.lossCode = -1.0f;
-    if (b < t.summary->losses.size() && r.source != ResponseSource::None) {
-      const BuildingLoss& l = t.summary->losses[b];
-      int tag = 0;
-      for (int k = 1; k < 3; ++k) {
-        if (l.tag[k] > l.tag[tag]) tag = k;
-      }
-      row.lossCode = packLossCode(l.structural[2] + l.structural[3] + l.structural[4], l.expectedState(), tag);
+    if (b < t.summary->odds.size() && r.source != ResponseSource::None) {
+      const BuildingDamageOdds& o = t.summary->odds[b];
+      row.lossCode =
+          packLossCode(o.structuralAtLeast(static_cast<int>(DamageState::Moderate)), o.expectedState(), o.likelyTag());
     }
   }
   table_.changed(tile.slotBase, tile.buildingCount());

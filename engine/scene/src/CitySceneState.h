@@ -35,6 +35,10 @@ struct CityScene::LoadedTile : TileContent {
   // many positions before it have one (seriesBefore[p]; positionOf.size() + 1 entries, or empty).
   std::uint32_t seriesBase = 0, seriesCount = 0;
   std::vector<std::uint32_t> seriesBefore;
+  // Per building: its position in the city index (kNoIndexPosition when it has none), made when
+  // the view's totals first need the index's losses (CityScene::indexLoss).
+  std::vector<std::uint32_t> indexPosition;
+  static constexpr std::uint32_t kNoIndexPosition = 0xFFFFFFFFu;
   std::uint64_t cpuBytes = 0;
   std::uint64_t gpuBytes = 0;
   // Far-view tiles: block levels made so far, by level; levels below minBlockLevel are not worth

@@ -12,6 +12,7 @@
 #include "qv/core/JsonWriter.h"
 #include "qv/format/FacilityCategory.h"
 #include "qv/format/ResponseTile.h"
+#include "qv/format/SearchIndex.h"
 #include "qv/prep/Cli.h"
 #include "qv/prep/Consequences.h"
 #include "qv/prep/Files.h"
@@ -217,7 +218,42 @@ void writeBuildingLossJson(JsonWriter& w, const BuildingResponseView& r) {
   w.key("tags").beginObject().field("green", l.tag[0]).field("yellow", l.tag[1]).field("red", l.tag[2]).endObject();
   w.endObject();
 }
-Result<std::optional<BuildingResponseView>> loadBuildingResponse(const std::string& dir, const TileNode& node,
+// The values tile summaries leave out when the city has its index (SITE, SUIT, SSPR, LOSS;
+// docs/formats.md, DPRB), from the summary in the search index's order.
+Status addIndexValues(const std::string& dir, const Tileset& tileset, const std::string& id, BuildingResponseView& v) {
+  if (!tileset.search || !tileset.response || !tileset.response->summaryIndex || tileset.responseOutOfDate()) return {};
+  auto searchBytes = readFile(dir + "/" + tileset.search->file);
+  if (!searchBytes.ok()) return Error{searchBytes.error()};
+  auto entries = decodeSearchIndex(*searchBytes, dir + "/" + tileset.search->file);
+  if (!entries.ok()) return Error{entries.error()};
+  std::size_t at = entries->size();
+  for (std::size_t i = 0; i < entries->size(); ++i) {
+    if ((*entries)[i].id == id) {
+      at = i;
+      break;
+    }
+  }
+  if (at == entries->size()) return {};
+  const std::string path = dir + "/" + tileset.response->summaryIndex->file;
+  auto bytes = readFile(path);
+  if (!bytes.ok()) return Error{bytes.error()};
+  auto all = decodeResponseSummary(*bytes, path);
+  if (!all.ok()) return Error{all.error()};
+  if (at >= all->buildings.size()) return Error{path + ": fewer buildings than the search index"};
+  const BuildingResponse& r = all->buildings[at];
+  if (!v.site && at < all->sites.size()) v.site = all->sites[at];
+  if (!v.spread && at < all->spread.size()) v.spread = all->spread[at];
+  if (!v.loss && at < all->losses.size()) v.loss = all->losses[at];
+  if (v.storeySpread.empty() && !all->storeySpread.empty() && r.storeys == v.summary.storeys &&
+      r.firstStorey + r.storeys <= all->storeySpread.size()) {
+    const auto first = all->storeySpread.begin() + static_cast<std::ptrdiff_t>(r.firstStorey);
+    v.storeySpread.assign(first, first + static_cast<std::ptrdiff_t>(r.storeys));
+  }
+  return {};
+}
+
+Result<std::optional<BuildingResponseView>> loadBuildingResponse(const std::string& dir, const Tileset& tileset,
+                                                                 const TileNode& node, const std::string& id,
                                                                  std::size_t index, std::size_t tileBuildings) {
   if (!node.response) return std::optional<BuildingResponseView>();
   auto bytes = readFile(dir + "/" + node.response->summaryFile);
@@ -239,6 +275,9 @@ Result<std::optional<BuildingResponseView>> loadBuildingResponse(const std::stri
   if (!tile->sites.empty()) v.site = tile->sites[index];
   if (!tile->spread.empty()) v.spread = tile->spread[index];
   if (!tile->losses.empty()) v.loss = tile->losses[index];
+  if (!v.loss || !v.site) {
+    if (Status s = addIndexValues(dir, tileset, id, v); !s.ok()) return Error{s.error()};
+  }
   return std::optional<BuildingResponseView>(std::move(v));
 }
 
@@ -332,7 +371,7 @@ int runInfo(const CommandArgs& argv) {
         const TileBuilding& b = tile->buildings[index];
         if (b.attributes.id != *id) continue;
         const BuildingAttributes& a = b.attributes;
-        auto response = loadBuildingResponse(dir, node, index, tile->buildings.size());
+        auto response = loadBuildingResponse(dir, t, node, *id, index, tile->buildings.size());
         if (!response.ok()) {
           std::fprintf(stderr, "info: %s\n", response.error().c_str());
           return kExitDataError;

@@ -52,8 +52,11 @@ NoResultReason reasonFromName(std::string_view name) {
 class SummaryBuilder {
  public:
   /// `withSeries`: the tile summaries carry the far view's drift series; the city-wide index does
-  /// not (the viewer's list and filters do not need them).
-  explicit SummaryBuilder(bool withSeries = true) : withSeries_(withSeries) {
+  /// not (the viewer's list and filters do not need them). `slim`: a tile summary of a response
+  /// with a city-wide index, which holds every building's full values: the tile keeps what drawing
+  /// needs (RSUM, SDRF, SPEC, DSER, and the damage probabilities as DPRB), not SITE, SUIT, SSPR and
+  /// LOSS (docs/formats.md).
+  explicit SummaryBuilder(bool withSeries = true, bool slim = false) : withSeries_(withSeries), slim_(slim) {
     if (withSeries_) {
       tile_.driftSeries.rateHz = kDriftSeriesRateHz;
       tile_.driftSeries.fullScale = kDriftSeriesFullScale;
@@ -99,6 +102,14 @@ class SummaryBuilder {
     if (!hasStoreySpread_) tile_.storeySpread.clear();
     if (!hasLoss_) tile_.losses.clear();
     if (!hasSeries_) tile_.driftSeries = DriftSeries{};
+    if (slim_) {
+      tile_.odds.clear();
+      for (const BuildingLoss& l : tile_.losses) tile_.odds.push_back(BuildingDamageOdds::of(l));
+      tile_.losses.clear();
+      tile_.sites.clear();
+      tile_.spread.clear();
+      tile_.storeySpread.clear();
+    }
     return tile_;
   }
   /// Bytes the drift series section takes in the encoded summary (0 without one).
@@ -110,6 +121,7 @@ class SummaryBuilder {
  private:
   ResponseSummaryTile tile_;
   bool withSeries_ = true;
+  bool slim_ = false;
   bool hasScaling_ = false, hasSites_ = false, hasSpread_ = false, hasStoreySpread_ = false, hasLoss_ = false,
        hasSeries_ = false;
   std::uint64_t seriesBuildings_ = 0;
@@ -212,7 +224,7 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
     return Error{"internal: results do not match tile " + std::to_string(node)};
   }
   const TileNode& n = tileset_.nodes[node];
-  SummaryBuilder summary;
+  SummaryBuilder summary(true, tileset_.search.has_value());
   ResponseHistoryTile history;
   history.durationSeconds = 0.0f;
   for (std::size_t b = 0; b < results.size(); ++b) {
@@ -300,7 +312,7 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
     if (!bytes.ok()) return Error{bytes.error()};
     auto tile = decodeCityTile(*bytes, cityDir_ + "/" + n.file);
     if (!tile.ok()) return Error{tile.error()};
-    SummaryBuilder summary;
+    SummaryBuilder summary(true, tileset_.search.has_value());
     for (const TileBuilding& b : tile->buildings) {
       const auto it = byId_.find(b.attributes.id);
       summary.add(it != byId_.end() ? &it->second : nullptr);

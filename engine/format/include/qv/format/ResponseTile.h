@@ -165,6 +165,23 @@ struct BuildingLoss {
   [[nodiscard]] float structuralAtLeast(int k) const;
 };
 
+/// The damage probabilities a building is drawn and filtered by (optional summary section DPRB):
+/// what the tile summaries of a response with a city-wide index carry instead of LOSS, whose full
+/// values index.qvs holds (the viewer inspects and totals from there). Stored as 16-bit fractions,
+/// read back to within 1/131070. A reader derives them from LOSS where a file has LOSS.
+struct BuildingDamageOdds {
+  float atLeast[4] = {0, 0, 0, 0};  ///< P(structural DS >= slight, moderate, extensive, complete)
+  float tag[3] = {0, 0, 0};         ///< P(green, yellow, red inspection tag)
+  bool operator==(const BuildingDamageOdds&) const = default;
+  /// P(structural DS >= k): 1 for k <= 0, 0 for k > 4 (as BuildingLoss::structuralAtLeast).
+  [[nodiscard]] float structuralAtLeast(int k) const;
+  /// E[DS] = Σ_k P(DS >= k), 0 .. 4.
+  [[nodiscard]] float expectedState() const;
+  /// The most likely tag: 0 green, 1 yellow, 2 red (the first of equal ones).
+  [[nodiscard]] int likelyTag() const;
+  [[nodiscard]] static BuildingDamageOdds of(const BuildingLoss& loss);
+};
+
 /// The far view's drift series (optional summary section DSER), for every drawn building to follow
 /// the shaking without its full history: per building, the largest inter-storey drift ratio over
 /// its storeys and the two directions in each window [start + i / rateHz, start + (i + 1) / rateHz),
@@ -201,7 +218,10 @@ struct ResponseSummaryTile {
   std::vector<BuildingSpread> spread;      ///< SUIT
   std::vector<StoreySpread> storeySpread;  ///< SSPR
   std::vector<BuildingLoss> losses;        ///< LOSS
-  DriftSeries driftSeries;                 ///< DSER (tile summaries; not the city-wide index)
+  /// DPRB, or derived from LOSS on reading a file with LOSS (the two never share a file: the encoder
+  /// writes DPRB only for a tile without losses).
+  std::vector<BuildingDamageOdds> odds;
+  DriftSeries driftSeries;  ///< DSER (tile summaries; not the city-wide index)
 };
 
 std::vector<std::uint8_t> encodeResponseSummary(const ResponseSummaryTile& tile);

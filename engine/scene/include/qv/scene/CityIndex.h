@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -44,13 +45,17 @@ struct BuildingFilters {
   [[nodiscard]] bool active() const {
     return minDamage >= 0 || probabilityActive() || !use.empty() || criticalOnly || categories != 0;
   }
-  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r, const BuildingLoss* loss) const {
-    return passes(classifyFacility(a).category, a.use, r, loss);
+  [[nodiscard]] bool passes(const BuildingAttributes& a, const BuildingResponse* r,
+                            const BuildingDamageOdds* odds) const {
+    return passes(classifyFacility(a).category, a.use, r, odds);
   }
   /// `loss`: the building's HAZUS probabilities, nullptr without them (only the probability filter
   /// reads it).
   [[nodiscard]] bool passes(FacilityCategory facility, std::string_view use, const BuildingResponse* r,
                             const BuildingLoss* loss = nullptr) const;
+  /// The same with the probabilities a tile summary draws by (DPRB).
+  [[nodiscard]] bool passes(FacilityCategory facility, std::string_view use, const BuildingResponse* r,
+                            const BuildingDamageOdds* odds) const;
   /// Whether `buildingUse` is one of the uses (true when no use is chosen).
   [[nodiscard]] bool usePasses(std::string_view buildingUse) const;
   /// The category bits a building must match (criticalOnly folded in); 0: any.
@@ -133,6 +138,15 @@ class CityIndex {
 
   /// The building's entry (nullptr while the index is not loaded, or for an unknown id).
   [[nodiscard]] const SearchEntry* entry(std::string_view id) const;
+  /// The building's position in the index, and in the response summary in its order (nullopt
+  /// while the index is not loaded, or for an unknown id). A hash lookup.
+  [[nodiscard]] std::optional<std::uint32_t> position(std::string_view id) const;
+  /// The response summary in the index's order (index.qvs): every building's full values, which
+  /// tile summaries leave out (SITE, SUIT, SSPR, LOSS); nullptr until loaded.
+  [[nodiscard]] const ResponseSummaryTile* summary() const;
+  /// The HAZUS probabilities and consequences of the building at `position`; nullptr without a
+  /// result, without them, or until the summary loads.
+  [[nodiscard]] const BuildingLoss* lossAt(std::uint32_t position) const;
   /// The list row of building `id` (with its response), nullopt when the index has none.
   [[nodiscard]] std::optional<BuildingListEntry> listEntryOf(std::string_view id) const;
   /// Buildings whose id, name or address contain every word of `query`, at most `limit`, best
@@ -156,8 +170,6 @@ class CityIndex {
   void fetch(FileLoad& load, FileKind kind, const CityFile& file,
              std::function<std::string(std::vector<std::uint8_t>&, const std::string&)> accept);
   [[nodiscard]] const BuildingResponse* response(std::uint32_t index) const;
-  /// The building's HAZUS probabilities and consequences; nullptr without a result or without them.
-  [[nodiscard]] const BuildingLoss* loss(std::uint32_t index) const;
   [[nodiscard]] BuildingListEntry listEntry(std::uint32_t index) const;
 
   FileLoader& loader_;
@@ -166,6 +178,7 @@ class CityIndex {
   void requestConsequences();
   FileLoad search_;
   std::vector<SearchEntry> entries_;
+  std::unordered_map<std::string_view, std::uint32_t> positions_;  // id (into entries_) -> position
   // The last search's query and its matches in order (indices into entries_), for entries_ at
   // searchedEntries_.
   mutable std::string searchedQuery_;

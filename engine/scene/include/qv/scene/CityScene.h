@@ -239,6 +239,9 @@ class CityScene {
   void requestSummary(std::uint32_t node);
   void requestHistory(std::uint32_t node);
   void applySummary(std::uint32_t node);
+  /// The losses of building `building` of tile `node` from the city index's summary (for tile
+  /// summaries without LOSS), nullptr until the index has them.
+  const BuildingLoss* indexLoss(std::uint32_t node, std::uint32_t building);
   /// Its buildings' drift series into the series table and their rows (once per loaded tile).
   void applySeries(std::uint32_t node);
   /// The blocks' drift series of one block level from its members' rows (after their rows).
