@@ -32,6 +32,15 @@ qv::test::ToolRun run(const std::string& arguments, bool withStderr = false) {
   return qv::test::runTool(kTool, arguments, withStderr);
 }
 
+// A response summary of the city in `cityDir`, decoded (as stored: a Zstandard frame).
+qv::ResponseSummaryTile readSummary(const std::string& cityDir, const std::string& file) {
+  std::ifstream in(cityDir + "/" + file, std::ios::binary);
+  const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  auto decoded = qv::decodeResponseSummary(bytes, file);
+  REQUIRE(decoded.ok());
+  return std::move(decoded).value();
+}
+
 }  // namespace
 
 TEST_CASE("response gives rooftop parts no result with a reason, and publishes only the record's name",
@@ -91,13 +100,7 @@ TEST_CASE("response gives rooftop parts no result with a reason, and publishes o
     const std::string json = readText(dir + "/city/tileset.json");
     const auto tileset = qv::parseTileset(json, "tileset.json");
     REQUIRE(tileset.ok());
-    auto summaryOf = [&dir](const std::string& file) {
-      std::ifstream in(dir + "/city/" + file, std::ios::binary);
-      const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      auto decoded = qv::decodeResponseSummary(bytes, file);
-      REQUIRE(decoded.ok());
-      return std::move(decoded).value();
-    };
+    auto summaryOf = [&dir](const std::string& file) { return readSummary(dir + "/city", file); };
     int withSeries = 0;
     for (const qv::TileNode& n : tileset->nodes) {
       REQUIRE(n.response);
@@ -158,13 +161,7 @@ TEST_CASE("response gives rooftop parts no result with a reason, and publishes o
   SECTION("tile summaries carry the drawing probabilities; the index the full losses and sites") {
     const auto tileset = qv::parseTileset(readText(dir + "/city/tileset.json"), "tileset.json");
     REQUIRE(tileset.ok());
-    auto summaryOf = [&dir](const std::string& file) {
-      std::ifstream in(dir + "/city/" + file, std::ios::binary);
-      const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      auto decoded = qv::decodeResponseSummary(bytes, file);
-      REQUIRE(decoded.ok());
-      return std::move(decoded).value();
-    };
+    auto summaryOf = [&dir](const std::string& file) { return readSummary(dir + "/city", file); };
     REQUIRE(tileset->response->summaryIndex);
     const qv::ResponseSummaryTile index = summaryOf(tileset->response->summaryIndex->file);
     REQUIRE(index.losses.size() == index.buildings.size());
