@@ -15,6 +15,10 @@ inline void checkSummaryConsistent(const ResponseSummaryTile& t) {
   for (const BuildingResponse& b : t.buildings) {
     check(std::size_t{b.firstStorey} + b.storeys <= t.storeyPeakDrift.size(), "storey range out of bounds");
   }
+  check(t.odds.empty() || t.odds.size() == t.buildings.size(), "drawing probabilities not one per building");
+  for (const BuildingDamageOdds& o : t.odds) {
+    for (const float p : o.atLeast) check(std::isfinite(p) && p >= 0.0f && p <= 1.0f, "a probability out of [0, 1]");
+  }
 }
 
 inline void checkSameSummary(const ResponseSummaryTile& a, const ResponseSummaryTile& b) {
@@ -29,8 +33,9 @@ inline void checkSameSummary(const ResponseSummaryTile& a, const ResponseSummary
               p.residualDriftRatio == q.residualDriftRatio && p.firstStorey == q.firstStorey,
           "round trip changed a building's summary");
   }
-  // The optional sections (spectral scaling, suite spread, HAZUS losses) survive too.
-  check(a.scaling == b.scaling && a.spread == b.spread && a.storeySpread == b.storeySpread && a.losses == b.losses,
+  // The optional sections (spectral scaling, suite spread, HAZUS losses, drawing probabilities) survive too.
+  check(a.scaling == b.scaling && a.spread == b.spread && a.storeySpread == b.storeySpread && a.losses == b.losses &&
+            a.odds == b.odds,
         "round trip changed an optional section");
 }
 
