@@ -1,4 +1,4 @@
-// Stored files as Zstandard frames (docs/formats.md "Compressed files"): the response decoders read
+// Stored files as Zstandard frames (docs/formats.md "Compressed files"): the decoders read
 // a frame of a file as the file itself, and refuse damaged or hostile frames with a message that
 // names the file. Frames are made here with Debian's libzstd, as quakeview-prep makes them.
 #include <zstd.h>
@@ -8,7 +8,9 @@
 #include <string>
 #include <vector>
 
+#include "qv/format/CityTile.h"
 #include "qv/format/ResponseTile.h"
+#include "qv/format/SearchIndex.h"
 #include "qv/format/StoredFile.h"
 
 using namespace qv;
@@ -133,4 +135,37 @@ TEST_CASE("A damaged, truncated, unsized or hostile frame is refused with the fi
     REQUIRE(bomb.size() * kMaxStoredFileRatio < zeros.size());
     refused(bomb, "over the limit");
   }
+}
+
+TEST_CASE("City tiles and the search index stored as Zstandard frames read as the files themselves",
+          "[format][stored]") {
+  std::vector<SearchEntry> entries;
+  for (int i = 0; i < 50; ++i) {
+    SearchEntry e;
+    e.id = "w" + std::to_string(1000 + i);
+    e.name = i % 2 == 0 ? "Tower " + std::to_string(i) : "";
+    e.use = "office";
+    e.x = static_cast<float>(i);
+    entries.push_back(e);
+  }
+  const std::vector<std::uint8_t> index = encodeSearchIndex(entries);
+  const auto fromFrame = decodeSearchIndex(frameOf(index), "search.qvi");
+  REQUIRE(fromFrame.ok());
+  REQUIRE(fromFrame->size() == 50);
+  CHECK((*fromFrame)[4].name == "Tower 4");
+  CHECK(encodeSearchIndex(*fromFrame) == index);
+
+  CityTile tile;
+  tile.originX = 100.0;
+  tile.extent = 50.0f;
+  const std::vector<std::uint8_t> tileBytes = encodeCityTile(tile);
+  const auto tileBack = decodeCityTile(frameOf(tileBytes), "tiles/0-0-0.qvt");
+  REQUIRE(tileBack.ok());
+  CHECK(encodeCityTile(*tileBack) == tileBytes);
+
+  std::vector<std::uint8_t> truncated = frameOf(tileBytes);
+  truncated.resize(truncated.size() - 3);
+  const auto bad = decodeCityTile(truncated, "tiles/0-0-0.qvt");
+  REQUIRE_FALSE(bad.ok());
+  CHECK(bad.error().find("tiles/0-0-0.qvt: compressed file (Zstandard frame): ") == 0);
 }

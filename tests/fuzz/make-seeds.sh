@@ -99,9 +99,9 @@ if [ -n "$prep" ] && [ -x "$prep" ]; then
   for c in "${cities[@]}"; do
     tag=$(basename "$c")
     cp "$c/tileset.json" "$out/tileset/$tag-tileset.json"
-    [ -f "$c/search.qvi" ] && cp "$c/search.qvi" "$out/search_index/$tag.qvi"
-    for f in "$c"/tiles/*.qvt; do [ -f "$f" ] && cp "$f" "$out/city_tile/$tag-$(basename "$f")"; done
-    # Response tiles as written (Zstandard frames) and expanded (the decoder behind the frame).
+    # City files as written (Zstandard frames) and expanded (the decoder behind the frame).
+    [ -f "$c/search.qvi" ] && add_stored search_index "$tag" "$c/search.qvi"
+    for f in "$c"/tiles/*.qvt; do [ -f "$f" ] && add_stored city_tile "$tag" "$f"; done
     for f in "$c"/response-*/*.qvs; do [ -f "$f" ] && add_stored response_summary "$tag" "$f"; done
     for f in "$c"/response-*/*.qvh; do [ -f "$f" ] && add_stored response_history "$tag" "$f"; done
   done

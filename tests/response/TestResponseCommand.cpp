@@ -127,7 +127,7 @@ TEST_CASE("response gives rooftop parts no result with a reason, and publishes o
     CHECK(summaryOf(tileset->response->summaryIndex->file).driftSeries.empty());
   }
 
-  SECTION("the response files are stored as Zstandard frames, as the manifest describes them") {
+  SECTION("the city and response files are stored as Zstandard frames, as the manifest describes them") {
     CHECK(response.output.find("before compression") != std::string::npos);
     const auto tileset = qv::parseTileset(readText(dir + "/city/tileset.json"), "tileset.json");
     REQUIRE(tileset.ok());
@@ -156,6 +156,10 @@ TEST_CASE("response gives rooftop parts no result with a reason, and publishes o
     const qv::CityFile& index = *tileset->response->summaryIndex;
     storedAs(index.file, index.bytes, index.crc32);
     CHECK(files >= 2);
+    // The city's own files, as `city` wrote them.
+    for (const qv::TileNode& n : tileset->nodes) storedAs(n.file, n.bytes, n.crc32);
+    REQUIRE(tileset->search);
+    storedAs(tileset->search->file, tileset->search->bytes, tileset->search->crc32);
   }
 
   SECTION("tile summaries carry the drawing probabilities; the index the full losses and sites") {

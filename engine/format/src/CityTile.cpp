@@ -8,6 +8,7 @@
 
 #include "qv/core/ByteIO.h"
 #include "qv/core/Crc32.h"
+#include "qv/format/StoredFile.h"
 
 namespace qv {
 namespace {
@@ -400,7 +401,8 @@ std::vector<std::uint8_t> encodeCityTile(const CityTile& tile) {
   return out.take();
 }
 
-Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string_view name,
+namespace {
+Result<CityTile> decodeTileFile(std::span<const std::uint8_t> bytes, std::string_view name,
                                 const CityTileLimits& limits) {
   const std::string prefix = std::string(name) + ": ";
   auto error = [&](const std::string& message) { return Error{prefix + message}; };
@@ -654,6 +656,15 @@ Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string
     if (!meshes.ok()) return error(meshes.error());
   }
   return tile;
+}
+}  // namespace
+
+Result<CityTile> decodeCityTile(std::span<const std::uint8_t> bytes, std::string_view name,
+                                const CityTileLimits& limits) {
+  std::vector<std::uint8_t> storage;
+  auto file = storedFileBytes(bytes, name, storage);
+  if (!file.ok()) return Error{file.error()};
+  return decodeTileFile(*file, name, limits);
 }
 
 double buildingFloorAreaM2(const CityTile& tile, const TileBuilding& building) {

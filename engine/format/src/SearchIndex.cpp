@@ -10,6 +10,7 @@
 
 #include "qv/core/ByteIO.h"
 #include "qv/core/Crc32.h"
+#include "qv/format/StoredFile.h"
 
 namespace qv {
 namespace {
@@ -50,7 +51,8 @@ std::vector<std::uint8_t> encodeSearchIndex(std::span<const SearchEntry> entries
   return w.take();
 }
 
-Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t> bytes, std::string_view name) {
+namespace {
+Result<std::vector<SearchEntry>> decodeIndexFile(std::span<const std::uint8_t> bytes, std::string_view name) {
   const std::string prefix = std::string(name) + ": ";
   if (bytes.size() < kHeaderSize || std::memcmp(bytes.data(), "QVSI", 4) != 0) {
     return Error{prefix + "not a search index"};
@@ -124,6 +126,14 @@ Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t>
   }
   if (!r.ok()) return Error{prefix + "entries: " + r.error()};
   return entries;
+}
+}  // namespace
+
+Result<std::vector<SearchEntry>> decodeSearchIndex(std::span<const std::uint8_t> bytes, std::string_view name) {
+  std::vector<std::uint8_t> storage;
+  auto file = storedFileBytes(bytes, name, storage);
+  if (!file.ok()) return Error{file.error()};
+  return decodeIndexFile(*file, name);
 }
 
 bool matchesQuery(std::string_view text, std::string_view query) {

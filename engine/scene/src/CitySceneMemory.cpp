@@ -33,9 +33,11 @@ std::uint64_t CityScene::memoryBytes() const {
 
 void CityScene::updateNodeBytes() {
   // Resident bytes per file byte, as measured on the tiles loaded so far; before any, what the
-  // synthetic and OSM cities measure natively (coarse tiles about 9, leaves about 17: a leaf's
-  // mesh has a ring of vertices per floor).
-  constexpr double kDefaultRatio[2] = {17.0, 9.0};
+  // synthetic and OSM cities measure natively per byte of the tile itself (coarse tiles about 9,
+  // leaves about 17: a leaf's mesh has a ring of vertices per floor), times what the stored
+  // files are compressed by (docs/formats.md: about 3 for the synthetic city, 1.8 for Manhattan
+  // with its LOD2 models; the larger, so that the first tiles requested stay within the budget).
+  constexpr double kDefaultRatio[2] = {17.0 * 3.0, 9.0 * 3.0};
   double ratio[2];
   for (int k = 0; k < 2; ++k) {
     ratio[k] = fileOfResident_[k] > 0

@@ -515,7 +515,13 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       CityTile tile = node.leaf()
                           ? leafTile(model, info, node, node.bounds)
                           : coarseTile(model, info, node, node.bounds, node.geometricError, coarseTriangulations);
-      const std::vector<std::uint8_t> bytes = encodeCityTile(tile);
+      auto stored = compressStoredFile(encodeCityTile(tile));
+      if (!stored.ok()) {
+        const std::lock_guard lock(errorMutex);
+        if (firstError.empty()) firstError = stored.error();
+        return;
+      }
+      const std::vector<std::uint8_t>& bytes = *stored;
       node.file = tileFileName(node.level, node.x, node.y);
       node.bytes = bytes.size();
       node.crc = crc32(bytes);
@@ -534,7 +540,9 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
   // 5. The search index, then the manifest, last.
   Tileset& t = report.tileset;
   {
-    const std::vector<std::uint8_t> bytes = encodeSearchIndex(search);
+    auto stored = compressStoredFile(encodeSearchIndex(search));
+    if (!stored.ok()) return Error{stored.error()};
+    const std::vector<std::uint8_t>& bytes = *stored;
     if (const Status s = writeStagedFile(staging->path() + "/search.qvi", bytes); !s.ok()) return Error{s.error()};
     t.search = CityFile{"search.qvi", bytes.size(), crc32(bytes)};
   }
