@@ -33,7 +33,9 @@ test('an ACTUAL ShakeMap is stated as such, and the totals match what the tool w
   try {
     const { page, problems } = await openPage(context, `${server.url}/?data=/actual/tileset.json`);
     assert.deepEqual(await waitReady(page), { ok: true });
-    await waitForFunction(page, () => window.quakeview.consequences()?.city != null, null, { timeout: 30000 });
+    // The city's totals (consequences.json) and the view's (the buildings' losses, from the index).
+    await waitForFunction(page, () => window.quakeview.consequences()?.city != null && window.quakeview.consequences()?.view != null,
+      null, { timeout: 30000 });
     const text = await page.evaluate(() => window.quakeview.uiText());
     assert.match(text, /Shaking: ACTUAL EVENT \(ShakeMap of a recorded earthquake\)/);
     assert.match(text, /ShakeMap: qvtest2026 version 4, processed 2026-11-25T10:05:00Z/);

@@ -157,7 +157,9 @@ EMSCRIPTEN_KEEPALIVE const char* qv_consequences() {
   if (tileset == nullptr || !tileset->response) return hand("null");
   const qv::seismic::LossTotals view = city->consequencesInView();
   const std::optional<qv::ViewArea> area = gApp->viewer().viewArea();
-  return hand(qv::consequencesJson(&*tileset->response, city->consequences(), &view, area ? &*area : nullptr));
+  // While the view's losses are still loading (from the city index), the view is null, not zeros.
+  return hand(qv::consequencesJson(&*tileset->response, city->consequences(),
+                                   city->consequencesInViewComplete() ? &view : nullptr, area ? &*area : nullptr));
 }
 
 EMSCRIPTEN_KEEPALIVE int qv_select(const char* id) {

@@ -446,6 +446,7 @@ void CityScene::countDamageInView() {
   if (viewChanged) {
     damageInView_.fill(0);
     lossInView_.clear();
+    lossInViewPending_ = false;
     viewBox_.reset();
     for (std::uint32_t i : selection_.draw) {
       const TileRuntime& t = *tiles_[i];
@@ -469,6 +470,8 @@ void CityScene::countDamageInView() {
               lossInView_.add(t.summary->losses[b]);
             } else if (const BuildingLoss* l = indexLoss(i, b)) {
               lossInView_.add(*l);  // a tile summary without losses: the index has them
+            } else if (!t.summary->odds.empty() && index_.summary() == nullptr) {
+              lossInViewPending_ = true;  // it has probabilities; its losses come with the index
             }
           }
         }

@@ -373,6 +373,10 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   const char* injuries[4] = {"Minor injuries", "Hospitalised", "Life-threatening", "Deaths"};
   for (std::size_t k = 0; k < 4; ++k) rows.push_back({injuries[k], cell(c.injuries[k], 2), cell(view.injuries[k], 2)});
   rows.push_back({"Repair cost", money(c.repairCostUsd), money(view.repairCostUsd)});
+  if (!city->consequencesInViewComplete()) {
+    // The view's losses come with the city index: no zeros meanwhile.
+    for (std::vector<std::string>& row : rows) row.back() = "loading";
+  }
   w.table("##consequences", {"", "City", "In view"}, rows);
   if (!file->districts.empty()) {
     w.text("Districts:");
@@ -394,7 +398,8 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
     const ExportProvenance provenance = exportProvenance(*tileset, BuildingFilters{});
     const std::optional<ViewArea> area = viewer.viewArea();
     host.download(exportFileName(*tileset, BuildingFilters{}, "consequences", "csv"), "text/csv",
-                  exportConsequencesCsv(*file, &view, &provenance, area ? &*area : nullptr));
+                  exportConsequencesCsv(*file, city->consequencesInViewComplete() ? &view : nullptr, &provenance,
+                                        area ? &*area : nullptr));
   }
   w.sameLine();
   // The view as a PNG, with the event, the city and the attribution under it (quakeview.screenshot()).

@@ -204,6 +204,10 @@ class CityScene {
   /// The consequences of the buildings in view (expected values and a normal-approximation 90 %
   /// interval, qv/scene/ViewConsequences.h); zeros without HAZUS results.
   [[nodiscard]] seismic::LossTotals consequencesInView() const { return lossInView_.totals(); }
+  /// False while a building in view has a result whose losses are still on their way (tile
+  /// summaries without LOSS take them from the city index's summary, which loads after the index):
+  /// consequencesInView() then leaves it out, and callers say the view's totals are loading.
+  [[nodiscard]] bool consequencesInViewComplete() const { return !lossInViewPending_; }
   /// The box (city frame, metres: min x, min y, max x, max y) around the footprint centres of the
   /// buildings damageInView counts, from the last frame; nullopt when none is in view.
   [[nodiscard]] const std::optional<std::array<double, 4>>& viewBox() const { return viewBox_; }
@@ -356,6 +360,7 @@ class CityScene {
   std::array<std::uint64_t, 6> damageInView_{};
   std::optional<std::array<double, 4>> viewBox_;
   ConsequenceSums lossInView_;
+  bool lossInViewPending_ = false;   // a building in view awaits its losses from the index
   std::uint64_t viewSignature_ = 0;  // visible sets and summaries behind damageInView_
   std::string seriesFor_;
   std::optional<BuildingSeries> series_;
