@@ -36,7 +36,7 @@ packages=(
   libosmium2-dev libprotozero-dev libexpat1-dev libbz2-dev zlib1g-dev liblz4-dev libzstd-dev
   libproj-dev libcgal-dev libgmp-dev libmpfr-dev libmeshoptimizer-dev libtinyobjloader-dev libeigen3-dev
   libmimalloc-dev
-  osmium-tool zstd
+  osmium-tool zstd poppler-utils
   chromium fonts-dejavu-core
   firefox-esr libgl1-mesa-dri libegl1 libegl-mesa0
 )

@@ -104,6 +104,12 @@ if ! qv_demo_prepare "$prep" "$demo_data" "[test]" ||
        --motion ../shared/data/ground-motions/elCentro.AT2 ../shared/data/ground-motions/TAK000.AT2 >/dev/null; then
   failures+=("e2e data (demo, Manhattan)")
 fi
+# The situation reports the tool writes, which the viewer's must equal (report.test.mjs).
+for city in "$e2e_data/actual" "$e2e_data/manhattan" "$demo_data"; do
+  name=$(basename "$city")
+  [ "$city" = "$demo_data" ] && name=demo
+  if ! "$prep" report "$city" --out "$e2e_data/$name-report.html" >/dev/null; then failures+=("e2e data (report of $name)"); fi
+done
 
 stage "WebAssembly build (release, -Werror)"
 if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release -j "$jobs"; then
@@ -130,7 +136,7 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
   (cd tests/e2e && QUAKEVIEW_BROWSER=firefox QUAKEVIEW_SITE="$root/build/wasm-release/site" \
     QUAKEVIEW_E2E_DATA="$e2e_data" QUAKEVIEW_DEMO_DATA="$demo_data" \
     node --test --test-reporter=tap first-light.test.mjs city.test.mjs interaction.test.mjs weak-device.test.mjs touch.test.mjs \
-      shaking.test.mjs images.test.mjs) 2>&1 | tee "$log"
+      shaking.test.mjs images.test.mjs report.test.mjs) 2>&1 | tee "$log"
   e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)
   e2e_fail=$(sed -nE 's/^# fail ([0-9]+)/\1/p' "$log" | tail -n 1)
   counts[e2e_firefox]="${e2e_pass:-0}"

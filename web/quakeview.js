@@ -37,6 +37,11 @@
 //   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
 //   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), shownColorMode(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
+//   report()   a Promise of the situation report: one print-ready HTML document (the event, headline
+//              numbers with 90 % intervals, impact level, map, HAZUS tables, facilities, casualties
+//              at 2 AM / 2 PM / 5 PM, districts, limits and sources), the same as `quakeview-prep
+//              report` writes; it resolves once the city's index and totals have loaded (rejects
+//              after 120 s or without a city). saveReport() downloads it (the panel's "Report").
 //   screenshot()  the view as a PNG data URL with its caption (event, city, attribution); saveImage()
 //              downloads it (the panel's "Save image")
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
@@ -283,6 +288,36 @@
       });
       return out.toDataURL('image/png');
     },
+    // The situation report's HTML (see the header). The engine answers "" while the files it rests
+    // on are loading.
+    report() {
+      return new Promise((resolve, reject) => {
+        const started = Date.now();
+        const poll = () => {
+          const html = engine ? engine.UTF8ToString(engine._qv_report()) : '';
+          if (html) { resolve(html); return; }
+          if (Date.now() - started > 120000) {
+            reject(new Error(engine ? 'the situation report waited 120 s for the city index and totals'
+              : 'no city is loaded, so there is no situation report'));
+            return;
+          }
+          setTimeout(poll, 100);
+        };
+        poll();
+      });
+    },
+    // Downloads report() as an HTML file named for the city and the event; resolves with the name.
+    async saveReport() {
+      const html = await this.report();
+      const name = JSON.parse(engine.UTF8ToString(engine._qv_image_caption())).fileName.replace(/-view\.png$/, '-report.html');
+      const link = document.createElement('a');
+      link.href = URL.createObjectURL(new Blob([html], { type: 'text/html' }));
+      link.download = name;
+      document.body.appendChild(link);
+      link.click();
+      setTimeout(() => { URL.revokeObjectURL(link.href); link.remove(); }, 1000);
+      return name;
+    },
     // Downloads screenshot() as a PNG named for the city, the event and the view (the panel's
     // "Save image"); returns the file name, or null before a city is loaded.
     saveImage() {
@@ -356,23 +391,53 @@
   // Extension for tests: whether the view's picture lies over the canvas (a right-button press).
   api.snapshotShown = () => !snapshot.hidden;
 
-  // Printing the page prints the view's picture with its caption (screenshot()), never a black
-  // canvas: a WebGL canvas is printed from its drawing buffer, which is not kept. Before the print
-  // the picture is made and shown in the canvas's place (print CSS in quakeview.css); after it the
-  // canvas is drawn again at the window's size (a frame drawn during the print would otherwise
-  // leave the drawing buffer at the paper's size until the next frame).
+  // Printing the page prints the situation report (report(), when the city's index and totals have
+  // loaded) and, on a page after it, the view's picture with its caption (screenshot()), never a
+  // black canvas: a WebGL canvas is printed from its drawing buffer, which is not kept. Before the
+  // print both are put in the canvas's place (print CSS in quakeview.css); after it the canvas is
+  // drawn again at the window's size (a frame drawn during the print would otherwise leave the
+  // drawing buffer at the paper's size until the next frame).
+  const printReport = document.createElement('div');
+  printReport.id = 'qv-print-report';
+  document.body.appendChild(printReport);
   const printPicture = document.createElement('img');
   printPicture.id = 'qv-print';
   printPicture.alt = 'The city view with its caption';
   document.body.appendChild(printPicture);
+  // The report's content without its <html> shell; its styles (scoped to .qv-report) join the page
+  // as a constructed style sheet, which a Content Security Policy without 'unsafe-inline' allows.
+  let reportSheet = null;
+  function reportNodes(html) {
+    // The <style> element is cut out of the text before parsing (a parsed one would be refused by
+    // the policy, with a console error, even in a parsed document that is never shown).
+    const open = html.indexOf('<style>');
+    const close = html.indexOf('</style>', open);
+    const css = open >= 0 && close > open ? html.slice(open + '<style>'.length, close) : '';
+    const body = open >= 0 && close > open ? html.slice(0, open) + html.slice(close + '</style>'.length) : html;
+    const doc = new DOMParser().parseFromString(body, 'text/html');
+    try {
+      if (!reportSheet) {
+        reportSheet = new CSSStyleSheet();
+        document.adoptedStyleSheets = [...document.adoptedStyleSheets, reportSheet];
+      }
+      reportSheet.replaceSync(css);
+    } catch (e) {
+      console.warn('The situation report prints without its styles: ' + e.message);
+    }
+    const content = doc.querySelector('.qv-report');
+    return content ? [document.importNode(content, true)] : [];
+  }
   window.addEventListener('beforeprint', () => {
+    const html = engine ? engine.UTF8ToString(engine._qv_report()) : '';
+    printReport.replaceChildren(...(html ? reportNodes(html) : []));
     const url = api.screenshot();
     if (url) printPicture.src = url;
-    document.body.classList.toggle('qv-printing', !!url);
+    document.body.classList.toggle('qv-printing', !!url || !!html);
   });
   window.addEventListener('afterprint', () => {
     document.body.classList.remove('qv-printing');
     printPicture.removeAttribute('src');
+    printReport.replaceChildren();
     if (engine) engine._qv_draw_now();
   });
   let resolveBench;

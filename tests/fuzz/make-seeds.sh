@@ -15,7 +15,7 @@ work="$out/.work"
 warn() { printf '[seeds] warning: %s\n' "$*" >&2; }
 
 rm -rf "$out" && mkdir -p "$out" "$work"
-for t in city_tile city_tile_roundtrip tileset search_index search_index_roundtrip response_summary \
+for t in city_tile city_tile_roundtrip tileset consequences search_index search_index_roundtrip response_summary \
          response_history response_roundtrip ground_motion osm geojson response_import cityjson obj shakemap; do
   mkdir -p "$out/$t"
   if [ -d "$root/tests/fuzz/seeds/$t" ]; then cp "$root/tests/fuzz/seeds/$t"/* "$out/$t/" 2>/dev/null; fi
@@ -104,6 +104,7 @@ if [ -n "$prep" ] && [ -x "$prep" ]; then
     for f in "$c"/tiles/*.qvt; do [ -f "$f" ] && add_stored city_tile "$tag" "$f"; done
     for f in "$c"/response-*/*.qvs; do [ -f "$f" ] && add_stored response_summary "$tag" "$f"; done
     for f in "$c"/response-*/*.qvh; do [ -f "$f" ] && add_stored response_history "$tag" "$f"; done
+    for f in "$c"/response-*/consequences.json; do [ -f "$f" ] && cp "$f" "$out/consequences/$tag-consequences.json"; done
   done
 else
   warn "no quakeview-prep: no seeds of city tiles, manifests, search indexes or response tiles"

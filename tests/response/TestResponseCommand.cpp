@@ -236,3 +236,73 @@ TEST_CASE("response writes the same files, intervals included, whatever the numb
   }
   std::filesystem::remove_all(dir);
 }
+
+TEST_CASE("report writes the situation report of a city's response, and refuses a damaged file whole",
+          "[response][cli][report]") {
+  const std::string dir = "/tmp/qv-report-" + std::to_string(getpid());
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const std::string city = dir + "/city";
+  const auto made = run("synth-city --buildings 400 --seed 2 --out '" + city + "'", true);
+  REQUIRE(made.exitCode == 0);
+  const auto none = run("report '" + city + "' --out '" + dir + "/r.html'", true);
+  CHECK(none.exitCode == 1);
+  CHECK_THAT(none.output, Catch::Contains("has no earthquake response"));
+  const auto response =
+      run("response --city '" + city + "' --synthetic 1 --epicentre -74.0,40.7,10 --magnitude 6.5", true);
+  INFO(response.output);
+  REQUIRE(response.exitCode == 0);
+
+  const auto written = run("report '" + city + "' --out '" + dir + "/r.html'", true);
+  INFO(written.output);
+  REQUIRE(written.exitCode == 0);
+  CHECK_THAT(written.output, Catch::Contains("wrote " + dir + "/r.html"));
+  const std::string html = readText(dir + "/r.html");
+  CHECK(html.rfind("<!DOCTYPE html>", 0) == 0);
+  CHECK_THAT(html, Catch::Contains("Earthquake situation report: Synthetic city, 400 buildings (seed 2)</h1>"));
+  CHECK_THAT(html, Catch::Contains("class=\"banner scenario\">SCENARIO"));
+  CHECK_THAT(html, Catch::Contains("2 AM (night)"));
+  CHECK_THAT(html, Catch::Contains("5 PM (commute)"));
+  CHECK_THAT(html, Catch::Contains("By occupancy class (HAZUS)</h3>\n<table>"));
+  CHECK_THAT(html, Catch::Contains("<svg"));
+  // Its headline is the consequences file's: damaged buildings (moderate or worse), expected.
+  std::string consequencesFile;
+  for (const auto& entry : std::filesystem::directory_iterator(city)) {
+    if (entry.path().filename().string().rfind("response-", 0) == 0) {
+      consequencesFile = entry.path().string() + "/consequences.json";
+    }
+  }
+  simdjson::dom::parser parser;
+  const simdjson::padded_string json = simdjson::padded_string::load(consequencesFile).value();
+  const double damaged = parser.parse(json)["city"]["moderate_or_worse"]["expected"].get_double().value();
+  const simdjson::dom::element root = parser.parse(json).value();
+  CHECK(root["by_occupancy"].get_array().size() > 0);
+  CHECK(root["inferred"]["buildings"].get_uint64().value() > 0);
+  CHECK(root["city"]["casualties_by_time"]["day"]["occupants"].get_double().value() > 0);
+  char expected[32];
+  if (damaged >= 10) {
+    std::snprintf(expected, sizeof expected, "%lld", static_cast<long long>(std::llround(damaged)));
+  } else {
+    std::snprintf(expected, sizeof expected, "%.1f", damaged);
+  }
+  INFO("damaged " << damaged);
+  CHECK_THAT(html, Catch::Contains("Buildings damaged (moderate or worse)</div><div class=\"v\">" +
+                                   std::string(expected) + "</div>"));
+
+  // '-' prints the same document.
+  const auto printed = run("report '" + city + "' --out -");
+  REQUIRE(printed.exitCode == 0);
+  CHECK(printed.output == html);
+
+  // A damaged consequences file is named, and the report already written stays as it was.
+  {
+    std::fstream f(consequencesFile, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(20);
+    f.put('#');
+  }
+  const auto refused = run("report '" + city + "' --out '" + dir + "/r.html'", true);
+  CHECK(refused.exitCode == 1);
+  CHECK_THAT(refused.output, Catch::Contains("consequences.json") && Catch::Contains("CRC-32"));
+  CHECK(readText(dir + "/r.html") == html);
+  std::filesystem::remove_all(dir);
+}

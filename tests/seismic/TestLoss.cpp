@@ -557,6 +557,117 @@ TEST_CASE("The consequences file round-trips the totals and refuses what it cann
   CHECK_FALSE(parseConsequences("{", "c.json").ok());
 }
 
+TEST_CASE("Casualties at 2 AM, 2 PM and 5 PM: the same damage with the people present at each time", "[loss]") {
+  // Offices (full by day, empty at night) and dwellings (full at night), under the same shaking.
+  std::vector<BuildingLoss> losses;
+  for (int i = 0; i < 300; ++i) {
+    Exposure x;
+    x.type = StructuralType::URML;
+    x.era = CodeEra::PreCode;
+    x.occupancy = i % 2 == 0 ? Occupancy::COM4 : Occupancy::RES3;
+    x.storeys = 3;
+    x.floorAreaM2 = 900.0;
+    losses.push_back(assessLoss(x, 0.004 + 0.0001 * (i % 60), 0.3, 0.3, 0.3, TimeOfDay::Night));
+  }
+  const LossTotals run = totalLosses(losses, 5);
+  const auto at = casualtiesByTimeOfDay(losses, 5);
+  // The run's own time (night) gives exactly totalLosses' injuries, bounds included (same draws).
+  for (std::size_t s = 0; s < 4; ++s) {
+    CHECK(at[0].injuries[s].expected == Approx(run.injuries[s].expected));
+    CHECK(at[0].injuries[s].low == run.injuries[s].low);
+    CHECK(at[0].injuries[s].high == run.injuries[s].high);
+  }
+  CHECK(at[0].occupants == Approx(run.occupantsAt[0]));
+  CHECK(at[1].occupants == Approx(run.occupantsAt[1]));
+  // By day the offices are full: the injuries follow the people present, building by building
+  // (an office empty at night still hurts its workers by day).
+  double dayInjuries = 0;
+  for (const BuildingLoss& b : losses) {
+    const double perPerson = b.occupantsPresent > 0 ? b.injuries[0] / b.occupantsPresent : 0.0;
+    if (b.occupantsPresent > 0) dayInjuries += perPerson * b.occupantsAt[1];
+  }
+  CHECK(at[1].injuries[0].expected > 0);
+  CHECK(at[1].injuries[0].expected >= dayInjuries * 0.999);  // offices empty at night add to it
+  for (std::size_t t = 0; t < 3; ++t) {
+    for (const Estimate& e : at[t].injuries) CHECK((e.low <= e.expected && e.expected <= e.high));
+  }
+  CHECK(at[1].injuries[0].high > at[1].injuries[0].low);
+  // An office analysed at night (nobody in it) still has its daytime casualties.
+  Exposure office;
+  office.type = StructuralType::URML;
+  office.era = CodeEra::PreCode;
+  office.occupancy = Occupancy::COM4;
+  office.storeys = 3;
+  office.floorAreaM2 = 900.0;
+  const BuildingLoss empty = assessLoss(office, 0.02, 0.5, 0, 0, TimeOfDay::Night);
+  const auto officeAt = casualtiesByTimeOfDay(std::span<const BuildingLoss>(&empty, 1));
+  CHECK(officeAt[1].occupants > 10 * std::max(officeAt[0].occupants, 0.1));
+  CHECK(officeAt[1].injuries[0].expected > 10 * std::max(officeAt[0].injuries[0].expected, 1e-6));
+  const BuildingLoss byDay = assessLoss(office, 0.02, 0.5, 0, 0, TimeOfDay::Day);
+  CHECK(officeAt[1].injuries[0].expected == Approx(byDay.injuries[0]));
+}
+
+TEST_CASE("Day-one functionality of essential facilities follows the restoration curves", "[loss]") {
+  CHECK(functionalProbability({1, 0, 0, 0, 0}, 1.0) == Approx(1.0));
+  CHECK(functionalProbability({0, 1, 0, 0, 0}, 1.0) < 0.001);  // slight: 5 +- 1 days
+  CHECK(functionalProbability({0, 1, 0, 0, 0}, 5.0) == Approx(0.5));
+  CHECK(functionalProbability({0, 0, 0, 0, 1}, 30.0) < 1e-9);
+  CHECK(functionalProbability({0.6, 0.3, 0.1, 0, 0}, 1.0) == Approx(0.6).margin(0.001));
+  CHECK(functionalProbability({0.6, 0.3, 0.1, 0, 0}, 30.0) == Approx(1.0).margin(0.001));
+}
+
+TEST_CASE("The consequences file keeps the report's casualties by time, class tables and inferred counts", "[loss]") {
+  ConsequenceTotals totals;
+  totals.timeOfDay = "day";
+  totals.city.buildings = 3;
+  std::array<CasualtiesAtTime, 3> at;
+  at[1].occupants = 1234.5;
+  at[1].injuries[3] = {0.25, 0.0, 1.0};
+  at[2].injuries[0] = {7.5, 4.0, 11.0};
+  totals.city.byTime = at;
+  ClassTotals res;
+  res.key = "RES3";
+  res.buildings = 2;
+  res.damageStates = {1.0, 0.5, 0.25, 0.125, 0.125};
+  res.damaged = 0.5;
+  res.repairCostUsd = 2.5e6;
+  res.injuries[1] = 0.75;
+  totals.byOccupancy.push_back(res);
+  res.key = "URML";
+  totals.byStructure.push_back(res);
+  totals.inferred = InferredCounts{3, 2, 1, 0, 3, 3};
+  const std::string json = consequencesToJson(totals);
+  const auto parsed = parseConsequences(json, "consequences.json");
+  REQUIRE(parsed.ok());
+  REQUIRE(parsed->city.byTime);
+  CHECK((*parsed->city.byTime)[1].occupants == 1234.5);
+  CHECK((*parsed->city.byTime)[1].injuries[3].high == 1.0);
+  CHECK((*parsed->city.byTime)[2].injuries[0].low == 4.0);
+  REQUIRE(parsed->byOccupancy.size() == 1);
+  CHECK(parsed->byOccupancy[0].key == "RES3");
+  CHECK(parsed->byOccupancy[0].damageStates[3] == 0.125);
+  CHECK(parsed->byOccupancy[0].repairCostUsd == 2.5e6);
+  CHECK(parsed->byOccupancy[0].injuries[1] == 0.75);
+  REQUIRE(parsed->byStructure.size() == 1);
+  CHECK(parsed->byStructure[0].key == "URML");
+  REQUIRE(parsed->inferred);
+  CHECK(parsed->inferred->structuralType == 2);
+  CHECK(parsed->inferred->replacementValue == 3);
+  // Files before them read without them; a broken row is refused by its place.
+  ConsequenceTotals plain;
+  plain.timeOfDay = "night";
+  const auto older = parseConsequences(consequencesToJson(plain), "old.json");
+  REQUIRE(older.ok());
+  CHECK_FALSE(older->city.byTime);
+  CHECK(older->byOccupancy.empty());
+  CHECK_FALSE(older->inferred);
+  std::string broken = json;
+  broken.replace(broken.find("\"class\""), 7, "\"klass\"");
+  const auto refused = parseConsequences(broken, "c.json");
+  REQUIRE_FALSE(refused.ok());
+  CHECK_THAT(refused.error(), Catch::Contains("c.json by_occupancy row 1"));
+}
+
 // Opt-in timing (hidden: `test_seismic "[.loss-bench]"`, meaningful in a release build): assessing and
 // totalling 100,000 buildings. The brief's budget for totalLosses is 2 s.
 TEST_CASE("Totals of 100,000 buildings", "[.loss-bench]") {

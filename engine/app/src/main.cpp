@@ -148,6 +148,15 @@ EMSCRIPTEN_KEEPALIVE const char* qv_image_caption() {
   return hand(w.take());
 }
 
+/// `quakeview.report()`: the situation report's HTML (qv::situationReportHtml, the same document as
+/// `quakeview-prep report`); "" while the city's index and totals are loading, or without a city.
+EMSCRIPTEN_KEEPALIVE const char* qv_report() {
+  if (gApp == nullptr) return hand("");
+  const qv::CityScene* city = gApp->viewer().city();
+  if (city == nullptr) return hand("");
+  return hand(city->situationReport().value_or(""));
+}
+
 /// `quakeview.consequences()`: the totals of the city (consequences.json), of the view and of each
 /// district, with the shaking's provenance (qv/scene/ViewConsequences.h); "null" without a response.
 EMSCRIPTEN_KEEPALIVE const char* qv_consequences() {

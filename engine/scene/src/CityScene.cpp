@@ -10,6 +10,7 @@
 
 #include "qv/core/Crc32.h"
 #include "qv/scene/BuildingTable.h"
+#include "qv/scene/Report.h"
 #include "qv/scene/TileMeshBuilder.h"
 #include "qv/spatial/BoxTree.h"
 
@@ -505,6 +506,23 @@ bool CityScene::responsesReady() const {
     if (t->historyLoad.state == TileState::Loading) ready = false;
   }
   return ready;
+}
+
+bool CityScene::situationReportReady() const {
+  if (!tileset_) return false;
+  const bool consequencesSettled = !tileset_->response || !tileset_->response->consequences ||
+                                   index_.consequences() != nullptr || index_.consequencesFailed();
+  return index_.settled() && consequencesSettled;
+}
+
+std::optional<std::string> CityScene::situationReport() const {
+  if (!situationReportReady()) return std::nullopt;
+  ReportInputs inputs;
+  inputs.tileset = &*tileset_;
+  inputs.consequences = index_.consequences();
+  inputs.buildings = index_.entries();
+  inputs.summary = index_.summary();
+  return situationReportHtml(inputs);
 }
 
 }  // namespace qv

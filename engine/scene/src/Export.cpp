@@ -49,7 +49,13 @@ std::string commentValue(std::string_view raw) {
 }
 
 std::string commentLine(std::string_view title, const ExportProvenance& p) {
-  std::string line = "# QuakeView " + std::string(title);
+  return "# " + provenanceText(title, p) + "\r\n";
+}
+
+}  // namespace
+
+std::string provenanceText(std::string_view title, const ExportProvenance& p) {
+  std::string line = "QuakeView " + std::string(title);
   auto part = [&line](std::string_view label, const std::string& value) {
     if (!value.empty()) line += " | " + std::string(label) + ": " + commentValue(value);
   };
@@ -60,8 +66,10 @@ std::string commentLine(std::string_view title, const ExportProvenance& p) {
   part("Method", p.method);
   part("Time of day", p.timeOfDay);
   part("Filter", p.filter);
-  return line + "\r\n";
+  return line;
 }
+
+namespace {
 
 std::string preamble(std::string_view title, const ExportProvenance* provenance) {
   std::string out(kByteOrderMark);

@@ -3,6 +3,7 @@
 #include <simdjson.h>
 
 #include <cmath>
+#include <string>
 
 namespace qv::seismic {
 namespace {
@@ -81,7 +82,69 @@ Result<LossTotals> readTotals(object o, const std::string& where) {
     }
   }
   t.repairCostUsd = *cost;
+  object casualties;
+  if (o["casualties_by_time"].get(casualties) == simdjson::SUCCESS) {
+    std::array<CasualtiesAtTime, 3> at;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::string here = where + " casualties_by_time " + kTimeKeys[k];
+      object time, severities;
+      if (casualties[kTimeKeys[k]].get(time) || time["occupants"].get_double().get(at[k].occupants) ||
+          time["injuries"].get(severities)) {
+        return Error{here + ": needs \"occupants\" and \"injuries\""};
+      }
+      for (std::size_t s = 0; s < 4; ++s) {
+        auto e = readEstimate(severities, kSeverityKeys[s], here + " injuries");
+        if (!e.ok()) return Error{e.error()};
+        at[k].injuries[s] = *e;
+      }
+    }
+    t.byTime = at;
+  }
   return t;
+}
+
+void writeClassTotals(JsonWriter& w, const ClassTotals& c) {
+  w.field("buildings", c.buildings);
+  w.key("damage_states").beginObject();
+  for (std::size_t k = 0; k < 5; ++k) w.field(kStateKeys[k], c.damageStates[k]);
+  w.endObject();
+  w.field("moderate_or_worse", c.damaged).field("collapsed", c.collapsed).field("repair_cost_usd", c.repairCostUsd);
+  w.field("occupants", c.occupants);
+  w.key("injuries").beginObject();
+  for (std::size_t k = 0; k < 4; ++k) w.field(kSeverityKeys[k], c.injuries[k]);
+  w.endObject();
+}
+
+Result<std::vector<ClassTotals>> readClasses(element root, const char* member, const char* keyName,
+                                             const std::string& name) {
+  std::vector<ClassTotals> out;
+  array rows;
+  if (root[member].get(rows) != simdjson::SUCCESS) return out;
+  if (rows.size() > 1000) return Error{name + ": more than 1,000 rows in \"" + member + "\""};
+  for (element e : rows) {
+    const std::string where = name + " " + member + " row " + std::to_string(out.size() + 1);
+    object o, states, injuries;
+    std::string_view key;
+    ClassTotals c;
+    if (e.get(o) || o[keyName].get(key) || o["buildings"].get_uint64().get(c.buildings) ||
+        o["damage_states"].get(states) || o["injuries"].get(injuries) ||
+        o["moderate_or_worse"].get_double().get(c.damaged) || o["collapsed"].get_double().get(c.collapsed) ||
+        o["repair_cost_usd"].get_double().get(c.repairCostUsd) || o["occupants"].get_double().get(c.occupants)) {
+      return Error{
+          where + ": needs \"" + keyName +
+          "\", buildings, damage_states, moderate_or_worse, collapsed, repair_cost_usd, occupants and injuries"};
+    }
+    for (std::size_t k = 0; k < 5; ++k) {
+      if (states[kStateKeys[k]].get_double().get(c.damageStates[k]))
+        return Error{where + ": damage_states needs numbers"};
+    }
+    for (std::size_t k = 0; k < 4; ++k) {
+      if (injuries[kSeverityKeys[k]].get_double().get(c.injuries[k])) return Error{where + ": injuries needs numbers"};
+    }
+    c.key = std::string(key);
+    out.push_back(std::move(c));
+  }
+  return out;
 }
 
 }  // namespace
@@ -91,7 +154,8 @@ void writeLossTotals(JsonWriter& w, const LossTotals& t) {
   w.key("damage_states").beginObject();
   for (int k = 0; k < 5; ++k) writeEstimate(w, kStateKeys[k], t.damageStates[static_cast<std::size_t>(k)]);
   w.endObject();
-  writeEstimate(w, "moderate_or_worse", t.damaged);
+  // Read from a file written before it (NaN bounds): left out again, so that it reads back the same.
+  if (std::isfinite(t.damaged.low) && std::isfinite(t.damaged.high)) writeEstimate(w, "moderate_or_worse", t.damaged);
   writeEstimate(w, "collapsed", t.collapsed);
   writeEstimate(w, "occupants", t.occupants);
   if (std::isfinite(t.occupantsAt[0])) {
@@ -107,6 +171,17 @@ void writeLossTotals(JsonWriter& w, const LossTotals& t) {
   w.key("tags").beginObject();
   for (int k = 0; k < 3; ++k) writeEstimate(w, kTagKeys[k], t.tags[static_cast<std::size_t>(k)]);
   w.endObject();
+  if (t.byTime) {
+    w.key("casualties_by_time").beginObject();
+    for (std::size_t k = 0; k < 3; ++k) {
+      const CasualtiesAtTime& c = (*t.byTime)[k];
+      w.key(kTimeKeys[k]).beginObject().field("occupants", c.occupants);
+      w.key("injuries").beginObject();
+      for (std::size_t s = 0; s < 4; ++s) writeEstimate(w, kSeverityKeys[s], c.injuries[s]);
+      w.endObject().endObject();
+    }
+    w.endObject();
+  }
 }
 std::string consequencesToJson(const ConsequenceTotals& totals) {
   JsonWriter w;
@@ -131,6 +206,24 @@ std::string consequencesToJson(const ConsequenceTotals& totals) {
     w.endObject();
   }
   w.endArray();
+  const auto writeClasses = [&w](const char* member, const char* keyName, const std::vector<ClassTotals>& rows) {
+    if (rows.empty()) return;
+    w.key(member).beginArray();
+    for (const ClassTotals& c : rows) {
+      w.beginObject().field(keyName, c.key);
+      writeClassTotals(w, c);
+      w.endObject();
+    }
+    w.endArray();
+  };
+  writeClasses("by_occupancy", "class", totals.byOccupancy);
+  writeClasses("by_structure", "type", totals.byStructure);
+  if (totals.inferred) {
+    const InferredCounts& i = *totals.inferred;
+    w.key("inferred").beginObject().field("buildings", i.buildings).field("structural_type", i.structuralType);
+    w.field("code_era", i.codeEra).field("use", i.use).field("occupants", i.occupants);
+    w.field("replacement_value", i.replacementValue).endObject();
+  }
   w.endObject();
   return w.take();
 }
@@ -170,6 +263,26 @@ Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::st
     auto t = readTotals(d, name + " district " + std::string(districtName));
     if (!t.ok()) return Error{t.error()};
     out.districts.push_back({std::string(districtName), *t});
+  }
+  auto byOccupancy = readClasses(root, "by_occupancy", "class", name);
+  if (!byOccupancy.ok()) return Error{byOccupancy.error()};
+  out.byOccupancy = std::move(byOccupancy).value();
+  auto byStructure = readClasses(root, "by_structure", "type", name);
+  if (!byStructure.ok()) return Error{byStructure.error()};
+  out.byStructure = std::move(byStructure).value();
+  object inferred;
+  if (root["inferred"].get(inferred) == simdjson::SUCCESS) {
+    InferredCounts i;
+    if (inferred["buildings"].get_uint64().get(i.buildings) ||
+        inferred["structural_type"].get_uint64().get(i.structuralType) ||
+        inferred["code_era"].get_uint64().get(i.codeEra) || inferred["use"].get_uint64().get(i.use) ||
+        inferred["occupants"].get_uint64().get(i.occupants) ||
+        inferred["replacement_value"].get_uint64().get(i.replacementValue)) {
+      return Error{name +
+                   ": \"inferred\" needs counts buildings, structural_type, code_era, use, occupants and "
+                   "replacement_value"};
+    }
+    out.inferred = i;
   }
   return out;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -190,6 +191,40 @@ std::size_t typeParts(const Exposure& exposure, int storeys, double drift, doubl
 std::string_view occupancyCode(Occupancy occupancy) {
   const auto i = static_cast<std::size_t>(occupancy);
   return i < hazus::kOccupancies ? hazus::kOccupancy[i].code : std::string_view("unknown");
+}
+
+std::string_view occupancyDescription(Occupancy occupancy) {
+  static constexpr std::string_view kDescriptions[] = {"single-family dwelling",
+                                                       "mobile home",
+                                                       "multi-family dwelling",
+                                                       "temporary lodging",
+                                                       "institutional dormitory",
+                                                       "nursing home",
+                                                       "retail trade",
+                                                       "wholesale trade",
+                                                       "personal and repair services",
+                                                       "professional and technical services",
+                                                       "banks",
+                                                       "hospital",
+                                                       "medical office or clinic",
+                                                       "entertainment and recreation",
+                                                       "theatres",
+                                                       "parking",
+                                                       "heavy industry",
+                                                       "light industry",
+                                                       "food, drugs, chemicals",
+                                                       "metals and minerals processing",
+                                                       "high technology",
+                                                       "construction",
+                                                       "agriculture",
+                                                       "church, membership organisation",
+                                                       "general government services",
+                                                       "emergency response",
+                                                       "grade schools",
+                                                       "colleges and universities"};
+  static_assert(std::size(kDescriptions) == static_cast<std::size_t>(Occupancy::Count));
+  const auto i = static_cast<std::size_t>(occupancy);
+  return i < std::size(kDescriptions) ? kDescriptions[i] : std::string_view("unknown");
 }
 
 Occupancy occupancyFromUse(std::string_view use, int storeys) {
@@ -433,7 +468,7 @@ BuildingLoss assessLoss(const Exposure& exposure, double medianPeakDriftRatio, d
       }
     }
     for (std::size_t s = 0; s < 4; ++s) {
-      g.injuries[k][s] = weight > 0 ? out.occupantsPresent * rate[s] / weight / 100 : 0.0;
+      g.injuriesPerOccupant[k][s] = weight > 0 ? rate[s] / weight / 100 : 0.0;
     }
   }
   for (std::size_t k = 1; k <= 4; ++k) {
@@ -446,9 +481,10 @@ BuildingLoss assessLoss(const Exposure& exposure, double medianPeakDriftRatio, d
   const auto& ps = out.structural.p;
   for (std::size_t s = 0; s < 4; ++s) {
     double e = 0;
-    for (std::size_t k = 1; k <= 3; ++k) e += ps[k] * g.injuries[k][s];
-    e += ps[4] * ((1 - collapseGivenComplete) * g.injuries[4][s] + collapseGivenComplete * g.injuries[5][s]);
-    out.injuries[s] = e;
+    for (std::size_t k = 1; k <= 3; ++k) e += ps[k] * g.injuriesPerOccupant[k][s];
+    e += ps[4] * ((1 - collapseGivenComplete) * g.injuriesPerOccupant[4][s] +
+                  collapseGivenComplete * g.injuriesPerOccupant[5][s]);
+    out.injuries[s] = out.occupantsPresent * e;
   }
   for (std::size_t k = 1; k <= 4; ++k) {
     out.repairCostUsd += ps[k] * g.structuralCostUsd[k] + out.nonStructuralDrift.p[k] * g.nsDriftCostUsd[k] +
@@ -498,7 +534,7 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
       double* row = &sums[r * kCount];
       row[kState0 + static_cast<std::size_t>(s)] += 1;
       row[kCollapsed] += collapsed ? 1 : 0;
-      for (std::size_t i = 0; i < 4; ++i) row[kInjury1 + i] += g.injuries[outcome][i];
+      for (std::size_t i = 0; i < 4; ++i) row[kInjury1 + i] += b.occupantsPresent * g.injuriesPerOccupant[outcome][i];
       row[kCost] += g.structuralCostUsd[static_cast<std::size_t>(s)] +
                     g.nsDriftCostUsd[static_cast<std::size_t>(stateAt(nsd, v))] +
                     g.nsAccelerationCostUsd[static_cast<std::size_t>(stateAt(nsa, v))];
@@ -528,6 +564,65 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
   return totals;
 }
 
+std::array<CasualtiesAtTime, 3> casualtiesByTimeOfDay(std::span<const BuildingLoss> buildings, std::uint64_t seed) {
+  std::array<CasualtiesAtTime, 3> out;
+  for (const BuildingLoss& b : buildings) {
+    for (std::size_t t = 0; t < 3; ++t) {
+      const double people = b.occupantsAt[t];
+      out[t].occupants += people;
+      // The building's expected injuries at time t: its injuries at the run's time scaled by the
+      // people present (exact: the conditional injuries are per occupant).
+      const auto& g = b.given;
+      const auto& ps = b.structural.p;
+      const double c = g.collapseGivenComplete;
+      for (std::size_t s = 0; s < 4; ++s) {
+        double e = 0;
+        for (std::size_t k = 1; k <= 3; ++k) e += ps[k] * g.injuriesPerOccupant[k][s];
+        e += ps[4] * ((1 - c) * g.injuriesPerOccupant[4][s] + c * g.injuriesPerOccupant[5][s]);
+        out[t].injuries[s].expected += people * e;
+      }
+    }
+  }
+  if (buildings.empty()) return out;
+  // The same draws as totalLosses: one uniform per building and realisation, buildings outer.
+  constexpr std::size_t R = kLossRealisations;
+  constexpr std::size_t kCount = 12;  // 3 times x 4 severities
+  std::vector<double> sums(R * kCount, 0.0);
+  SplitMix64 rng{seed};
+  for (const BuildingLoss& b : buildings) {
+    const std::array<double, 4> str = exceedances(b.structural);
+    for (std::size_t r = 0; r < R; ++r) {
+      const double v = rng.uniformOpenClosed();
+      const int s = stateAt(str, v);
+      const auto outcome = static_cast<std::size_t>(s == 4 && v <= b.collapse ? 5 : s);
+      double* row = &sums[r * kCount];
+      for (std::size_t t = 0; t < 3; ++t) {
+        for (std::size_t i = 0; i < 4; ++i)
+          row[t * 4 + i] += b.occupantsAt[t] * b.given.injuriesPerOccupant[outcome][i];
+      }
+    }
+  }
+  std::vector<double> values(R);
+  for (std::size_t t = 0; t < 3; ++t) {
+    for (std::size_t i = 0; i < 4; ++i) {
+      for (std::size_t r = 0; r < R; ++r) values[r] = sums[r * kCount + t * 4 + i];
+      out[t].injuries[i] = interval(values, out[t].injuries[i].expected);
+    }
+  }
+  return out;
+}
+
+double functionalProbability(const std::array<double, 5>& structural, double days) {
+  double p = 0;
+  for (std::size_t k = 0; k < 5; ++k) {
+    const RestorationCurve& c = kEssentialFacilityRestoration[k];
+    const double restored = c.sigmaDays > 0 ? 0.5 * std::erfc(-(days - c.meanDays) / (c.sigmaDays * std::sqrt(2.0)))
+                                            : (days >= c.meanDays ? 1.0 : 0.0);
+    p += std::clamp(structural[k], 0.0, 1.0) * restored;
+  }
+  return std::clamp(p, 0.0, 1.0);
+}
+
 LossSpread lossSpread(const BuildingLoss& b) {
   const std::array<double, 4> str = exceedances(b.structural);
   const std::array<double, 4> nsd = exceedances(b.nonStructuralDrift);
@@ -553,7 +648,7 @@ LossSpread lossSpread(const BuildingLoss& b) {
     cost += width * c;
     cost2 += width * c * c;
     for (std::size_t k = 0; k < 4; ++k) {
-      const double x = b.given.injuries[outcome][k];
+      const double x = b.occupantsPresent * b.given.injuriesPerOccupant[outcome][k];
       injury[k] += width * x;
       injury2[k] += width * x * x;
     }

@@ -404,6 +404,17 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   w.sameLine();
   // The view as a PNG, with the event, the city and the attribution under it (quakeview.screenshot()).
   if (w.button("Save image (PNG)")) host.saveImage();
+  // The situation report (quakeview.report(), `quakeview-prep report`): a print-ready HTML page.
+  w.sameLine();
+  if (city->situationReportReady()) {
+    if (w.button("Report (HTML)")) {
+      if (const auto html = city->situationReport()) {
+        host.download(exportFileName(*tileset, BuildingFilters{}, "report", "html"), "text/html", *html);
+      }
+    }
+  } else {
+    w.text("Report: loading the city's index...");
+  }
   ImGui::Unindent();
 }
 

@@ -25,6 +25,8 @@ constexpr Command kCommands[] = {
      "response --city DIR (--motion FILE | --synthetic SEED) [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M]"},
     {"import-response", qv::prep::runImportResponse,
      "import-response --city DIR --input FILE... [--units U]: displacement histories from another solver"},
+    {"report", qv::prep::runReport,
+     "report DIR [--out FILE.html]: the situation report (print-ready HTML), as the viewer's Report"},
     {"lod2", qv::prep::runLod2,
      "lod2 --city DIR --input FILE [--place LON,LAT[,ROT]]: detailed LOD2 models (CityJSON, OBJ) into a city"},
     {"mdof", qv::prep::runMdof, "mdof --storeys N --mass KG --stiffness N_PER_M --motion FILE ...: one shear building"},

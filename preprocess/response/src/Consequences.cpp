@@ -116,6 +116,57 @@ Result<Districts> parseDistricts(std::string_view json, const std::string& name)
   return out;
 }
 
+LossClass LossClass::of(const seismic::Exposure& exposure) {
+  LossClass c;
+  c.occupancy = exposure.occupancy;
+  c.type = exposure.type;
+  c.typeInferred = !exposure.typeMixture.empty();
+  c.eraInferred = !exposure.eraKnown;
+  c.useInferred = !exposure.useKnown;
+  return c;
+}
+
+void addClassTotals(std::span<const seismic::BuildingLoss> losses, std::span<const LossClass> classes,
+                    seismic::ConsequenceTotals& totals) {
+  constexpr std::size_t kOccupancies = static_cast<std::size_t>(seismic::Occupancy::Count);
+  constexpr std::size_t kTypes = static_cast<std::size_t>(StructuralType::Count);
+  std::vector<seismic::ClassTotals> byOccupancy(kOccupancies), byStructure(kTypes);
+  seismic::InferredCounts inferred;
+  const auto add = [](seismic::ClassTotals& c, const seismic::BuildingLoss& b) {
+    ++c.buildings;
+    for (std::size_t k = 0; k < 5; ++k) c.damageStates[k] += b.structural.p[k];
+    c.damaged += b.structural.p[2] + b.structural.p[3] + b.structural.p[4];
+    c.collapsed += b.collapse;
+    c.repairCostUsd += b.repairCostUsd;
+    c.occupants += b.occupantsPresent;
+    for (std::size_t k = 0; k < 4; ++k) c.injuries[k] += b.injuries[k];
+  };
+  for (std::size_t i = 0; i < losses.size() && i < classes.size(); ++i) {
+    const LossClass& c = classes[i];
+    add(byOccupancy[std::min(static_cast<std::size_t>(c.occupancy), kOccupancies - 1)], losses[i]);
+    add(byStructure[std::min(static_cast<std::size_t>(c.type), kTypes - 1)], losses[i]);
+    ++inferred.buildings;
+    inferred.structuralType += c.typeInferred ? 1u : 0u;
+    inferred.codeEra += c.eraInferred ? 1u : 0u;
+    inferred.use += c.useInferred ? 1u : 0u;
+    inferred.occupants += losses[i].occupantsInferred ? 1u : 0u;
+    inferred.replacementValue += losses[i].valueInferred ? 1u : 0u;
+  }
+  totals.byOccupancy.clear();
+  totals.byStructure.clear();
+  for (std::size_t k = 0; k < kOccupancies; ++k) {
+    if (byOccupancy[k].buildings == 0) continue;
+    byOccupancy[k].key = std::string(seismic::occupancyCode(static_cast<seismic::Occupancy>(k)));
+    totals.byOccupancy.push_back(std::move(byOccupancy[k]));
+  }
+  for (std::size_t k = 0; k < kTypes; ++k) {
+    if (byStructure[k].buildings == 0) continue;
+    byStructure[k].key = std::string(structuralTypeCode(static_cast<StructuralType>(k)));
+    totals.byStructure.push_back(std::move(byStructure[k]));
+  }
+  totals.inferred = inferred;
+}
+
 BuildingLoss toSummaryLoss(const seismic::BuildingLoss& loss) {
   BuildingLoss out;
   for (std::size_t k = 0; k < 5; ++k) {

@@ -477,6 +477,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   std::vector<seismic::BuildingLoss> losses;  // every building with a result
   std::vector<int> lossDistrict;              // its district (-1: none)
   std::vector<std::uint64_t> lossKey;         // its leaf and index there (the order of the totals)
+  std::vector<LossClass> lossClass;           // its occupancy class, type and inferred attributes
   double rateSum = 0.0;
   std::uint64_t rateCount = 0;
   const bool suite = records.size() > 1;
@@ -497,6 +498,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     std::vector<seismic::BuildingLoss> localLosses;
     std::vector<int> localDistricts;
     std::vector<std::uint64_t> localKeys;
+    std::vector<LossClass> localClasses;
     double localSolve = 0.0, localEncode = 0.0, localRate = 0.0, localLoss = 0.0;
     std::uint64_t localRateCount = 0;
     std::uint64_t localStoreySteps = 0;  // storeys × record steps × directions
@@ -756,6 +758,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
                 out.loss = toSummaryLoss(loss);
                 localLosses.push_back(loss);
                 localKeys.push_back((std::uint64_t{node} << 32) | static_cast<std::uint64_t>(item.index));
+                localClasses.push_back(LossClass::of(exposure));
                 if (districts) {
                   const auto lonLat =
                       field.projection().reverse({a.centroidX + tile->originX, a.centroidY + tile->originY});
@@ -777,6 +780,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     losses.insert(losses.end(), localLosses.begin(), localLosses.end());
     lossDistrict.insert(lossDistrict.end(), localDistricts.begin(), localDistricts.end());
     lossKey.insert(lossKey.end(), localKeys.begin(), localKeys.end());
+    lossClass.insert(lossClass.end(), localClasses.begin(), localClasses.end());
     report.solveSeconds += localSolve;
     report.encodeSeconds += localEncode;
     report.lossSeconds += localLoss;
@@ -842,24 +846,32 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     std::vector<seismic::BuildingLoss> sorted;
     sorted.reserve(losses.size());
     std::vector<int> sortedDistricts;
+    std::vector<LossClass> sortedClasses;
+    sortedClasses.reserve(losses.size());
     for (const std::size_t i : order) {
       sorted.push_back(losses[i]);
+      sortedClasses.push_back(lossClass[i]);
       if (i < lossDistrict.size()) sortedDistricts.push_back(lossDistrict[i]);
     }
     losses = std::move(sorted);
+    lossClass = std::move(sortedClasses);
     if (districts) lossDistrict = std::move(sortedDistricts);
   }
   seismic::ConsequenceTotals totals;
   totals.timeOfDay = info.timeOfDay;
   totals.population = options.population;
   totals.city = seismic::totalLosses(losses);
+  totals.city.byTime = seismic::casualtiesByTimeOfDay(losses);
+  addClassTotals(losses, lossClass, totals);
   if (districts) {
     for (std::size_t d = 0; d < districts->names.size(); ++d) {
       std::vector<seismic::BuildingLoss> inside;
       for (std::size_t i = 0; i < losses.size(); ++i) {
         if (lossDistrict[i] == static_cast<int>(d)) inside.push_back(losses[i]);
       }
-      totals.districts.push_back({districts->names[d], seismic::totalLosses(inside)});
+      seismic::LossTotals t = seismic::totalLosses(inside);
+      t.byTime = seismic::casualtiesByTimeOfDay(inside);
+      totals.districts.push_back({districts->names[d], std::move(t)});
     }
   }
   report.losses = totals.city;

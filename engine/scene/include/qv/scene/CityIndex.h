@@ -9,6 +9,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -136,6 +137,10 @@ class CityIndex {
   /// Heap held by the index and its summary (estimate).
   [[nodiscard]] std::uint64_t bytes() const { return bytes_; }
 
+  /// Every building's entry in the index's order (empty while the index is not loaded).
+  [[nodiscard]] std::span<const SearchEntry> entries() const {
+    return loaded() ? std::span<const SearchEntry>(entries_) : std::span<const SearchEntry>();
+  }
   /// The building's entry (nullptr while the index is not loaded, or for an unknown id).
   [[nodiscard]] const SearchEntry* entry(std::string_view id) const;
   /// The building's position in the index, and in the response summary in its order (nullopt

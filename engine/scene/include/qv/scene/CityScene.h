@@ -215,6 +215,12 @@ class CityScene {
   /// after a failure (consequencesFailed) and for responses without them.
   [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return index_.consequences(); }
   [[nodiscard]] bool consequencesFailed() const { return index_.consequencesFailed(); }
+  /// The situation report (qv/scene/Report.h) from the city's files, as `quakeview-prep report`
+  /// makes it; nullopt while the search index, its response summary or the consequence totals are
+  /// still on their way (a file that failed is left out, and the report says what is missing).
+  [[nodiscard]] std::optional<std::string> situationReport() const;
+  /// Whether situationReport() has its files (cheap: for a button's state).
+  [[nodiscard]] bool situationReportReady() const;
   /// The record suite's spread over the city (CityIndex::medianDriftBeta).
   [[nodiscard]] std::optional<float> suiteDriftSpread() const { return index_.medianDriftBeta(); }
 

@@ -24,6 +24,11 @@ struct ExportProvenance {
   std::string timeOfDay;   ///< the time of day the consequences assume, or ""
 };
 
+/// The provenance as one line, "QuakeView <title> | City: ... | Shaking: ... | Earthquake: ... |
+/// Records: ... | Method: ... | Time of day: ... | Filter: ..." (empty parts left out; commas become
+/// spaces): the comment line of the CSV exports without its "# ", and the report's footer.
+std::string provenanceText(std::string_view title, const ExportProvenance& provenance);
+
 /// Whether the shaking is a SCENARIO or an ACTUAL event, in the words the panel shows:
 /// "ACTUAL EVENT (ShakeMap of a recorded earthquake)", "SCENARIO (a ShakeMap scenario, not a
 /// recorded event)", "SCENARIO (computed, not a recorded event)", "IMPORTED RESULTS (not stated

@@ -62,6 +62,9 @@ enum class Occupancy : std::uint8_t {
 
 /// "RES1" .. "EDU2" ("unknown" out of range).
 std::string_view occupancyCode(Occupancy occupancy);
+/// What the class is, in the Technical Manual's words ("single-family dwelling", "hospital", ...;
+/// "unknown" out of range).
+std::string_view occupancyDescription(Occupancy occupancy);
 
 /// The occupancy class of one of our normalised uses (BuildingAttributes::use, as produced by
 /// preprocess/ingest/src/Attributes.cpp) and storey count. The table (docs/losses.md repeats it):
@@ -195,9 +198,11 @@ struct Exposure {
 
 /// Consequences given each outcome, kept for totalLosses' sampling (expected values are above).
 struct ConditionalConsequences {
-  /// Expected people injured at severity 1..4 given none, slight, moderate, extensive, complete
-  /// without collapse, and collapse (index 0..5).
-  std::array<std::array<double, 4>, 6> injuries{};
+  /// Expected people injured at severity 1..4 PER OCCUPANT PRESENT (fractions, not percent) given
+  /// none, slight, moderate, extensive, complete without collapse, and collapse (index 0..5):
+  /// times BuildingLoss::occupantsPresent they are the building's injuries at the run's time of day,
+  /// times occupantsAt[t] those at another time (casualtiesByTimeOfDay).
+  std::array<std::array<double, 4>, 6> injuriesPerOccupant{};
   double collapseGivenComplete = 0;               ///< P_collapse of the type
   std::array<double, 5> structuralCostUsd{};      ///< repair cost given the structural state 0..4
   std::array<double, 5> nsDriftCostUsd{};         ///< given the non-structural drift state
@@ -257,6 +262,13 @@ struct Estimate {
   double expected = 0, low = 0, high = 0;
 };
 
+/// The casualties of one part of the day: the people present and the injuries at severity 1..4
+/// (4: deaths) with their 90 % interval, as totalLosses gives them at the run's time.
+struct CasualtiesAtTime {
+  double occupants = 0;
+  std::array<Estimate, 4> injuries;
+};
+
 struct LossTotals {
   std::uint64_t buildings = 0;
   std::array<Estimate, 5> damageStates;  ///< expected building counts none..complete (sum of P)
@@ -269,6 +281,9 @@ struct LossTotals {
   std::array<double, 3> occupantsAt{};
   std::array<Estimate, 4> injuries;  ///< severity 1..4
   std::array<Estimate, 3> tags;      ///< green, yellow, red building counts
+  /// The casualties at night, by day and at commute time (casualtiesByTimeOfDay); absent where not
+  /// computed (totalLosses leaves it out; consequences files written before it).
+  std::optional<std::array<CasualtiesAtTime, 3>> byTime;
 };
 
 /// Number of realisations totalLosses draws.
@@ -287,6 +302,31 @@ inline constexpr int kLossRealisations = 500;
 /// city-wide spread when the shaking is correlated (one event shakes neighbours alike): read the interval as a lower
 /// bound of the real uncertainty. Fast: one uniform per building per realisation.
 LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t seed = 1);
+
+/// The casualties the same damage would cause at night, by day and at commute time (index:
+/// TimeOfDay; HAZUS reports them for 2 AM, 2 PM and 5 PM): each building's injuries given its
+/// outcome scale with the people present at that time (BuildingLoss::occupantsAt). Draws as
+/// totalLosses with the same `seed` (the same realisations), so the run's own time of day gives
+/// exactly totalLosses' injuries.
+std::array<CasualtiesAtTime, 3> casualtiesByTimeOfDay(std::span<const BuildingLoss> buildings, std::uint64_t seed = 1);
+
+/// The restoration of an essential facility (hospital, fire or police station, emergency operations
+/// centre, school) after each structural damage state: normal curves of the days until it is
+/// functional again, mean and standard deviation per state none .. complete (none: functional at
+/// once). Values of Hazus-MH 2.1's essential-facility restoration table (Technical Manual, Table
+/// 6.11) as the Rt software's healthcare restoration model (Mahsuli and Haukaas, rtx.civil.sharif.edu)
+/// implements them: slight 5 ± 1, moderate 20 ± 2, extensive 90 ± 10, complete 180 ± 20 days. Taken
+/// from that implementation, not checked against the manual's page (docs/losses.md says so).
+struct RestorationCurve {
+  double meanDays = 0, sigmaDays = 0;
+};
+inline constexpr std::array<RestorationCurve, 5> kEssentialFacilityRestoration = {
+    {{0, 0}, {5, 1}, {20, 2}, {90, 10}, {180, 20}}};
+
+/// The probability that an essential facility is functional `days` after the earthquake, Hazus's
+/// functionality: sum over states of P(DS = k) x Phi((days - mean_k) / sigma_k) with
+/// kEssentialFacilityRestoration (state none: 1). On day one it is close to P(none).
+double functionalProbability(const std::array<double, 5>& structural, double days);
 
 /// Standard deviations of one building's repair cost (USD) and injuries (people, severity 1..4)
 /// under the draw totalLosses makes (one uniform draw sets every component's state), computed

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,21 @@ struct Districts {
 /// 1 000 000 vertices.
 Result<Districts> readDistricts(const std::string& path);
 Result<Districts> parseDistricts(std::string_view json, const std::string& name);
+
+/// What the report's tables group a building by, and which of its attributes the model inferred.
+struct LossClass {
+  seismic::Occupancy occupancy = seismic::Occupancy::RES1;
+  StructuralType type = StructuralType::Unknown;  ///< the modelled (resolved) type
+  bool typeInferred = false, eraInferred = false, useInferred = false;
+
+  static LossClass of(const seismic::Exposure& exposure);
+};
+
+/// The city's damage by occupancy class and by structural type (rows in code order, classes without
+/// buildings left out) and the inferred-attribute counts, from each building's losses and class
+/// (aligned spans), into `totals`.
+void addClassTotals(std::span<const seismic::BuildingLoss> losses, std::span<const LossClass> classes,
+                    seismic::ConsequenceTotals& totals);
 
 /// A building's losses as the response summary stores them (section LOSS).
 BuildingLoss toSummaryLoss(const seismic::BuildingLoss& loss);
