@@ -3,8 +3,8 @@
 //
 // API (kept for the life of the product; later versions only add members):
 //   ready      Promise: resolves after the first frame in which everything of the initial view has
-//              loaded or failed; rejects with an Error carrying the on-page message when WebGL2 is
-//              unavailable or the engine cannot start.
+//              loaded or failed (without WebGL2 the page opens the 2D city: startMap2d); rejects with
+//              an Error carrying the on-page message when the engine cannot start.
 //   stats()    {fps, frameMs: {cull, lod, animate, upload, render, total}, drawCalls, triangles,
 //              buildings: {loaded, visible, animated}, tiles: {loaded, pending, failed}, heapBytes,
 //              heapReservedBytes, uploadBytes, timeSeconds} — medians over recent frames; extensions:
@@ -528,25 +528,26 @@
     }
   }
 
-  // WebGL2 first: without it the engine cannot draw, and the user should read why at once.
+  // WebGL2 first. Without it (no GPU and no software fallback, a blocked driver, WebGL turned off)
+  // the page opens the 2D city instead (map2d below): the same data, numbers, search, lists,
+  // exports and report, the buildings drawn from above on a 2D canvas.
   const probe = document.createElement('canvas');
   const gl = probe.getContext('webgl2');
-  if (!gl) {
-    fatal('WebGL2 is not available in this browser or on this device, so the city cannot be drawn. ' +
-          'Use a current Chrome, Edge, Firefox or Safari with hardware acceleration enabled.');
-    return;
-  }
+  const map2dMode = !gl || params.get('view') === '2d';
   // The renderer's name: a software rasterizer (SwiftShader, WARP, llvmpipe) makes the engine start
   // in its weak-device preset. Chromium masks RENDERER ("WebKit WebGL") and names the real one
   // through WEBGL_debug_renderer_info; Firefox answers RENDERER directly (and deprecates the
   // extension, so it is asked only when needed).
-  let renderer = String(gl.getParameter(gl.RENDERER) || '');
-  if (/^WebKit WebGL$/i.test(renderer) || renderer === '') {
-    const info = gl.getExtension('WEBGL_debug_renderer_info');
-    if (info) renderer = String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL) || renderer);
+  let renderer = '';
+  if (gl) {
+    renderer = String(gl.getParameter(gl.RENDERER) || '');
+    if (/^WebKit WebGL$/i.test(renderer) || renderer === '') {
+      const info = gl.getExtension('WEBGL_debug_renderer_info');
+      if (info) renderer = String(gl.getParameter(info.UNMASKED_RENDERER_WEBGL) || renderer);
+    }
+    const lose = gl.getExtension('WEBGL_lose_context');
+    if (lose) lose.loseContext();
   }
-  const lose = gl.getExtension('WEBGL_lose_context');
-  if (lose) lose.loseContext();
 
   // Engine arguments from the page URL (the city's address is checked against the data origin
   // policy in start(), before anything of it is fetched).
@@ -555,7 +556,8 @@
   if (params.get('aa') === '0') args.push('--no-antialias');
   if (params.get('aa') === '1') args.push('--antialias');
   if (params.get('quality')) args.push('--quality', params.get('quality'));
-  if (renderer) args.push('--webgl-renderer', renderer);
+  if (renderer && !map2dMode) args.push('--webgl-renderer', renderer);
+  if (map2dMode) args.push('--map2d');
   if (params.get('bench')) args.push('--bench', params.get('bench'));
   if (params.get('memory')) args.push('--memory-mb', params.get('memory'));
 
@@ -746,6 +748,352 @@
     };
     engine = await window.createQuakeViewEngine(module);
     setInterval(updateAccessibility, 250);
+    if (map2dMode) startMap2d(!gl);
+  }
+
+  // ---- The 2D city, where no WebGL2 context can be made (or with ?view=2d) ----
+  // The engine runs as in 3D (tiles chosen, loaded and culled for the view, the clock, the
+  // results, the panels' content) but draws nothing: each frame the page reads the footprints of
+  // the buildings in view, in the colours of the current colour mode (qv_map2d, qv/scene/Map2d.h),
+  // and fills them on a 2D canvas, one path per colour. The panels are HTML: the engine's text of
+  // them (the accessible copy, #qv-panel, made visible) under controls for what needs a click:
+  // colour mode, playback, search, filters, the list, exports, the report. Pan by dragging (mouse or
+  // one finger), zoom by the wheel, two fingers or +/-, arrows pan, click or tap to inspect.
+  const map2d = { fps: 0, frames: 0, shapes: 0, drawMs: 0, engineMs: 0 };
+  api.map2d = () => (map2dMode ? { ...map2d } : null);  // extension: {fps, frames, shapes, drawMs, engineMs} or null
+  function startMap2d(noWebGl) {
+    const g = canvas.getContext('2d', { alpha: false });
+    if (!g) {
+      fatal('Neither WebGL2 nor a 2D canvas is available in this browser, so the city cannot be drawn.');
+      return;
+    }
+    document.body.classList.add('qv-map2d');
+    canvas.setAttribute('aria-roledescription', '2D city map');
+    canvas.setAttribute('aria-label', 'QuakeView: the city from above, each building coloured by the earthquake. ' +
+      'Drag or use the arrows to pan, the wheel or plus and minus to zoom, click a building to inspect it.');
+    const panel = document.getElementById('qv-panel');
+    panel.classList.remove('visually-hidden');
+    panel.classList.add('qv-map2d-panel');
+
+    const el = (tag, props = {}, children = []) => {
+      const e = document.createElement(tag);
+      for (const [k, v] of Object.entries(props)) {
+        if (k === 'text') e.textContent = v; else if (k in e) e[k] = v; else e.setAttribute(k, v);
+      }
+      for (const c of children) e.appendChild(c);
+      return e;
+    };
+    const controls = el('div', { id: 'qv-map2d-controls' });
+    panel.insertBefore(controls, panel.firstChild);
+    controls.appendChild(el('p', { id: 'qv-map2d-notice', role: 'note', text: noWebGl
+      ? 'The 3D view is off: this browser gives the page no WebGL2 (no graphics acceleration and no software ' +
+        'renderer), so the city is shown from above in 2D, with the same results, search, lists, exports and ' +
+        'report. An administrator turns the 3D view on by enabling graphics acceleration (Chrome and Edge: ' +
+        'Settings, System, "Use graphics acceleration when available"; Firefox: about:config, webgl.disabled ' +
+        'false, and webgl.force-enabled true where the driver is blocked) or the software renderer (Chromium ' +
+        'started with --enable-unsafe-swiftshader).'
+      : 'The 2D city (this link asks for it with ?view=2d): the same results, search, lists, exports and report.' }));
+
+    // Colour mode and playback.
+    const modeNames = { drift: 'Drift now', peak: 'Peak drift', damage: 'Damage state', neutral: 'Neutral',
+      'p-moderate': 'P(moderate or worse)', 'expected-damage': 'Expected damage', tag: 'Inspection tag' };
+    const mode = el('select', { id: 'qv-map2d-mode', 'aria-label': 'Colour' },
+      COLOR_MODES.map((m) => el('option', { value: m, text: modeNames[m] })));
+    mode.addEventListener('change', () => api.setColorMode(mode.value));
+    const play = el('button', { type: 'button', id: 'qv-map2d-play', text: 'Pause' });
+    play.addEventListener('click', () => { if (api.playing()) api.pause(); else api.play(); });
+    const time = el('input', { type: 'range', id: 'qv-map2d-time', min: '0', max: '1', step: '0.1', 'aria-label': 'Time' });
+    time.addEventListener('input', () => { api.pause(); api.setTime(Number(time.value)); });
+    const timeText = el('span', { id: 'qv-map2d-time-text' });
+    controls.appendChild(el('div', { class: 'qv-row' }, [el('label', { text: 'Colour ' }, [mode])]));
+    // The colour key of the mode shown (the engine's palette; the 3D view's legend says the same).
+    const palette = JSON.parse(engine.UTF8ToString(engine._qv_palette_json()));
+    const keys = {
+      drift: ['0 % drift now', '0.1 %', '0.5 %', '1 %', '2 % or more'],
+      peak: ['0 % peak drift', '0.1 %', '0.5 %', '1 %', '2 % or more'],
+      damage: ['none', 'slight', 'moderate', 'extensive', 'complete'],
+      'p-moderate': ['P(moderate or worse) 0 %', '25 %', '50 %', '75 %', '100 %'],
+      'expected-damage': ['expected state 0 none', '1 slight', '2 moderate', '3 extensive', '4 complete'],
+    };
+    const legend = el('div', { id: 'qv-map2d-legend', class: 'qv-row' });
+    controls.appendChild(legend);
+    let legendMode = null;
+    const swatch = (color, text) => {
+      const box = el('span', { class: 'qv-swatch' });
+      box.style.background = color;  // CSSOM, not a style attribute: allowed by the page's policy
+      return el('span', { class: 'qv-key' }, [box, document.createTextNode(text)]);
+    };
+    const refreshLegend = () => {
+      const shown = api.shownColorMode();
+      if (shown === legendMode) return;
+      legendMode = shown;
+      const items = shown === 'tag'
+        ? ['green: inspected', 'yellow: restricted use', 'red: unsafe'].map((text, i) => swatch(palette.tags[i], text))
+        : (keys[shown] || []).map((text, i) => swatch(palette.ramp[i], text));
+      if (shown !== 'neutral') items.push(swatch(palette.noResult, 'no result'));
+      if (shown !== mode.value) items.unshift(el('span', { text: 'The shaking is over; showing:' }));
+      legend.replaceChildren(...items);
+    };
+    controls.appendChild(el('div', { class: 'qv-row' }, [play, time, timeText]));
+
+    // Search.
+    const search = el('input', { type: 'search', id: 'qv-map2d-search', placeholder: 'Search buildings (name, address, id)',
+      'aria-label': 'Search buildings' });
+    const results = el('ul', { id: 'qv-map2d-results', class: 'qv-list' });
+    const selectAndShow = (id) => {
+      api.select(id);
+      api.flyToSelection();
+    };
+    const showResults = () => {
+      const q = search.value.trim();
+      const hits = q ? api.search(q, 8) : [];
+      results.replaceChildren(...hits.map((h) => el('li', {}, [Object.assign(
+        el('button', { type: 'button', text: `${h.label}${h.address && h.label !== h.address ? ', ' + h.address : ''} (${h.damageState || 'no result'})` }),
+        { onclick: () => selectAndShow(h.id) })])));
+    };
+    search.addEventListener('input', showResults);
+    search.addEventListener('keydown', (e) => {
+      if (e.key !== 'Enter') return;
+      const hits = api.search(search.value.trim(), 1);
+      if (hits.length) selectAndShow(hits[0].id);
+    });
+    controls.appendChild(el('div', { class: 'qv-row' }, [search]));
+    controls.appendChild(results);
+
+    // Filters and the list.
+    const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];
+    const minDamage = el('select', { id: 'qv-map2d-min-damage', 'aria-label': 'Damage at least' },
+      [el('option', { value: '', text: 'any damage' }), ...states.slice(1).map((s) => el('option', { value: s, text: `${s} or worse` }))]);
+    const critical = el('input', { type: 'checkbox', id: 'qv-map2d-critical' });
+    const applyFilters = () => api.setFilters({ minDamage: minDamage.value || null, criticalOnly: critical.checked });
+    minDamage.addEventListener('change', applyFilters);
+    critical.addEventListener('change', applyFilters);
+    controls.appendChild(el('div', { class: 'qv-row' }, [el('label', { text: 'Show ' }, [minDamage]),
+      el('label', { text: ' critical facilities only ' }, [critical])]));
+    const listTitle = el('p', { class: 'qv-list-title' });
+    const list = el('ul', { id: 'qv-map2d-list', class: 'qv-list' });
+    controls.appendChild(listTitle);
+    controls.appendChild(list);
+
+    // Exports and the report.
+    const button = (id, text, action) => Object.assign(el('button', { type: 'button', id, text }), { onclick: action });
+    controls.appendChild(el('div', { class: 'qv-row' }, [
+      button('qv-map2d-csv', 'Export CSV', () => api.exportList('csv')),
+      button('qv-map2d-geojson', 'Export GeoJSON', () => api.exportList('geojson')),
+      button('qv-map2d-report', 'Report (HTML)', () => { api.saveReport().catch((e) => setText(statusBox, 'Report: ' + e.message)); }),
+      button('qv-map2d-image', 'Save image (PNG)', () => api.saveImage()),
+    ]));
+
+    let listKey = '';
+    const refreshPanel = () => {
+      refreshLegend();
+      const m = api.colorMode();
+      if (m && mode.value !== m) mode.value = m;
+      play.textContent = api.playing() ? 'Pause' : 'Play';
+      time.max = String(Math.max(api.duration(), 0.1));
+      if (document.activeElement !== time) time.value = String(api.time());
+      timeText.textContent = ` ${api.time().toFixed(1)} s of ${api.duration().toFixed(1)} s`;
+      if (!api.searchReady()) { listTitle.textContent = 'The city-wide list loads with the search index...'; return; }
+      const f = api.filteredList(10);
+      const key = JSON.stringify([f.total, f.buildings.map((b) => b.id), api.selection()]);
+      if (key === listKey) return;
+      listKey = key;
+      listTitle.textContent = `${f.total.toLocaleString('en-US')} buildings pass the filters, most likely damaged first:`;
+      // The probability the list sorts by (as the panel's list): the damage filter's state, else slight.
+      const by = minDamage.value && minDamage.value !== 'none' ? minDamage.value : 'slight';
+      list.replaceChildren(...f.buildings.map((b) => el('li', {}, [Object.assign(el('button', { type: 'button',
+        text: `${b.label || b.name || b.id}: ${b.damageState || 'no result'}${b.probabilityAtLeast ? `, P(${by} or worse) ${Math.round(100 * b.probabilityAtLeast[by])} %` : ''}` }),
+      { onclick: () => selectAndShow(b.id) })])));
+    };
+    setInterval(refreshPanel, 300);
+
+    // Drawing: buildings under two pixels are written as pixels of one image (a hundred thousand
+    // dots cost a few milliseconds that way, against tens as paths); larger footprints are filled,
+    // one path per colour, over it.
+    const background = [0xdf, 0xe3, 0xe6];
+    let image = null;
+    let pixels = null;
+    let frameTimes = [];
+    function draw(now) {
+      requestAnimationFrame(draw);
+      if (!engine) return;
+      const t0 = performance.now();
+      const ptr = engine._qv_map2d();
+      const n = engine._qv_map2d_floats();
+      const t1 = performance.now();
+      const f = engine.HEAPF32.subarray(ptr >> 2, (ptr >> 2) + n);
+      const width = canvas.width;
+      const height = canvas.height;
+      if (width === 0 || height === 0) return;
+      const ratio = canvas.clientWidth > 0 ? width / canvas.clientWidth : 1;
+      if (!image || image.width !== width || image.height !== height) {
+        image = g.createImageData(width, height);
+        pixels = new Uint32Array(image.data.buffer);
+      }
+      // Little-endian RGBA as one 32-bit word: 0xAABBGGRR.
+      pixels.fill((255 << 24) | (background[2] << 16) | (background[1] << 8) | background[0]);
+      const paths = new Map();
+      let shapes = 0;
+      const dot = Math.max(1, Math.round(2 * ratio));
+      for (let i = 0; i + 1 < n;) {
+        const color = f[i];
+        const count = f[i + 1];
+        i += 2;
+        ++shapes;
+        if (count === 1) {
+          const x0 = Math.round(f[i] * ratio - dot / 2);
+          const y0 = Math.round(f[i + 1] * ratio - dot / 2);
+          i += 2;
+          const rgb = Math.round(color);
+          const word = (255 << 24) | ((rgb & 0xff) << 16) | (rgb & 0xff00) | ((rgb >> 16) & 0xff);
+          for (let y = Math.max(y0, 0); y < Math.min(y0 + dot, height); ++y) {
+            const row = y * width;
+            for (let x = Math.max(x0, 0); x < Math.min(x0 + dot, width); ++x) pixels[row + x] = word;
+          }
+          continue;
+        }
+        let p = paths.get(color);
+        if (!p) { p = new Path2D(); paths.set(color, p); }
+        p.moveTo(f[i], f[i + 1]);
+        for (let k = 1; k < count; ++k) p.lineTo(f[i + 2 * k], f[i + 2 * k + 1]);
+        p.closePath();
+        i += 2 * count;
+      }
+      g.putImageData(image, 0, 0);
+      g.setTransform(ratio, 0, 0, ratio, 0, 0);
+      for (const [color, p] of paths) {
+        g.fillStyle = '#' + Math.round(color).toString(16).padStart(6, '0');
+        g.fill(p);
+      }
+      g.setTransform(1, 0, 0, 1, 0, 0);
+      // Fitted twice: the first view may cut the city at the screen's edges (culled there), the
+      // second sees all of it.
+      if (fitted < 2 && shapes > 0 && readyResolved && now >= fitAfter) {
+        fitCity(f, n);
+        fitAfter = now + 800;
+      }
+      map2d.shapes = shapes;
+      map2d.engineMs = t1 - t0;
+      map2d.drawMs = performance.now() - t0;
+      frameTimes.push(now);
+      frameTimes = frameTimes.filter((x) => now - x < 1000);
+      map2d.fps = frameTimes.length;
+      ++map2d.frames;
+    }
+    requestAnimationFrame(draw);
+
+    // Once the city is there: it fills the map beside the panel (the 3D view's framing is for an
+    // oblique view; from above the same distance leaves it small).
+    let fitted = 0;
+    let fitAfter = 0;
+    let readyResolved = false;
+    ready.then(() => { readyResolved = true; }, () => {});
+    function fitCity(f, n) {
+      ++fitted;
+      let minX = Infinity, minY = Infinity, maxX = -Infinity, maxY = -Infinity;
+      for (let i = 0; i + 1 < n;) {
+        const count = f[i + 1];
+        i += 2;
+        for (let k = 0; k < count; ++k) {
+          minX = Math.min(minX, f[i + 2 * k]); maxX = Math.max(maxX, f[i + 2 * k]);
+          minY = Math.min(minY, f[i + 2 * k + 1]); maxY = Math.max(maxY, f[i + 2 * k + 1]);
+        }
+        i += 2 * count;
+      }
+      if (!(maxX > minX && maxY > minY)) return;
+      const r = canvas.getBoundingClientRect();
+      const panelRight = Math.min(panel.getBoundingClientRect().right + 10, r.width * 0.5);
+      const areaW = r.width - panelRight - 40;
+      const areaH = r.height - 60;
+      const factor = Math.max((maxX - minX) / areaW, (maxY - minY) / areaH);
+      // Centre the city's box in the area right of the panel, then zoom by `factor` about it.
+      const m = metresPerCss();
+      const c = api.getCamera();
+      const boxCx = (minX + maxX) / 2, boxCy = (minY + maxY) / 2;
+      const groundX = c.x + (boxCx - r.width / 2) * m, groundY = c.y - (boxCy - r.height / 2) * m;
+      const distance = Math.min(Math.max(c.distance * factor, 20), 200000);
+      const areaCx = panelRight + 20 + areaW / 2;
+      const mNew = m * distance / c.distance;
+      api.setCamera({ distance, x: groundX - (areaCx - r.width / 2) * mNew, y: groundY });
+    }
+
+    // Pan and zoom on the ground seen from above.
+    const metresPerCss = () => {
+      const c = api.getCamera();
+      const a = api.worldToScreen(c.x, c.y, 0);
+      const b = api.worldToScreen(c.x + 100, c.y, 0);
+      return a && b && b[0] !== a[0] ? 100 / (b[0] - a[0]) : 1;
+    };
+    const panBy = (dxCss, dyCss) => {
+      const c = api.getCamera();
+      const m = metresPerCss();
+      api.setCamera({ x: c.x - dxCss * m, y: c.y + dyCss * m });
+    };
+    const zoomAt = (factor, xCss, yCss) => {
+      const c = api.getCamera();
+      const m = metresPerCss();
+      const r = canvas.getBoundingClientRect();
+      // The ground under the pointer stays under it.
+      const ox = (xCss - r.width / 2) * m;
+      const oy = -(yCss - r.height / 2) * m;
+      const distance = Math.min(Math.max(c.distance * factor, 20), 200000);
+      const k = 1 - distance / c.distance;
+      api.setCamera({ distance, x: c.x + ox * k, y: c.y + oy * k });
+    };
+    const pointers = new Map();
+    let press = null;  // {x, y, moved}
+    let pinch = null;  // {distance}
+    canvas.addEventListener('pointerdown', (e) => {
+      canvas.setPointerCapture(e.pointerId);
+      pointers.set(e.pointerId, { x: e.offsetX, y: e.offsetY });
+      press = pointers.size === 1 ? { x: e.offsetX, y: e.offsetY, moved: false } : null;
+      if (pointers.size === 2) {
+        const [a, b] = [...pointers.values()];
+        pinch = { distance: Math.hypot(a.x - b.x, a.y - b.y) };
+      }
+    });
+    canvas.addEventListener('pointermove', (e) => {
+      const last = pointers.get(e.pointerId);
+      if (!last) return;
+      const now = { x: e.offsetX, y: e.offsetY };
+      pointers.set(e.pointerId, now);
+      if (pointers.size === 1) {
+        if (press && Math.hypot(now.x - press.x, now.y - press.y) > 4) press.moved = true;
+        if (!press || press.moved) panBy(now.x - last.x, now.y - last.y);
+      } else if (pointers.size === 2 && pinch) {
+        const [a, b] = [...pointers.values()];
+        const d = Math.hypot(a.x - b.x, a.y - b.y);
+        if (d > 0 && pinch.distance > 0) zoomAt(pinch.distance / d, (a.x + b.x) / 2, (a.y + b.y) / 2);
+        pinch.distance = d;
+      }
+    });
+    const release = (e) => {
+      pointers.delete(e.pointerId);
+      if (pointers.size < 2) pinch = null;
+      if (e.type === 'pointerup' && press && !press.moved && pointers.size === 0) {
+        const hit = api.pick(e.offsetX, e.offsetY);
+        api.select(hit ? hit.id : '');
+      }
+      if (pointers.size === 0) press = null;
+    };
+    canvas.addEventListener('pointerup', release);
+    canvas.addEventListener('pointercancel', release);
+    canvas.addEventListener('wheel', (e) => {
+      e.preventDefault();
+      zoomAt(Math.exp(e.deltaY * (e.deltaMode === 1 ? 0.05 : 0.0015)), e.offsetX, e.offsetY);
+    }, { passive: false });
+    canvas.addEventListener('keydown', (e) => {
+      const step = 80;
+      const r = canvas.getBoundingClientRect();
+      const keys = { ArrowLeft: () => panBy(step, 0), ArrowRight: () => panBy(-step, 0), ArrowUp: () => panBy(0, step),
+        ArrowDown: () => panBy(0, -step), '+': () => zoomAt(1 / 1.4, r.width / 2, r.height / 2),
+        '=': () => zoomAt(1 / 1.4, r.width / 2, r.height / 2), '-': () => zoomAt(1.4, r.width / 2, r.height / 2),
+        ' ': () => (api.playing() ? api.pause() : api.play()) };
+      const action = keys[e.key];
+      if (!action) return;
+      e.preventDefault();
+      action();
+    });
   }
 
   start().catch((e) => fatal('QuakeView could not load: ' + e.message));

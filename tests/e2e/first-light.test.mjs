@@ -90,18 +90,20 @@ test('dragging the canvas pans the camera and the wheel zooms', async () => {
   }
 });
 
-test('without WebGL, ready rejects and the page says why', async () => {
+test('without WebGL, the page opens the 2D view and says why, with what an administrator can do', async () => {
   const { context, close } = await launchBrowser({ webgl: false });
   try {
-    const { page } = await openPage(context, `${server.url}/?scene=test`);
-    const ready = await waitReady(page, 20000);
-    assert.equal(ready.ok, false);
-    assert.match(ready.message, /WebGL2 is not available/);
-    const shown = await page.locator('#error').innerText();
-    assert.match(shown, /WebGL2 is not available/);
-    assert.ok(await page.locator('#error').isVisible());
+    const { page, problems } = await openPage(context, `${server.url}/?scene=test`);
+    const ready = await waitReady(page, 30000);
+    assert.deepEqual(ready, { ok: true });
+    const notice = await page.locator('#qv-map2d-notice').innerText();
+    assert.match(notice, /The 3D view is off: this browser gives the page no WebGL2/);
+    assert.match(notice, /An administrator turns the 3D view on/);
+    assert.ok(await page.locator('#qv-map2d-notice').isVisible());
+    assert.equal(await page.locator('#error').isVisible(), false);
     assert.equal(await page.locator('#loading').isVisible(), false);
     await page.screenshot({ path: path.join(ARTIFACTS, 'no-webgl.png') });
+    assert.deepEqual(problems, []);
   } finally {
     await close();
   }

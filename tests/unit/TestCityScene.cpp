@@ -1230,3 +1230,101 @@ TEST_CASE("Tile summaries without losses: colours, the probability filter, the v
   CHECK(dimmed > 0);
   CHECK(kept > 0);
 }
+
+TEST_CASE("The 2D map holds each building in view once, from above, in the colour the 3D view gives it",
+          "[scene][city][map2d]") {
+  SceneRig rig;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
+  viewer.setColorMode(ColorMode::DamageState);
+  viewer.setCamera(CameraState{0.0, 0.0, 700.0, 0.0, 90.0, 45.0});
+  viewer.pause();
+  runFrames(viewer, 20);
+  REQUIRE(viewer.settled());
+  Map2dFrame map;
+  viewer.map2d(map);
+  // The 8 x 8 buildings 40 m apart, one footprint ring each (a part each), inside the viewport.
+  CHECK(map.shapes == 64);
+  std::set<std::uint32_t> colours;
+  std::size_t rings = 0;
+  for (std::size_t i = 0; i + 1 < map.data.size();) {
+    colours.insert(static_cast<std::uint32_t>(map.data[i]));
+    const auto n = static_cast<std::size_t>(map.data[i + 1]);
+    i += 2;
+    REQUIRE((n == 1 || n >= 3));
+    rings += n >= 3 ? 1u : 0u;
+    for (std::size_t k = 0; k < n; ++k) {
+      CHECK((map.data[i + 2 * k] >= 0.0f && map.data[i + 2 * k] <= 1280.0f));
+      CHECK((map.data[i + 2 * k + 1] >= 0.0f && map.data[i + 2 * k + 1] <= 720.0f));
+    }
+    i += 2 * n;
+  }
+  CHECK(rings == 64);
+  // Damage colours only: the palette's stops (or the no-result colour).
+  std::set<std::uint32_t> palette{packRgb(kNoResultColor)};
+  for (const Rgb& c : kDamagePalette) palette.insert(packRgb(c));
+  for (const std::uint32_t c : colours) CHECK(palette.count(c) == 1);
+  CHECK(colours.size() >= 2);
+  // North up: a building east of another is drawn to its right.
+  const auto east = viewer.worldToScreen(100.0, 0.0, 0.0);
+  const auto west = viewer.worldToScreen(-100.0, 0.0, 0.0);
+  REQUIRE((east && west));
+  CHECK(east->x > west->x);
+
+  // Far away each building is one dot.
+  viewer.setCamera(CameraState{0.0, 0.0, 60000.0, 0.0, 90.0, 45.0});
+  runFrames(viewer, 5);
+  viewer.map2d(map);
+  CHECK(map.shapes == 64);
+  CHECK(map.points == 64);
+
+  // A filter dims the buildings it leaves out: their colour fades towards the dimmed grey.
+  viewer.setCamera(CameraState{0.0, 0.0, 700.0, 0.0, 90.0, 45.0});
+  BuildingFilters only;
+  only.minDamage = 4;
+  viewer.city()->setFilters(only);
+  runFrames(viewer, 5);
+  viewer.map2d(map);
+  std::size_t dimmed = 0;
+  for (std::size_t i = 0; i + 1 < map.data.size();) {
+    const auto c = static_cast<std::uint32_t>(map.data[i]);
+    dimmed += palette.count(c) == 0 ? 1u : 0u;
+    i += 2 + 2 * static_cast<std::size_t>(map.data[i + 1]);
+  }
+  CHECK(dimmed > 32);
+}
+
+TEST_CASE("A building's 2D colour is the shader's: modes, missing results, dimming and selection", "[scene][map2d]") {
+  BuildingGpuRecord row;
+  row.damageState = 2.0f;
+  row.peakValue = 0.005f;
+  row.lossCode = packLossCode(0.75f, 2.0f, 2);
+  CHECK(packRgb(buildingRowColor(row, ColorMode::DamageState, 0, {}, {})) == packRgb(kDamagePalette[2]));
+  CHECK(packRgb(buildingRowColor(row, ColorMode::PeakDrift, 0, {}, {})) == packRgb(kDamagePalette[2]));  // 0.5 % drift
+  CHECK(packRgb(buildingRowColor(row, ColorMode::InspectionTag, 0, {}, {})) == packRgb(kTagPalette[2]));
+  CHECK(packRgb(buildingRowColor(row, ColorMode::ModerateOrWorse, 0, {}, {})) == packRgb(kDamagePalette[3]));
+  // Not animated and without a series, "drift now" shows the peak in greys, never a damage colour.
+  CHECK(packRgb(buildingRowColor(row, ColorMode::CurrentDrift, 0, {}, {})) == packRgb(notAnimatedGrey(0.5f)));
+  BuildingGpuRecord none = row;
+  none.damageState = kDamageNoResult;
+  CHECK(packRgb(buildingRowColor(none, ColorMode::DamageState, 0, {}, {})) == packRgb(kNoResultColor));
+  BuildingGpuRecord noLoss = row;
+  noLoss.lossCode = -1.0f;
+  CHECK(packRgb(buildingRowColor(noLoss, ColorMode::ModerateOrWorse, 0, {}, {})) == packRgb(kNoResultColor));
+  BuildingGpuRecord dim = row;
+  dim.flags = static_cast<float>(kFlagDimmed);
+  const Rgb d = buildingRowColor(dim, ColorMode::DamageState, 0, {}, {});
+  CHECK(std::abs(d.r - (kDamagePalette[2].r + (kDimmedColor.r - kDamagePalette[2].r) * 0.85f)) < 1e-5f);
+  BuildingGpuRecord selected = row;
+  selected.flags = static_cast<float>(kFlagSelected);
+  CHECK(packRgb(buildingRowColor(selected, ColorMode::DamageState, 0, {}, {})) !=
+        packRgb(buildingRowColor(row, ColorMode::DamageState, 0, {}, {})));
+  // Animated floor by floor: its largest storey drift now (1 % between the first two floors).
+  std::vector<FloorGpuRecord> floors(3);
+  floors[1].dxMeters = 0.03f;  // 3 m storeys: 1 % drift
+  floors[2].dxMeters = 0.03f;
+  BuildingGpuRecord moving = row;
+  moving.floorBase = 0.0f;
+  moving.storeys = 2.0f;
+  CHECK(packRgb(buildingRowColor(moving, ColorMode::CurrentDrift, 0, {}, floors)) == packRgb(kDamagePalette[3]));
+}

@@ -47,16 +47,24 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   quality_.slowFrameMs = governor_.options().slowFrameMs;
   quality_.fastFrameMs = governor_.options().fastFrameMs;
 
-  std::string error;
-  if (!browser::createWebGl2Context(kCanvas, browser::GlContextOptions{quality_.antialias}, error)) {
-    browser::notifyFatal(error);
-    return false;
-  }
-  quality_.msaaSamples = browser::drawingBufferSamples();
-  device_ = std::make_unique<GlRenderDevice>();
-  if (!device_->ok()) {
-    browser::notifyFatal("The graphics shaders could not be built on this device: " + device_->error());
-    return false;
+  map2d_ = options.map2d;
+  if (map2d_) {
+    // No WebGL2: the scene chooses, loads and culls tiles as for the 3D view, draws nothing; the
+    // page draws the 2D city (map2d()) and the panels as HTML.
+    device_ = std::make_unique<NullRenderDevice>();
+  } else {
+    std::string error;
+    if (!browser::createWebGl2Context(kCanvas, browser::GlContextOptions{quality_.antialias}, error)) {
+      browser::notifyFatal(error);
+      return false;
+    }
+    quality_.msaaSamples = browser::drawingBufferSamples();
+    auto gl = std::make_unique<GlRenderDevice>();
+    if (!gl->ok()) {
+      browser::notifyFatal("The graphics shaders could not be built on this device: " + gl->error());
+      return false;
+    }
+    device_ = std::move(gl);
   }
 
   IMGUI_CHECKVERSION();
@@ -72,10 +80,17 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   // of about 7:1 to the light panel, where the light theme's own pale blue has about 2.5:1.
   style.Colors[ImGuiCol_NavHighlight] = ImVec4(0.0f, 0.25f, 0.70f, 1.0f);
   ui::imguiBrowserInit();
-  uiRenderer_ = std::make_unique<GlImGuiRenderer>();
-  if (!uiRenderer_->ok()) {
-    browser::notifyFatal("The panels' shaders could not be built on this device: " + uiRenderer_->error());
-    return false;
+  if (map2d_) {
+    // The panels still run (the accessible copy, uiText(), the exports) but are not drawn.
+    unsigned char* pixels = nullptr;
+    int w = 0, h = 0;
+    io.Fonts->GetTexDataAsAlpha8(&pixels, &w, &h);
+  } else {
+    uiRenderer_ = std::make_unique<GlImGuiRenderer>();
+    if (!uiRenderer_->ok()) {
+      browser::notifyFatal("The panels' shaders could not be built on this device: " + uiRenderer_->error());
+      return false;
+    }
   }
 
   viewer_ = std::make_unique<Viewer>(*device_);
@@ -94,7 +109,7 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
   if (!options.playing) viewer_->pause();
   pendingSelect_ = options.select;
   if (options.filters && viewer_->city() != nullptr) viewer_->city()->setFilters(*options.filters);
-  input_ = std::make_unique<BrowserInput>(kCanvas);
+  if (!map2d_) input_ = std::make_unique<BrowserInput>(kCanvas);
   PixelRatioRules pixelRules;
   pixelRules.narrowWidthCss = static_cast<double>(ControlPanel::kNarrowWidthCss);
   pixelRatio_ = PixelRatioGovernor(pixelRules);
@@ -106,7 +121,9 @@ bool App::start(const AppOptions& options, const std::vector<std::string>& start
 void App::dispatchInput() {
   std::vector<InputEvent> events = std::move(deferred_);
   deferred_.clear();
-  for (InputEvent& e : input_->drain()) events.push_back(std::move(e));
+  if (input_) {
+    for (InputEvent& e : input_->drain()) events.push_back(std::move(e));
+  }
 
   // A release of something pressed in this frame waits for the next one (ImGui samples input once
   // a frame), and so do the events after it, to keep their order.
@@ -381,7 +398,7 @@ bool App::pacedForFirstView(double now) const {
   // 2.1 s). Never for more than kFirstViewPacingSeconds.
   constexpr double kFirstViewFps = 5.0;
   constexpr double kFirstViewPacingSeconds = 15.0;
-  if (readySent_ || viewer_->city() == nullptr || input_->pending()) return false;
+  if (readySent_ || viewer_->city() == nullptr || (input_ && input_->pending())) return false;
   if (now - startSeconds_ > kFirstViewPacingSeconds) return false;
   return now - lastFrameSeconds_ < 1.0 / kFirstViewFps;
 }
@@ -402,14 +419,22 @@ void App::frame(bool forced) {
   ui::imguiBrowserNewFrame(canvas.cssWidth, canvas.cssHeight, canvas.devicePixelRatio, dt);
   ImGui::NewFrame();
   dispatchInput();
-  input_->setUiWantsKeyboard(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
+  if (input_) input_->setUiWantsKeyboard(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
 
   // The city's first view is framed beside the panel as it was last drawn.
   viewer_->setFramingInsetCss(panel_.panelRightCss(),
                               ControlPanel::narrowLayout(canvas.cssWidth)
                                   ? 0.0
                                   : ControlPanel::widestPanelRightCss(static_cast<float>(canvas.cssWidth)));
+  // The 2D city is seen from straight above, north up.
+  const auto topDown = [this] {
+    if (!map2d_) return;
+    viewer_->camera().pitchDeg = 90.0;
+    viewer_->camera().headingDeg = 0.0;
+  };
+  topDown();
   viewer_->frame(dt);
+  topDown();
 
   // The shareable view's time and selection, once the city is there to apply them to.
   if ((pendingTime_ || !pendingSelect_.empty()) && viewer_->settled()) {
@@ -441,7 +466,7 @@ void App::frame(bool forced) {
   panel_.setCursor(cursor_);
   panel_.draw(*viewer_, widgets, memory, host_);
   ImGui::Render();
-  drawPanels(now);
+  if (uiRenderer_) drawPanels(now);
   mirror_.endFrame();
   focusedControl_ = ui::imguiBrowserFocusedControl();
 

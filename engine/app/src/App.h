@@ -17,6 +17,8 @@
 #include "qv/quality/PanelCache.h"
 #include "qv/render/GlImGuiRenderer.h"
 #include "qv/render/GlRenderDevice.h"
+#include "qv/scene/Map2d.h"
+#include "qv/scene/NullRenderDevice.h"
 #include "qv/scene/PixelRatio.h"
 #include "qv/scene/TouchGesture.h"
 #include "qv/scene/Viewer.h"
@@ -44,6 +46,15 @@ class App {
   void frame(bool forced = false);
 
   [[nodiscard]] Viewer& viewer() { return *viewer_; }
+  /// Without WebGL2 (--map2d): no 3D view, no panels drawn on the canvas; the page draws the 2D
+  /// city from map2d() and the panels as HTML, and owns the pointer and the keys.
+  [[nodiscard]] bool map2dMode() const { return map2d_; }
+  /// This frame's 2D map (qv/scene/Map2d.h), remade on each call.
+  const Map2dFrame& map2d() {
+    viewer_->map2d(map2dFrame_);
+    return map2dFrame_;
+  }
+  [[nodiscard]] const Map2dFrame& lastMap2d() const { return map2dFrame_; }
   [[nodiscard]] const std::string& uiText() const { return mirror_.text(); }
   /// The panels' accessible outline as JSON, and its revision (TextMirror::outlineJson).
   [[nodiscard]] const std::string& uiOutlineJson() const { return mirror_.outlineJson(); }
@@ -78,7 +89,9 @@ class App {
   /// True when this animation frame is skipped: the first view is loading (see the definition).
   [[nodiscard]] bool pacedForFirstView(double now) const;
 
-  std::unique_ptr<GlRenderDevice> device_;
+  std::unique_ptr<RenderDevice> device_;  // a GlRenderDevice, or a NullRenderDevice without WebGL2
+  bool map2d_ = false;
+  Map2dFrame map2dFrame_;
   std::unique_ptr<GlImGuiRenderer> uiRenderer_;
   BrowserFetcher fetcher_;
   bool benchSent_ = false;

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "App.h"
 #include "qv/core/JsonWriter.h"
@@ -128,6 +129,38 @@ EMSCRIPTEN_KEEPALIVE const char* qv_building(const char* id) {
 }
 
 /// Draws a frame now (quakeview.screenshot() then reads the canvas in the same task).
+/// The 2D city without WebGL2 (App::map2d, qv/scene/Map2d.h): qv_map2d() makes this frame's shapes
+/// and returns where their floats start in the heap, qv_map2d_floats() how many there are.
+EMSCRIPTEN_KEEPALIVE int qv_map2d_mode() {
+  return gApp != nullptr && gApp->map2dMode() ? 1 : 0;
+}
+EMSCRIPTEN_KEEPALIVE const float* qv_map2d() {
+  if (gApp == nullptr) return nullptr;
+  return gApp->map2d().data.data();
+}
+EMSCRIPTEN_KEEPALIVE int qv_map2d_floats() {
+  if (gApp == nullptr) return 0;
+  return static_cast<int>(gApp->lastMap2d().data.size());  // of the last qv_map2d()
+}
+
+/// The palette for the 2D city's legend (qv/scene/Palette.h): {"ramp": [5 stops], "tags": [green,
+/// yellow, red], "noResult", "dimmed", "selected"}, each "#rrggbb".
+EMSCRIPTEN_KEEPALIVE const char* qv_palette_json() {
+  const auto hex = [](qv::Rgb c) {
+    char buffer[8];
+    std::snprintf(buffer, sizeof buffer, "#%06x", qv::packRgb(c));
+    return std::string(buffer);
+  };
+  qv::JsonWriter w;
+  w.beginObject().key("ramp").beginArray();
+  for (const qv::Rgb& c : qv::kDamagePalette) w.value(hex(c));
+  w.endArray().key("tags").beginArray();
+  for (const qv::Rgb& c : qv::kTagPalette) w.value(hex(c));
+  w.endArray().field("noResult", hex(qv::kNoResultColor)).field("dimmed", hex(qv::kDimmedColor));
+  w.field("selected", hex(qv::kSelectedColor)).endObject();
+  return hand(w.take());
+}
+
 EMSCRIPTEN_KEEPALIVE void qv_draw_now() {
   if (gApp != nullptr) gApp->frame(true);
 }

@@ -9,7 +9,7 @@
 namespace qv {
 namespace {
 
-constexpr std::array<AppArgument, 17> kArguments = {{
+constexpr std::array<AppArgument, 18> kArguments = {{
     {"--data", ArgumentSource::UrlQuery, "data", true},
     {"--scene", ArgumentSource::UrlQuery, "scene", true},
     {"--no-antialias", ArgumentSource::UrlQuery, "aa", false},
@@ -27,6 +27,7 @@ constexpr std::array<AppArgument, 17> kArguments = {{
     {"--allow-origin", ArgumentSource::Shell, "", true},
     {"--shell-error", ArgumentSource::Shell, "", true},
     {"--webgl-renderer", ArgumentSource::Shell, "", true},
+    {"--map2d", ArgumentSource::Shell, "", false},
 }};
 
 const AppArgument* findArgument(std::string_view argument) {
@@ -269,6 +270,8 @@ AppOptions parseAppOptions(const std::vector<std::string>& args, std::vector<std
     const AppArgument* a = findArgument(args[i]);
     if (a == nullptr) {
       errors.push_back("Ignored unknown engine argument '" + shown(args[i]) + "'.");
+    } else if (a->argument == "--map2d") {
+      options.map2d = true;
     } else if (!a->takesValue) {
       // The flags: --no-antialias (?aa=0) and --antialias (?aa=1); the later one wins.
       options.antialiasForced = a->argument == "--antialias";

@@ -53,6 +53,10 @@ std::span<FloorGpuRecord> BuildingTable::floors(std::uint32_t first, std::uint32
   return std::span(floorRows_).subspan(first, count);
 }
 
+std::span<const FloorGpuRecord> BuildingTable::floors(std::uint32_t first, std::uint32_t count) const {
+  return std::span<const FloorGpuRecord>(floorRows_).subspan(first, count);
+}
+
 std::optional<std::uint32_t> BuildingTable::reserveSeries(std::uint32_t count) {
   if (count == 0) return std::nullopt;
   const auto first = seriesSlots_->allocate(count);

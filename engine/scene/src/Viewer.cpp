@@ -433,6 +433,13 @@ double Viewer::metresPerCssPixel() const {
          static_cast<double>(view.pixelsPerMeterAt(static_cast<float>(camera_.distance)));
 }
 
+void Viewer::map2d(Map2dFrame& out) const {
+  out.clear();
+  if (!city_) return;
+  const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
+  city_->map2d(view, widthPixels_ > 0 ? widthCss_ / widthPixels_ : 1.0, shownColorMode(), time(), out);
+}
+
 std::optional<glm::dvec2> Viewer::worldToScreen(double x, double y, double z) const {
   const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
   const auto p = view.project(glm::vec3(static_cast<float>(x), static_cast<float>(y), static_cast<float>(z)));

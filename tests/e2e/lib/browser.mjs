@@ -60,7 +60,9 @@ const BASE_FLAGS = [
   '--disable-extensions',
 ];
 
-/// options.webgl === false launches with WebGL disabled (to test the fallback message).
+/// options.webgl === false launches without WebGL2, as on an office machine without a GPU: Chromium
+/// without its software renderer, Firefox with its default preferences (its WebGL needs a GPU or
+/// webgl.force-enabled).
 /// options.viewport {width, height} (CSS px, default 1280 x 720) and options.deviceScaleFactor
 /// (default 1) size the page; options.touch === true emulates a touch device (hasTouch and
 /// isMobile: touch events, page.touchscreen, swipe(); in Firefox without a mobile viewport, see
@@ -75,8 +77,11 @@ async function launchChromium(options) {
     throw new Error(`Chromium not found at ${CHROMIUM}: run scripts/setup.sh (Debian package chromium)`);
   }
   const userDataDir = fs.mkdtempSync(path.join(os.tmpdir(), 'quakeview-chromium-'));
-  const args = [...BASE_FLAGS];
-  if (options.webgl === false) args.push('--disable-webgl', '--disable-3d-apis');
+  // Without WebGL: a machine with no GPU where Chromium's software fallback is gone (no SwiftShader
+  // flags, software rasterizer off), as the page meets it on a virtual desktop.
+  const args = options.webgl === false
+    ? [...BASE_FLAGS.filter((f) => !/swiftshader/.test(f)), '--disable-software-rasterizer']
+    : [...BASE_FLAGS];
   const context = await chromium.launchPersistentContext(userDataDir, {
     executablePath: CHROMIUM,
     headless: true,
@@ -112,8 +117,7 @@ async function launchFirefox(options) {
     'browser.download.panel.shown': true,
     'browser.helperApps.neverAsk.saveToDisk': 'text/csv,application/geo+json,application/json,text/plain,application/octet-stream',
   };
-  if (options.webgl === false) prefs['webgl.disabled'] = true;
-  else prefs['webgl.force-enabled'] = true;
+  if (options.webgl !== false) prefs['webgl.force-enabled'] = true;
   const touch = options.touch === true;
   if (touch) {
     // BiDi's emulation.setTouchOverride is not in Firefox ESR 153: these give the page a touch screen.

@@ -37,6 +37,9 @@ struct AppOptions {
   /// The WebGL renderer's name as the shell's probe read it (UNMASKED_RENDERER_WEBGL or RENDERER);
   /// empty when unknown.
   std::string webGlRenderer;
+  /// --map2d (the shell, when no WebGL2 context can be made): no 3D view; the page draws the 2D
+  /// city (qv/scene/Map2d.h) and the panels as HTML.
+  bool map2d = false;
   double benchSeconds = 0.0;  ///< > 0: run the benchmark flight for this long
   CitySceneOptions city;      ///< memoryBudgetBytes and the data origin policy set here
   // The shareable view (from the URL hash), applied once the city is there.

@@ -57,6 +57,7 @@ class BuildingTable {
   void releaseFloors(std::uint32_t first, std::uint32_t count);
   /// Floor rows [first, first + count) of reserved rows (written every frame by the animation).
   std::span<FloorGpuRecord> floors(std::uint32_t first, std::uint32_t count);
+  [[nodiscard]] std::span<const FloorGpuRecord> floors(std::uint32_t first, std::uint32_t count) const;
 
   /// Reserves `count` (> 0) consecutive series samples; the first, or nullopt when full.
   std::optional<std::uint32_t> reserveSeries(std::uint32_t count);

@@ -31,6 +31,7 @@
 #include "qv/scene/Fetcher.h"
 #include "qv/scene/FileLoader.h"
 #include "qv/scene/FrameStats.h"
+#include "qv/scene/Map2d.h"
 #include "qv/scene/RenderDevice.h"
 #include "qv/scene/SceneClock.h"
 #include "qv/scene/ViewConsequences.h"
@@ -215,6 +216,9 @@ class CityScene {
   /// after a failure (consequencesFailed) and for responses without them.
   [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return index_.consequences(); }
   [[nodiscard]] bool consequencesFailed() const { return index_.consequencesFailed(); }
+  /// The 2D map's shapes (qv/scene/Map2d.h) of the buildings the last frame culled in view (its
+  /// `view`, whose pixels are `cssPerPixel` CSS pixels), coloured in `mode` at scene time `t`.
+  void map2d(const CameraView& view, double cssPerPixel, ColorMode mode, double t, Map2dFrame& out) const;
   /// The situation report (qv/scene/Report.h) from the city's files, as `quakeview-prep report`
   /// makes it; nullopt while the search index, its response summary or the consequence totals are
   /// still on their way (a file that failed is left out, and the report says what is missing).

@@ -43,6 +43,8 @@ class Viewer {
   /// panel shows it beside the manifest's own name.
   [[nodiscard]] const std::string& dataSource() const { return dataSource_; }
   [[nodiscard]] CityScene* city() { return city_.get(); }
+  /// The 2D map of the last frame's view (qv/scene/Map2d.h; empty without a city).
+  void map2d(Map2dFrame& out) const;
   [[nodiscard]] const CityScene* city() const { return city_.get(); }
 
   /// Drawing-buffer size in device pixels, and the canvas size in CSS pixels (input coordinates).
