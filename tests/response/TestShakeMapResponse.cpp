@@ -232,6 +232,16 @@ TEST_CASE("response under the NYC ShakeMap: a record suite, HAZUS probabilities 
   CHECK(list.at(0)["buildings"].get_uint64().value() == 2);
   CHECK(list.at(1)["buildings"].get_uint64().value() == 3);
   CHECK(number(list.at(0)["occupants"]["expected"]) == Approx(westOccupants).epsilon(1e-4));
+  // Each district keeps its outline for maps: the polygon's outer ring, in degrees.
+  const auto outline = list.at(0)["outline"].get_array().value();
+  REQUIRE(outline.size() == 1);
+  const auto ring = outline.at(0).get_array().value();
+  CHECK(ring.size() >= 4);
+  for (const auto point : ring) {
+    const auto lonLat = point.get_array().value();
+    CHECK((number(lonLat.at(0)) > -75.0 && number(lonLat.at(0)) < -73.0));
+    CHECK((number(lonLat.at(1)) > 40.0 && number(lonLat.at(1)) < 41.5));
+  }
   // The response files never carry the grid's path on this machine.
   CHECK(readText(city.dir + "/city/tileset.json").find(kShared) == std::string::npos);
 }

@@ -523,7 +523,7 @@ TEST_CASE("The consequences file round-trips the totals and refuses what it cann
   totals.city.injuries[3] = {0.125, 0.0, 1.0};
   totals.city.tags[2] = {2.5, 0.0, 5.0};
   totals.city.damaged = {4.75, 2.0, 8.0};
-  totals.districts.push_back({"Lower \"East\" Side", totals.city});
+  totals.districts.push_back({"Lower \"East\" Side", totals.city, {{{-74.0, 40.7}, {-73.99, 40.7}, {-73.99, 40.71}}}});
   const std::string json = consequencesToJson(totals);
   CHECK(json.find("\"deaths\":{\"expected\":0.125") != std::string::npos);
   const auto parsed = parseConsequences(json, "consequences.json");
@@ -536,6 +536,16 @@ TEST_CASE("The consequences file round-trips the totals and refuses what it cann
   REQUIRE(parsed->districts.size() == 1);
   CHECK(parsed->districts[0].name == "Lower \"East\" Side");
   CHECK(parsed->districts[0].totals.tags[2].high == 5.0);
+  REQUIRE(parsed->districts[0].outline.size() == 1);
+  REQUIRE(parsed->districts[0].outline[0].size() == 3);
+  CHECK(parsed->districts[0].outline[0][1][0] == -73.99);
+  CHECK(parsed->districts[0].outline[0][2][1] == 40.71);
+  // An outline point out of range or a ring of two points is refused, naming the district.
+  std::string badOutline = json;
+  badOutline.replace(badOutline.find("40.71"), 5, "140.7");
+  const auto refusedOutline = parseConsequences(badOutline, "consequences.json");
+  REQUIRE_FALSE(refusedOutline.ok());
+  CHECK_THAT(refusedOutline.error(), Catch::Contains("district Lower \"East\" Side") && Catch::Contains("outline"));
   CHECK(parsed->city.damaged.expected == 4.75);
   CHECK(parsed->city.damaged.high == 8.0);
   // A file written before "moderate_or_worse" existed: the states' sum, its interval unknown.

@@ -289,7 +289,7 @@ TEST_CASE("The view's consequence sums: exact expected values, a normal 90 % int
   seismic::ConsequenceTotals file;
   file.timeOfDay = "night";
   file.city = t;
-  file.districts.push_back({"=Downtown", t});
+  file.districts.push_back({"=Downtown", t, {}});
   const ViewArea area{-74.0123, 40.7012, -73.98115, 40.72513};
   const auto rows = readCsv(exportConsequencesCsv(file, &t, nullptr, &area));
   REQUIRE(rows.size() == 4);

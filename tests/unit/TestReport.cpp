@@ -64,7 +64,7 @@ struct ReportCity {
     c.key = "URML";
     totals.byStructure.push_back(c);
     totals.inferred = seismic::InferredCounts{4, 3, 2, 1, 4, 4};
-    totals.districts.push_back({"Old <Town>", totals.city});
+    totals.districts.push_back({"Old <Town>", totals.city, {{{0.0, 0.0}, {0.003, 0.0}, {0.003, 0.002}, {0.0, 0.002}}}});
 
     const char* names[4] = {"General Hospital", "<script>alert(1)</script> Fire Hall", "Flat block", "School No. 5"};
     const char* kinds[4] = {"hospital", "fire_station", "", "school"};
@@ -154,6 +154,10 @@ TEST_CASE("The situation report says what happened, how sure it is and where it 
   CHECK(html.find("<svg") != std::string::npos);
   CHECK(occurrences(html, "<circle") == 2);
   CHECK(html.find(">N</text>") != std::string::npos);
+  // The district's outline and name on the map, clipped to it.
+  CHECK(html.find("clip-path=\"url(#qv-report-map-clip)\" fill=\"none\" stroke=\"#1d3557\"") != std::string::npos);
+  CHECK(html.find(">Old &lt;Town&gt;</text>") != std::string::npos);
+  CHECK(html.find("Blue lines: the districts of the table below.") != std::string::npos);
   // Inferred values counted, limits and sources stated, the provenance line at the end.
   CHECK(html.find("structural type: 3 of 4 (75 %)") != std::string::npos);
   CHECK(html.find("Patterns across a city, not a safety assessment") != std::string::npos);

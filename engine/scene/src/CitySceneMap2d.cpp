@@ -10,7 +10,9 @@
 namespace qv {
 
 void CityScene::map2d(const CameraView& view, double cssPerPixel, ColorMode mode, double t, Map2dFrame& out) const {
+  const std::size_t lastSize = out.data.size();
   out.clear();
+  out.data.reserve(lastSize);
   if (!tileset_) return;
   const glm::mat4& vp = view.viewProjection();
   const auto width = static_cast<float>(view.width());
@@ -35,6 +37,17 @@ void CityScene::map2d(const CameraView& view, double cssPerPixel, ColorMode mode
     if (!tr.loaded) continue;
     const LoadedTile& tile = *tr.loaded;
     const CityTile& data = tile.data;
+    if (tile.mapPoints.size() != tile.tree.order().size()) {
+      tile.mapPoints.resize(tile.tree.order().size());
+      for (std::size_t p = 0; p < tile.mapPoints.size(); ++p) {
+        const std::uint32_t b = tile.tree.order()[p];
+        if (b >= data.buildings.size()) continue;
+        const BuildingAttributes& a = data.buildings[b].attributes;
+        tile.mapPoints[p] = {static_cast<float>(data.originX + a.centroidX),
+                             static_cast<float>(data.originY + a.centroidY),
+                             std::sqrt(std::max(a.footprintAreaM2, 0.0f))};
+      }
+    }
     for (const IndexRange& range : tr.inView) {
       for (std::uint32_t p = range.begin; p < range.end; ++p) {
         const std::uint32_t b = tile.tree.order()[p];
@@ -48,10 +61,10 @@ void CityScene::map2d(const CameraView& view, double cssPerPixel, ColorMode mode
         }
         const auto color = static_cast<float>(packRgb(buildingRowColor(row, mode, t, series, floors)));
         const TileBuilding& building = data.buildings[b];
-        const BuildingAttributes& a = building.attributes;
-        if (std::sqrt(std::max(a.footprintAreaM2, 0.0f)) * cssPerMetre < 1.5f) {
+        const LoadedTile::MapPoint& point = tile.mapPoints[p];
+        if (point.side * cssPerMetre < 1.5f) {
           float px = 0, py = 0;
-          if (!project(data.originX + a.centroidX, data.originY + a.centroidY, px, py)) continue;
+          if (!project(point.x, point.y, px, py)) continue;
           if (px < 0 || py < 0 || px > width * scale || py > height * scale) continue;
           out.data.push_back(color);
           out.data.push_back(1.0f);

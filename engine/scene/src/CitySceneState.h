@@ -51,6 +51,13 @@ struct CityScene::LoadedTile : TileContent {
   MeshHandle prismMesh;
   TileIndexRuns prismRuns;
   bool prismsTried = false;
+  // The 2D map's per-position summary of each building (CityScene::map2d), made when first drawn:
+  // its centroid in the city frame and the side of a square of its footprint's area, in the tree's
+  // order so that a frame reads them in sequence.
+  struct MapPoint {
+    float x = 0, y = 0, side = 0;
+  };
+  mutable std::vector<MapPoint> mapPoints;
 };
 
 struct CityScene::TileRuntime {

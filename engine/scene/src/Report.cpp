@@ -10,6 +10,7 @@
 
 #include "qv/core/Text.h"
 #include "qv/format/FacilityCategory.h"
+#include "qv/geometry/GeoFrame.h"
 #include "qv/scene/Export.h"
 #include "qv/scene/Palette.h"
 #include "qv/seismic/Loss.h"
@@ -294,6 +295,51 @@ void writeMap(std::string& out, const ReportInputs& in) {
   out += "<g shape-rendering=\"crispEdges\">\n";
   for (const auto& [color, d] : paths) out += "<path fill=\"" + color + "\" d=\"" + d + "\"/>\n";
   out += "</g>\n";
+  // District outlines and names (where the response kept them), clipped to the map.
+  if (in.consequences != nullptr && in.tileset != nullptr) {
+    const GeoFrame geo(in.tileset->originLon, in.tileset->originLat);
+    const auto toMap = [&](const std::array<double, 2>& lonLat, double& px, double& py) {
+      const auto m = geo.forward(LonLat{lonLat[0], lonLat[1]});
+      if (!m) return false;
+      px = margin + (m->x - minX) / cell * unit;
+      py = margin + (rows - (m->y - minY) / cell) * unit;
+      return true;
+    };
+    std::string lines, labels;
+    std::size_t named = 0;
+    for (const auto& district : in.consequences->districts) {
+      double sumX = 0, sumY = 0, weight = 0;
+      for (const auto& ring : district.outline) {
+        std::string d;
+        for (const auto& point : ring) {
+          double px = 0, py = 0;
+          if (!toMap(point, px, py)) continue;
+          d += (d.empty() ? "M" : "L") + fmt("%.1f", px) + " " + fmt("%.1f", py);
+          sumX += px;
+          sumY += py;
+          weight += 1;
+        }
+        if (!d.empty()) lines += "<path d=\"" + d + "Z\"/>\n";
+      }
+      // The name at the middle of its outline's points, for the first 40 districts.
+      if (weight > 0 && named < 40) {
+        ++named;
+        labels += fmt("<text x=\"%.1f\" ", sumX / weight) + fmt("y=\"%.1f\">", sumY / weight) + esc(district.name) +
+                  "</text>\n";
+      }
+    }
+    if (!lines.empty()) {
+      out += fmt("<clipPath id=\"qv-report-map-clip\"><rect x=\"%.0f\" ", margin) + fmt("y=\"%.0f\" ", margin) +
+             fmt("width=\"%.1f\" ", width) + fmt("height=\"%.1f\"/></clipPath>\n", height);
+      out += "<g clip-path=\"url(#qv-report-map-clip)\" fill=\"none\" stroke=\"#1d3557\" stroke-width=\"2\">\n" +
+             lines + "</g>\n";
+      out +=
+          "<g clip-path=\"url(#qv-report-map-clip)\" font-family=\"sans-serif\" font-size=\"15\" "
+          "font-weight=\"bold\" fill=\"#1d3557\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\" "
+          "text-anchor=\"middle\">\n" +
+          labels + "</g>\n";
+    }
+  }
   // Essential facilities: small black-edged circles.
   for (std::size_t i = 0; i < in.buildings.size(); ++i) {
     if (in.buildings[i].facility != FacilityCategory::Essential) continue;
@@ -320,6 +366,10 @@ void writeMap(std::string& out, const ReportInputs& in) {
       "<p class=\"small\">Colour: the mean probability of moderate structural damage or worse (HAZUS 5.1) of the "
       "buildings in each square of " +
       lengthLabel(std::round(cell)) + ": ";
+  bool hasOutlines = false;
+  if (in.consequences != nullptr) {
+    for (const auto& d : in.consequences->districts) hasOutlines = hasOutlines || !d.outline.empty();
+  }
   // Swatches as small SVG pictures (presentation attributes, not style attributes: a page whose
   // Content Security Policy forbids inline styles embeds the report as it is).
   const auto swatch = [](const std::string& color) {
@@ -331,9 +381,11 @@ void writeMap(std::string& out, const ReportInputs& in) {
                            "10&ndash;25 %", "25&ndash;50 %", "50 % or more"};
   for (int k = 0; k < 6; ++k) out += swatch(classColor(k)) + " " + labels[k] + "; ";
   out += swatch(hexColor(kNoResultColor)) + " no result; " + swatch("#aebbc4") +
-         " no buildings. Circles: essential facilities (hospitals, fire and police stations). "
-         "District outlines are not drawn: the city's files keep district totals (below), not their "
-         "boundaries.</p>\n";
+         " no buildings. Circles: essential facilities (hospitals, fire and police stations). " +
+         std::string(hasOutlines ? "Blue lines: the districts of the table below."
+                                 : "No district outlines: the response keeps none (made without districts, or "
+                                   "before outlines were kept).") +
+         "</p>\n";
 }
 
 std::string levelBadge(ImpactLevel level) {

@@ -203,6 +203,17 @@ std::string consequencesToJson(const ConsequenceTotals& totals) {
   for (const ConsequenceTotals::District& d : totals.districts) {
     w.beginObject().field("name", d.name);
     writeLossTotals(w, d.totals);
+    if (!d.outline.empty()) {
+      // Degrees to 1e-6 (about 0.1 m): the outline is for maps.
+      const auto round6 = [](double v) { return std::round(v * 1e6) / 1e6; };
+      w.key("outline").beginArray();
+      for (const auto& ring : d.outline) {
+        w.beginArray();
+        for (const auto& point : ring) w.beginArray().value(round6(point[0])).value(round6(point[1])).endArray();
+        w.endArray();
+      }
+      w.endArray();
+    }
     w.endObject();
   }
   w.endArray();
@@ -260,9 +271,34 @@ Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::st
     object d;
     std::string_view districtName;
     if (e.get(d) || d["name"].get(districtName)) return Error{name + ": a district without a name"};
-    auto t = readTotals(d, name + " district " + std::string(districtName));
+    const std::string where = name + " district " + std::string(districtName);
+    auto t = readTotals(d, where);
     if (!t.ok()) return Error{t.error()};
-    out.districts.push_back({std::string(districtName), *t});
+    ConsequenceTotals::District district{std::string(districtName), *t, {}};
+    array rings;
+    if (d["outline"].get(rings) == simdjson::SUCCESS) {
+      std::size_t points = 0;
+      if (rings.size() > 1000) return Error{where + ": \"outline\" has more than 1,000 rings"};
+      for (element ringElement : rings) {
+        array ring;
+        if (ringElement.get(ring) || ring.size() < 3) {
+          return Error{where + ": each ring of \"outline\" is a list of at least 3 [lon, lat] points"};
+        }
+        points += ring.size();
+        if (points > 20000) return Error{where + ": \"outline\" has more than 20,000 points"};
+        auto& kept = district.outline.emplace_back();
+        for (element pointElement : ring) {
+          array point;
+          double lon = 0, lat = 0;
+          if (pointElement.get(point) || point.size() != 2 || point.at(0).get_double().get(lon) ||
+              point.at(1).get_double().get(lat) || !(std::abs(lon) <= 180.0) || !(std::abs(lat) <= 90.0)) {
+            return Error{where + ": an \"outline\" point is not [lon, lat] in degrees"};
+          }
+          kept.push_back({lon, lat});
+        }
+      }
+    }
+    out.districts.push_back(std::move(district));
   }
   auto byOccupancy = readClasses(root, "by_occupancy", "class", name);
   if (!byOccupancy.ok()) return Error{byOccupancy.error()};

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "qv/prep/Files.h"
+#include "qv/prep/Simplify.h"
 
 namespace qv::prep {
 namespace {
@@ -114,6 +115,38 @@ Result<Districts> parseDistricts(std::string_view json, const std::string& name)
   }
   if (out.names.empty()) return Error{name + ": no districts in the file"};
   return out;
+}
+
+std::vector<std::vector<std::array<double, 2>>> Districts::outline(std::size_t d) const {
+  std::vector<std::vector<std::array<double, 2>>> out;
+  if (d >= areas.size()) return out;
+  // Local metres about the district's first point (equirectangular: enough to simplify a few km).
+  double lon0 = 0, lat0 = 0;
+  for (const Polygon& polygon : areas[d]) {
+    if (!polygon.empty() && !polygon[0].empty()) {
+      lon0 = polygon[0][0][0];
+      lat0 = polygon[0][0][1];
+      break;
+    }
+  }
+  const double mx = 111320.0 * std::cos(lat0 * 3.14159265358979 / 180.0), my = 110540.0;
+  for (double tolerance = 5.0; tolerance < 1e6; tolerance *= 2.0) {
+    out.clear();
+    std::size_t points = 0;
+    for (const Polygon& polygon : areas[d]) {
+      if (polygon.empty() || polygon[0].size() < 3) continue;
+      std::vector<glm::dvec2> ring;
+      for (const auto& p : polygon[0]) ring.emplace_back((p[0] - lon0) * mx, (p[1] - lat0) * my);
+      if (ring.size() > 1 && ring.front() == ring.back()) ring.pop_back();  // closed rings repeat the first point
+      const std::vector<glm::dvec2> simple = simplifyRing(ring, tolerance);
+      if (simple.size() < 3) continue;
+      auto& kept = out.emplace_back();
+      for (const glm::dvec2& q : simple) kept.push_back({lon0 + q.x / mx, lat0 + q.y / my});
+      points += kept.size();
+    }
+    if (points <= 20000 && out.size() <= 1000) return out;
+  }
+  return {};
 }
 
 LossClass LossClass::of(const seismic::Exposure& exposure) {

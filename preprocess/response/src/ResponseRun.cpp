@@ -871,7 +871,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
       }
       seismic::LossTotals t = seismic::totalLosses(inside);
       t.byTime = seismic::casualtiesByTimeOfDay(inside);
-      totals.districts.push_back({districts->names[d], std::move(t)});
+      totals.districts.push_back({districts->names[d], std::move(t), districts->outline(d)});
     }
   }
   report.losses = totals.city;

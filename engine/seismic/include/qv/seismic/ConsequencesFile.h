@@ -3,6 +3,7 @@
 // and read by `info` and the viewer. One codec for writer and readers.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -52,6 +53,9 @@ struct ConsequenceTotals {
   struct District {
     std::string name;
     LossTotals totals;
+    /// Its boundary for maps: the outer ring of each of its polygons, (lon, lat) degrees, simplified
+    /// to a few metres; empty when the file keeps none (files before it).
+    std::vector<std::vector<std::array<double, 2>>> outline;
   };
   std::vector<District> districts;
   /// The city by HAZUS occupancy class and by the modelled structural type (buildings whose type is
@@ -63,14 +67,15 @@ struct ConsequenceTotals {
 
 /// {"format": "quakeview-consequences", "version": 1, "timeOfDay": ..., "interval": ..., ["population":
 /// {"night": N, "day": N, "source": "..."} (members given only),] "city":
-/// {totals}, "districts": [{"name": ..., totals}, ...], ["by_occupancy": [{"class": "RES3", class
-/// totals}, ...], "by_structure": [{"type": "C1", class totals}, ...], "inferred": {"buildings",
-/// "structural_type", "code_era", "use", "occupants", "replacement_value"}]} with totals as
+/// {totals}, "districts": [{"name": ..., totals[, "outline": [[[lon, lat], ...], ...]]}, ...], ["by_occupancy":
+/// [{"class": "RES3", class totals}, ...], "by_structure": [{"type": "C1", class totals}, ...], "inferred":
+/// {"buildings", "structural_type", "code_era", "use", "occupants", "replacement_value"}]} with totals as
 /// writeLossTotals writes them and class totals {"buildings", "damage_states": {"none" .. "complete"},
 /// "moderate_or_worse", "collapsed", "repair_cost_usd", "occupants", "injuries": {"severity_1" ..
 /// "severity_4"}} (expected values, plain numbers).
 std::string consequencesToJson(const ConsequenceTotals& totals);
-/// Errors name `name` and the member at fault. Limits: 10 000 districts.
+/// Errors name `name` and the member at fault. Limits: 10 000 districts; per district outline 1,000
+/// rings and 20,000 points, each ring of at least 3 points within [-180, 180] x [-90, 90].
 Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::string& name);
 
 /// The members of one totals object: "buildings", "damage_states" ({"none": {"expected", "low",

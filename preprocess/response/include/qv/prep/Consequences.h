@@ -22,6 +22,10 @@ struct Districts {
   std::vector<std::vector<Polygon>> areas;  ///< per district, its polygons
   /// The first district containing (lon, lat) (even-odd rule over each polygon's rings), or -1.
   [[nodiscard]] int find(double longitudeDeg, double latitudeDeg) const;
+  /// District `d`'s outline for maps (ConsequenceTotals::District::outline): the outer ring of each
+  /// polygon, simplified (Douglas-Peucker, prep/Simplify.h) to 5 m, more where that leaves over
+  /// 20,000 points in all; rings that vanish are left out.
+  [[nodiscard]] std::vector<std::vector<std::array<double, 2>>> outline(std::size_t d) const;
 };
 
 /// A GeoJSON FeatureCollection of Polygon / MultiPolygon features, each with a string property
