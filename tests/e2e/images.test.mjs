@@ -8,7 +8,7 @@ import fs from 'node:fs';
 import path from 'node:path';
 import zlib from 'node:zlib';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, openSection, settle, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, panelItemInView, settle, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng, luminanceStats } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -123,18 +123,7 @@ test('screenshot() is the view with its caption, paused or playing, and Save ima
     if (browser === 'chromium') {
       await openSection(page, 'All consequences: city, view, districts');
       // Beside "Export totals (CSV)" at the section's end: scrolled into the panel as a person would.
-      let button = null;
-      for (let attempt = 0; attempt < 8; ++attempt) {
-        const layout = await page.evaluate(() => window.quakeview.uiLayout());
-        button = layout.items.find((i) => i.window === 'QuakeView' && i.label === 'Save image (PNG)');
-        const panel = layout.windows.find((w) => w.title === 'QuakeView');
-        assert.ok(button && panel, 'the panel has a Save image button');
-        const centreY = button.y + button.height / 2;
-        if (centreY > panel.y + 20 && centreY < panel.y + panel.height - 10) break;
-        await page.mouse.move(panel.x + panel.width / 2, panel.y + panel.height / 2);
-        await page.mouse.wheel(0, centreY - (panel.y + panel.height / 2));
-        await page.waitForTimeout(300);
-      }
+      const button = await panelItemInView(page, 'Save image (PNG)');
       const downloadPromise = page.waitForEvent('download', { timeout: 15000 });
       await page.mouse.click(button.x + button.width / 2, button.y + button.height / 2);
       const download = await downloadPromise;

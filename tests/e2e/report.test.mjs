@@ -8,7 +8,7 @@ import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, openSection, waitForFunction, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, panelItemInView, waitForFunction, waitReady } from './lib/browser.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
 const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data');
@@ -75,18 +75,7 @@ test('report() is the tool\'s report, its headline the panel\'s, and "Report (HT
     // into the panel as a person would): the same document as a file named for the city and the event.
     if (browser === 'chromium') {
       await openSection(page, 'All consequences: city, view, districts');
-      let button = null;
-      for (let attempt = 0; attempt < 8; ++attempt) {
-        const layout = await page.evaluate(() => window.quakeview.uiLayout());
-        button = layout.items.find((i) => i.window === 'QuakeView' && i.label === 'Report (HTML)');
-        const panel = layout.windows.find((w) => w.title === 'QuakeView');
-        assert.ok(button && panel, 'the panel has a Report button');
-        const centreY = button.y + button.height / 2;
-        if (centreY > panel.y + 20 && centreY < panel.y + panel.height - 10) break;
-        await page.mouse.move(panel.x + panel.width / 2, panel.y + panel.height / 2);
-        await page.mouse.wheel(0, centreY - (panel.y + panel.height / 2));
-        await page.waitForTimeout(300);
-      }
+      const button = await panelItemInView(page, 'Report (HTML)');
       const downloadPromise = page.waitForEvent('download', { timeout: 20000 });
       await page.mouse.click(button.x + button.width / 2, button.y + button.height / 2);
       const download = await downloadPromise;

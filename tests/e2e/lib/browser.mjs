@@ -356,6 +356,24 @@ export async function openSection(page, label) {
   }
 }
 
+/// The panel's control labelled `label` (uiLayout's item), scrolled into the panel first with the
+/// wheel as a person would; throws when the panel has no such control.
+export async function panelItemInView(page, label) {
+  let item = null;
+  for (let attempt = 0; attempt < 8; ++attempt) {
+    const layout = await page.evaluate(() => window.quakeview.uiLayout());
+    item = layout.items.find((i) => i.window === 'QuakeView' && i.label === label);
+    const panel = layout.windows.find((w) => w.title === 'QuakeView');
+    if (!item || !panel) throw new Error(`the panel has no "${label}"`);
+    const centreY = item.y + item.height / 2;
+    if (centreY > panel.y + 20 && centreY < panel.y + panel.height - 10) break;
+    await page.mouse.move(panel.x + panel.width / 2, panel.y + panel.height / 2);
+    await page.mouse.wheel(0, centreY - (panel.y + panel.height / 2));
+    await page.waitForTimeout(300);
+  }
+  return item;
+}
+
 /// Waits for quakeview.ready; resolves to {ok: true} or {ok: false, message}.
 export async function waitReady(page, timeoutMs = 90000) {
   return page.evaluate(async (ms) => {
