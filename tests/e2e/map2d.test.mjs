@@ -8,7 +8,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, waitForFunction, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, swipe, waitForFunction, waitReady } from './lib/browser.mjs';
 import { decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -152,6 +152,50 @@ test('the 2D demo city of 100,000 buildings stays responsive while panning and z
     const zoomed = await page.evaluate(() => window.quakeview.getCamera());
     assert.ok(zoomed.distance < after.camera.distance * 0.7, `the wheel zooms in: ${after.camera.distance} -> ${zoomed.distance}`);
     fs.writeFileSync(path.join(ARTIFACTS, `map2d-demo-zoomed-${browser}.png`), await page.screenshot());
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+test('the 2D city pans with a finger and with the keys, zooms with the keys, and names the building tapped', async (t) => {
+  const { context, close, browser } = await launchBrowser({ webgl: false, touch: true });
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/synth/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await waitForFunction(page, () => (window.quakeview.map2d()?.shapes || 0) > 1000, null, { timeout: 30000 });
+    await page.waitForTimeout(1200);  // fitted to the map
+    const camera = () => page.evaluate(() => window.quakeview.getCamera());
+    // A finger dragged to the left moves the map with it: the view goes east.
+    const start = await camera();
+    await swipe(page, { x: 900, y: 400 }, { x: 700, y: 400 });
+    await page.waitForTimeout(300);
+    const swiped = await camera();
+    t.diagnostic(`${browser}: swipe x ${start.x.toFixed(1)} -> ${swiped.x.toFixed(1)}`);
+    assert.ok(swiped.x > start.x + 10, 'a swipe to the left shows what lies east');
+    // Keys, with the focus on the map: an arrow pans, '+' zooms in.
+    await page.evaluate(() => document.getElementById('canvas').focus());
+    await page.keyboard.press('ArrowUp');
+    await page.keyboard.press('+');
+    await page.waitForTimeout(300);
+    const keyed = await camera();
+    assert.ok(keyed.y > swiped.y, 'ArrowUp shows what lies north');
+    assert.ok(keyed.distance < swiped.distance * 0.9, '+ zooms in');
+    // A tap on a building selects it, and the HTML panel names it.
+    const spot = await page.evaluate(() => {
+      for (let y = 100; y < 660; y += 23) {
+        for (let x = 460; x < 1240; x += 29) {
+          const hit = window.quakeview.pick(x, y);
+          if (hit) return { x, y, id: hit.id };
+        }
+      }
+      return null;
+    });
+    assert.ok(spot, 'a building is on the map');
+    await page.touchscreen.tap(spot.x, spot.y);
+    await waitForFunction(page, (id) => window.quakeview.selection() === id, spot.id, { timeout: 10000 });
+    const label = await page.evaluate((id) => { const b = window.quakeview.building(id); return b && (b.name || b.address || b.id); }, spot.id);
+    await waitForFunction(page, (text) => document.getElementById('qv-panel').innerText.includes(text), label, { timeout: 10000 });
     assert.deepEqual(problems, []);
   } finally {
     await close();
