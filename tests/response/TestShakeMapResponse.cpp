@@ -232,8 +232,17 @@ TEST_CASE("response under the NYC ShakeMap: a record suite, HAZUS probabilities 
   CHECK(list.at(0)["buildings"].get_uint64().value() == 2);
   CHECK(list.at(1)["buildings"].get_uint64().value() == 3);
   CHECK(number(list.at(0)["occupants"]["expected"]) == Approx(westOccupants).epsilon(1e-4));
-  // Each district keeps its outline for maps: the polygon's outer ring, in degrees.
-  const auto outline = list.at(0)["outline"].get_array().value();
+  // Each district keeps its outline for maps in consequences.json: the polygon's outer ring, in degrees.
+  std::string consequencesFile;
+  for (const auto& entry : std::filesystem::directory_iterator(city.dir + "/city")) {
+    if (entry.path().filename().string().rfind("response-", 0) == 0) {
+      consequencesFile = entry.path().string() + "/consequences.json";
+    }
+  }
+  simdjson::dom::parser fileParser;
+  const simdjson::padded_string fileJson = simdjson::padded_string::load(consequencesFile).value();
+  const simdjson::dom::element file = fileParser.parse(fileJson).value();
+  const auto outline = file["districts"].at(0)["outline"].get_array().value();
   REQUIRE(outline.size() == 1);
   const auto ring = outline.at(0).get_array().value();
   CHECK(ring.size() >= 4);

@@ -696,10 +696,15 @@ TEST_CASE("Totals of 100,000 buildings", "[.loss-bench]") {
   const auto t1 = std::chrono::steady_clock::now();
   const LossTotals t = totalLosses(losses);
   const auto t2 = std::chrono::steady_clock::now();
+  const auto byTime = casualtiesByTimeOfDay(losses);
+  const auto t3 = std::chrono::steady_clock::now();
   const double assessS = std::chrono::duration<double>(t1 - t0).count();
   const double totalsS = std::chrono::duration<double>(t2 - t1).count();
-  WARN("assessLoss x 100000: " << assessS << " s; totalLosses: " << totalsS << " s");
+  const double byTimeS = std::chrono::duration<double>(t3 - t2).count();
+  WARN("assessLoss x 100000: " << assessS << " s; totalLosses: " << totalsS << " s; casualtiesByTimeOfDay: " << byTimeS
+                               << " s");
   CHECK(t.buildings == 100000);
+  CHECK(byTime[1].injuries[0].expected == Approx(t.injuries[0].expected));
 #ifdef NDEBUG
   CHECK(totalsS < 2.0);
 #endif
