@@ -216,6 +216,18 @@ ExportProvenance exportProvenance(const Tileset& tileset, const BuildingFilters&
   return p;
 }
 
+bool fromOpenStreetMap(const Tileset& tileset) {
+  for (const std::string& s : tileset.sources) {
+    std::string lower(s);
+    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
+    if (lower.ends_with(".osm") || lower.ends_with(".pbf") || lower.ends_with(".osm.bz2") ||
+        lower.find("openstreetmap") != std::string::npos) {
+      return true;
+    }
+  }
+  return false;
+}
+
 ImageCaption imageCaption(const Tileset& tileset, const BuildingFilters& filters, double timeSeconds,
                           double durationSeconds) {
   const ExportProvenance p = exportProvenance(tileset, filters);
@@ -225,13 +237,7 @@ ImageCaption imageCaption(const Tileset& tileset, const BuildingFilters& filters
   char time[96];
   std::snprintf(time, sizeof time, " | Time: %.1f s of %.1f s", timeSeconds, durationSeconds);
   c.lines.push_back("City: " + (p.city.empty() ? std::string("(unnamed)") : p.city) + time + " | Filter: " + p.filter);
-  bool osm = false;
-  for (const std::string& s : tileset.sources) {
-    std::string lower(s);
-    for (char& ch : lower) ch = static_cast<char>(std::tolower(static_cast<unsigned char>(ch)));
-    osm = osm || lower.ends_with(".osm") || lower.ends_with(".pbf") || lower.ends_with(".osm.bz2") ||
-          lower.find("openstreetmap") != std::string::npos;
-  }
+  const bool osm = fromOpenStreetMap(tileset);
   c.lines.push_back("QuakeView" + (p.method.empty() ? std::string() : " (" + p.method + ")") +
                     ": patterns across a city, not a safety assessment" +
                     (osm ? " | Map data © OpenStreetMap contributors (ODbL)" : ""));

@@ -43,6 +43,10 @@ std::string describeFilters(const BuildingFilters& filters);
 /// The provenance of exports from `tileset` (without a response: shaking "no response computed").
 ExportProvenance exportProvenance(const Tileset& tileset, const BuildingFilters& filters);
 
+/// Whether the city's sources include OpenStreetMap data (.osm, .pbf, .osm.bz2, or named so): its
+/// pictures and reports then carry OpenStreetMap's attribution (ODbL).
+bool fromOpenStreetMap(const Tileset& tileset);
+
 /// The caption a picture of the view carries (quakeview.screenshot(), the panel's "Save image"), so
 /// that an image forwarded alone still says what it shows: its lines, first the shaking statement
 /// (SCENARIO or ACTUAL, as exportProvenance says it) with the earthquake; then the city, the time
