@@ -122,6 +122,20 @@ int stateAt(const std::array<double, 4>& atLeast, double v) {
 
 // The 5th and 95th percentiles of `values` (sorted in place; linear interpolation between order
 // statistics, R's type 7), widened to contain `expected`.
+// Expected people injured at severity 1..4 per occupant present: the damage states' conditional
+// injuries weighted by their probabilities, the complete state split into collapse and not.
+std::array<double, 4> expectedInjuriesPerOccupant(const DamageProbabilities& structural,
+                                                  const ConditionalConsequences& g) {
+  const auto& ps = structural.p;
+  const double c = g.collapseGivenComplete;
+  std::array<double, 4> out{};
+  for (std::size_t s = 0; s < 4; ++s) {
+    for (std::size_t k = 1; k <= 3; ++k) out[s] += ps[k] * g.injuriesPerOccupant[k][s];
+    out[s] += ps[4] * ((1 - c) * g.injuriesPerOccupant[4][s] + c * g.injuriesPerOccupant[5][s]);
+  }
+  return out;
+}
+
 Estimate interval(std::vector<double>& values, double expected) {
   Estimate e;
   e.expected = expected;
@@ -479,13 +493,8 @@ BuildingLoss assessLoss(const Exposure& exposure, double medianPeakDriftRatio, d
 
   // Expected values: sums over states of P(state) x consequence(state).
   const auto& ps = out.structural.p;
-  for (std::size_t s = 0; s < 4; ++s) {
-    double e = 0;
-    for (std::size_t k = 1; k <= 3; ++k) e += ps[k] * g.injuriesPerOccupant[k][s];
-    e += ps[4] * ((1 - collapseGivenComplete) * g.injuriesPerOccupant[4][s] +
-                  collapseGivenComplete * g.injuriesPerOccupant[5][s]);
-    out.injuries[s] = out.occupantsPresent * e;
-  }
+  const std::array<double, 4> perOccupant = expectedInjuriesPerOccupant(out.structural, g);
+  for (std::size_t s = 0; s < 4; ++s) out.injuries[s] = out.occupantsPresent * perOccupant[s];
   for (std::size_t k = 1; k <= 4; ++k) {
     out.repairCostUsd += ps[k] * g.structuralCostUsd[k] + out.nonStructuralDrift.p[k] * g.nsDriftCostUsd[k] +
                          out.nonStructuralAcceleration.p[k] * g.nsAccelerationCostUsd[k];
@@ -567,20 +576,13 @@ LossTotals totalLosses(std::span<const BuildingLoss> buildings, std::uint64_t se
 std::array<CasualtiesAtTime, 3> casualtiesByTimeOfDay(std::span<const BuildingLoss> buildings, std::uint64_t seed) {
   std::array<CasualtiesAtTime, 3> out;
   for (const BuildingLoss& b : buildings) {
+    // The building's expected injuries at time t: the people present then times its expected
+    // injuries per occupant (exact: the conditional injuries are per occupant).
+    const std::array<double, 4> perOccupant = expectedInjuriesPerOccupant(b.structural, b.given);
     for (std::size_t t = 0; t < 3; ++t) {
       const double people = b.occupantsAt[t];
       out[t].occupants += people;
-      // The building's expected injuries at time t: its injuries at the run's time scaled by the
-      // people present (exact: the conditional injuries are per occupant).
-      const auto& g = b.given;
-      const auto& ps = b.structural.p;
-      const double c = g.collapseGivenComplete;
-      for (std::size_t s = 0; s < 4; ++s) {
-        double e = 0;
-        for (std::size_t k = 1; k <= 3; ++k) e += ps[k] * g.injuriesPerOccupant[k][s];
-        e += ps[4] * ((1 - c) * g.injuriesPerOccupant[4][s] + c * g.injuriesPerOccupant[5][s]);
-        out[t].injuries[s].expected += people * e;
-      }
+      for (std::size_t s = 0; s < 4; ++s) out[t].injuries[s].expected += people * perOccupant[s];
     }
   }
   if (buildings.empty()) return out;
