@@ -8,7 +8,7 @@
 # start: makes the munge key if the machine has none (/etc/munge/munge.key), starts munged if no
 # munged answers, writes STATE_DIR/slurm.conf (this machine as the only node, with the CPUs and
 # memory `slurmd -C` reports, one partition "main"; controller state, slurmd spool, pid files and
-# both daemons' logs all in STATE_DIR), starts slurmctld and slurmd, and waits until `sinfo` shows
+# both daemons' logs all in STATE_DIR; munged logs to /var/log/munge/munged.log), starts slurmctld and slurmd, and waits until `sinfo` shows
 # the node idle. Running it again while the cluster is up does nothing. Every wait has a time limit
 # (QUAKEVIEW_SLURM_START_TIMEOUT, default 60 s); when one runs out the script stops what it
 # started and prints the daemons' logs.
@@ -60,6 +60,7 @@ slurmd_pidfile="$state_dir/slurmd.pid"
 # Written only when this script launched munged: its pid. Machine-wide (munged is), so that the
 # last cluster to stop stops it, whichever cluster started it.
 munged_marker=/run/munge/munged.started-by-quakeview-cluster
+munged_log=/var/log/munge/munged.log
 export SLURM_CONF="$conf"
 
 # The pid in FILE if that process is alive and is NAME (a recycled pid is not ours).
@@ -100,7 +101,7 @@ munge_works() { timeout 5 munge -n 2>/dev/null | timeout 5 unmunge >/dev/null 2>
 
 show_logs() {
   local f
-  for f in "$state_dir/slurmctld.log" "$state_dir/slurmd.log" "$state_dir/munged.log"; do
+  for f in "$state_dir/slurmctld.log" "$state_dir/slurmd.log" "$munged_log"; do
     [ -s "$f" ] || continue
     printf '%s\n' "---- last lines of $f ----" >&2
     tail -n 25 "$f" >&2
@@ -173,12 +174,12 @@ start_munged() {
   log "starting munged"
   # munged forks into the background and writes /run/munge/munged.pid. --force: a socket left by
   # a munged that was killed would otherwise stop it (no munged answered above, so none is live).
+  # Its log is the machine's (/var/log/munge/munged.log): munged is shared, and the munge user may
+  # not be able to reach STATE_DIR.
   if id munge >/dev/null 2>&1; then
-    touch "$state_dir/munged.log" && chown munge:munge "$state_dir/munged.log"
-    runuser -u munge -- /usr/sbin/munged --force --log-file="$state_dir/munged.log" ||
-      { show_logs; die "munged did not start"; }
+    runuser -u munge -- /usr/sbin/munged --force || { show_logs; die "munged did not start"; }
   else
-    /usr/sbin/munged --force --log-file="$state_dir/munged.log" || { show_logs; die "munged did not start"; }
+    /usr/sbin/munged --force || { show_logs; die "munged did not start"; }
   fi
   local i
   for ((i = 0; i <= timeout_s * 5; i++)); do
