@@ -39,6 +39,7 @@ packages=(
   osmium-tool zstd poppler-utils
   chromium fonts-dejavu-core
   firefox-esr libgl1-mesa-dri libegl1 libegl-mesa0
+  slurm-wlm munge
 )
 
 if ! command -v apt-get >/dev/null 2>&1 || ! command -v dpkg-query >/dev/null 2>&1; then

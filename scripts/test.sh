@@ -111,6 +111,13 @@ for city in "$e2e_data/actual" "$e2e_data/manhattan" "$demo_data"; do
   if ! "$prep" report "$city" --out "$e2e_data/$name-report.html" >/dev/null; then failures+=("e2e data (report of $name)"); fi
 done
 
+stage "Slurm: a city's response as a job array on a single-node cluster"
+log=$(mktemp)
+QUAKEVIEW_PREP="$prep" bash scripts/slurm/test-slurm.sh 2>&1 | tee "$log"
+if [ "${PIPESTATUS[0]}" -ne 0 ]; then failures+=("slurm"); fi
+counts[slurm]=$(grep -c '^PASS' "$log")
+rm -f "$log"
+
 stage "WebAssembly build (release, -Werror)"
 if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release -j "$jobs"; then
   stage "WebAssembly unit tests under node"
@@ -147,7 +154,7 @@ else
 fi
 
 elapsed=$(( $(date +%s) - start ))
-summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests, e2e-firefox ${counts[e2e_firefox]:-0} tests, fuzz ${counts[fuzz]:-0} targets in ${elapsed}s"
+summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests, e2e-firefox ${counts[e2e_firefox]:-0} tests, fuzz ${counts[fuzz]:-0} targets, slurm ${counts[slurm]:-0} checks in ${elapsed}s"
 if [ "${#failures[@]}" -eq 0 ]; then
   echo "QuakeView tests: ALL PASSED ($summary)"
 else
