@@ -43,15 +43,17 @@
 #
 # Cores and memory per task:
 #   --cpus-per-task  QUAKEVIEW_SLURM_CPUS (default 2); passed on as `--threads $SLURM_CPUS_PER_TASK`.
-#   --mem            QUAKEVIEW_SLURM_MEM (default 2G). The response step holds the city's building
-#                    list and footprints, the ground-motion suite and, per thread, one building's
-#                    solver state; results are encoded tile by tile as they complete. Measured
-#                    (clang release build, /usr/bin/time -v, maximum resident set size) on
-#                    synthetic cities (synth-city --seed 21, --synthetic 7 8 --epicentre ... ):
-#                    MEMORY_MEASUREMENTS
-#                    so 2G leaves ample room for a part of a city of a few hundred thousand
-#                    buildings; raise it for bigger regions or long record suites, after measuring
-#                    one part with `/usr/bin/time -v quakeview-prep response ... --shard 1/N`.
+#   --mem            QUAKEVIEW_SLURM_MEM (default 2G). The tool's memory grows with the city's
+#                    buildings, hardly with the record suite: measured (clang release build,
+#                    /usr/bin/time -v, maximum resident set size) for a whole city on one machine,
+#                    synth-city --seed 21 with --epicentre -74.005,40.705,8 --magnitude 6.6:
+#                      4,000 buildings, --synthetic 7 8:          71 MB
+#                      4,000 buildings, --synthetic 1 2 ... 8:    66 MB
+#                     20,000 buildings, --synthetic 7 8:         108 MB
+#                    about 60 MB plus 2.3 KB a building. A part holds no more than the whole run,
+#                    so 2G covers a part even of a region of several hundred thousand buildings;
+#                    for more, measure one part (`/usr/bin/time -v quakeview-prep response ...
+#                    --shard 1/N`, "Maximum resident set size") and ask for about 1.5 times that.
 #   The merge job: 1 core, QUAKEVIEW_SLURM_MERGE_MEM (default: the same as --mem).
 #
 # Other settings (environment):

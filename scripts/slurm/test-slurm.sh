@@ -25,6 +25,7 @@ slurm_scripts="$root/scripts/slurm"
 prep_src=${QUAKEVIEW_PREP:-$root/build/native-clang/preprocess/app/quakeview-prep}
 wait_limit=${QUAKEVIEW_SLURM_TEST_TIMEOUT:-300}
 started=$(date +%s)
+work="(none)"  # the test's folder, once made
 
 passed=0
 failed=0
@@ -40,17 +41,23 @@ finish() {
     note "Slurm test: ALL PASSED ($passed checks in ${elapsed}s)"
     exit 0
   fi
-  note "Slurm test: FAILED ($failed of $((passed + failed)) checks failed in ${elapsed}s; files kept in $work)"
+  local kept=
+  [ "$work" = "(none)" ] || kept="; files kept in $work"
+  note "Slurm test: FAILED ($failed of $((passed + failed)) checks failed in ${elapsed}s$kept)"
   exit 1
 }
 # A failure that ends the test (nothing after it can run).
 abort() { fail "$*"; finish; }
 
 if [ ! -x "$prep_src" ]; then
-  work="(none)"
   abort "quakeview-prep not found at '$prep_src' (set QUAKEVIEW_PREP, or build the native-clang preset)"
 fi
 
+if "$prep_src" response --help 2>&1 | grep -q -- '--shard'; then
+  pass "quakeview-prep response offers --shard ($prep_src)"
+else
+  abort "quakeview-prep response has no --shard option ($prep_src): this build predates sharded responses"
+fi
 work=$(mktemp -d /tmp/qv-slurm-test.XXXXXX)
 cluster="$work/cluster"
 # shellcheck disable=SC2317 # run by the EXIT trap
@@ -66,11 +73,6 @@ trap 'exit 130' INT TERM
 mkdir -p "$work/bin"
 cp "$prep_src" "$work/bin/quakeview-prep"
 prep="$work/bin/quakeview-prep"
-if "$prep" response --help 2>&1 | grep -q -- '--shard'; then
-  pass "quakeview-prep response offers --shard ($prep_src)"
-else
-  abort "quakeview-prep response has no --shard option ($prep_src): this build predates sharded responses"
-fi
 
 note "starting a single-node Slurm cluster in $cluster"
 if ! start_out=$(bash "$slurm_scripts/cluster.sh" start "$cluster" 2>&1); then
