@@ -43,18 +43,25 @@
 #
 # Cores and memory per task:
 #   --cpus-per-task  QUAKEVIEW_SLURM_CPUS (default 2); passed on as `--threads $SLURM_CPUS_PER_TASK`.
-#   --mem            QUAKEVIEW_SLURM_MEM (default 2G). The tool's memory grows with the city's
-#                    buildings, hardly with the record suite: measured (clang release build,
-#                    /usr/bin/time -v, maximum resident set size) for a whole city on one machine,
-#                    synth-city --seed 21 with --epicentre -74.005,40.705,8 --magnitude 6.6:
-#                      4,000 buildings, --synthetic 7 8:          71 MB
-#                      4,000 buildings, --synthetic 1 2 ... 8:    66 MB
-#                     20,000 buildings, --synthetic 7 8:         108 MB
-#                    about 60 MB plus 2.3 KB a building. A part holds no more than the whole run,
-#                    so 2G covers a part even of a region of several hundred thousand buildings;
-#                    for more, measure one part (`/usr/bin/time -v quakeview-prep response ...
-#                    --shard 1/N`, "Maximum resident set size") and ask for about 1.5 times that.
-#   The merge job: 1 core, QUAKEVIEW_SLURM_MERGE_MEM (default: the same as --mem).
+#   --mem            QUAKEVIEW_SLURM_MEM (default 2G). A part's memory grows with the buildings of
+#                    its part, not with the city's, and hardly with the record suite. Measured
+#                    (clang release build, /usr/bin/time -v, maximum resident set size;
+#                    synth-city --seed 21, --synthetic 7 8 --epicentre -74.005,40.705,8
+#                    --magnitude 6.6, --threads 2):
+#                      part 1 of 4 of 4,000 buildings (1,000 in the part):     47 MB
+#                      part 1 of 4 of 20,000 buildings (5,001 in the part):    72 MB
+#                      part 1 of 20 of 100,000 buildings (about 5,000):        74 MB
+#                      parts of 5 of 50,000 buildings (about 10,000 each):  77-99 MB
+#                    (a whole run of 20,000 buildings on one machine: 108 MB; 8 records instead
+#                    of 2: no more), about 45 MB plus 5 KB a building of the part. With a margin
+#                    (64 MB plus 8 KB a building), 2G covers parts of up to about 250,000
+#                    buildings; the script warns when the city's parts are bigger than that
+#                    margin allows in QUAKEVIEW_SLURM_MEM.
+#   The merge job: 1 core, QUAKEVIEW_SLURM_MERGE_MEM. The merge holds every building's results:
+#                    36 MB for 4,000 buildings, 117 MB for 20,000, 244 MB for 50,000 (about 20 MB
+#                    plus 5 KB a building of the city). Default: 256 MB plus 8 KB a building of
+#                    the city (its tileset.json's count), at least 1G: 1G up to about 98,000
+#                    buildings, 7.9G for a million; 2G when the count cannot be read.
 #
 # Other settings (environment):
 #   QUAKEVIEW_PREP             the quakeview-prep binary (default: the one on PATH); the same path
@@ -165,11 +172,40 @@ prep=$(cd "$(dirname "$prep")" && pwd -P)/$(basename "$prep")
 cpus=${QUAKEVIEW_SLURM_CPUS:-2}
 case "$cpus" in '' | *[!0-9]* | 0*) die "QUAKEVIEW_SLURM_CPUS must be a whole number of cores >= 1, not '$cpus'" ;; esac
 [ "$cpus" -le 256 ] || die "QUAKEVIEW_SLURM_CPUS: at most 256 cores (quakeview-prep --threads), not $cpus"
+# The city's building count (tileset.json's top-level "buildings", first in the file), for the
+# memory estimates; empty when it cannot be read.
+buildings=$(grep -o -m 1 '"buildings": *[0-9][0-9]*' "$city/tileset.json" 2>/dev/null | head -n 1 | grep -o '[0-9][0-9]*$') ||
+  buildings=
+# A Slurm size in MB (no suffix: MB, as sbatch reads it).
+size_mb() {
+  local v=${1%[KMGTkmgt]} unit=${1:${#1}-1}
+  case "$unit" in
+    K | k) echo $((v / 1024)) ;;
+    G | g) echo $((v * 1024)) ;;
+    T | t) echo $((v * 1024 * 1024)) ;;
+    *) echo "$v" ;;
+  esac
+}
 mem=${QUAKEVIEW_SLURM_MEM:-2G}
-merge_mem=${QUAKEVIEW_SLURM_MERGE_MEM:-$mem}
+if [ -n "${QUAKEVIEW_SLURM_MERGE_MEM:-}" ]; then
+  merge_mem=$QUAKEVIEW_SLURM_MERGE_MEM
+elif [ -n "$buildings" ]; then
+  merge_mb=$((256 + buildings * 8 / 1024))
+  [ "$merge_mb" -ge 1024 ] || merge_mb=1024
+  merge_mem="${merge_mb}M"
+else
+  merge_mem=2G
+fi
 for m in "$mem" "$merge_mem"; do
   [[ "$m" =~ ^[1-9][0-9]*[KMGTkmgt]?$ ]] || die "memory '$m' is not a Slurm size (e.g. 2G, 1500M): QUAKEVIEW_SLURM_MEM / QUAKEVIEW_SLURM_MERGE_MEM"
 done
+if [ -n "$buildings" ] && [ "$merge_only" -eq 0 ]; then
+  part_buildings=$(((buildings + n - 1) / n))
+  part_need_mb=$((64 + part_buildings * 8 / 1024))
+  if [ "$part_need_mb" -gt "$(size_mb "$mem")" ]; then
+    info "warning: parts of about $part_buildings buildings may need about ${part_need_mb}M each, more than QUAKEVIEW_SLURM_MEM=$mem: raise it or N"
+  fi
+fi
 max_running=${QUAKEVIEW_SLURM_MAX_RUNNING:-}
 if [ -n "$max_running" ]; then
   case "$max_running" in *[!0-9]* | 0*) die "QUAKEVIEW_SLURM_MAX_RUNNING must be a whole number >= 1, not '$max_running'" ;; esac
@@ -258,6 +294,6 @@ what="parts $array_spec"
 [[ "$array_spec" =~ ^[0-9]+(%[0-9]+)?$ ]] && what="part $array_spec"
 cores="$cpus cores"
 [ "$cpus" -ne 1 ] || cores="1 core"
-info "$what of $n submitted as array job $array_id ($cores, $mem memory each); merge job $merge_id runs when all have succeeded"
+info "$what of $n submitted as array job $array_id ($cores, $mem memory each); merge job $merge_id ($merge_mem) runs when all have succeeded"
 info "watch: squeue -j $array_id,$merge_id    logs: $logs/$name-${array_id}_<K>.out, $logs/$name-merge-$merge_id.out"
 printf 'array=%s merge=%s\n' "$array_id" "$merge_id"
