@@ -8,8 +8,9 @@
 # 1. a synthetic city of 4,000 buildings, A, and an identical copy, B; the one-machine response on A;
 # 2. B, parts 1, 2 and 4 of 4 and the merge: the parts run, the merge refuses and names part 3,
 #    B's tileset.json is unchanged;
-# 3. B, part 3 cancelled while it runs (scancel): Slurm cancels the merge (its dependency can never
-#    be met); a merge submitted alone refuses; B is unchanged;
+# 3. B, part 3 cancelled while it runs (scancel), then part 3 killed while it runs (SIGKILL to the
+#    tool, as on a crashed node): each time Slurm cancels the merge (its dependency can never be
+#    met), a merge submitted alone refuses and names part 3, and B is unchanged;
 # 4. B, part 3 alone and the merge: published; A and B equal byte for byte (tileset.json and every
 #    file of the response folder: diff -r, the staging folder aside).
 # Every job is checked in Slurm itself (scontrol show job: state, exit code, node) and by its
@@ -209,10 +210,17 @@ else
   fail "$step: submit-response.sh failed"
 fi
 
-# --- (b) Part 3 cancelled while it runs: the merge never runs ------------------------------------
-step="(b) part 3 cancelled while running"
-note "$step: submitting (1 core, to leave time to cancel it)"
-if ids=$(QUAKEVIEW_SLURM_CPUS=1 submit --parts 3 "$B" 4 "${options[@]}"); then
+# --- (b) Part 3 failing while it writes: the merge never runs, and alone it refuses --------------
+# MODE cancel: scancel, as a user or a time limit ends a job (Slurm: CANCELLED); MODE kill: the
+# tool killed with SIGKILL, as on a crashed node (the task FAILED). Either way once the part has
+# begun writing into B/staging/.
+failed_part() {
+  local mode=$1 step=$2 want ids array merge deadline state jid pid reason
+  note "$step: submitting (1 core, to leave time to stop it)"
+  if ! ids=$(QUAKEVIEW_SLURM_CPUS=1 submit --parts 3 "$B" 4 "${options[@]}"); then
+    fail "$step: submit-response.sh failed"
+    return
+  fi
   array=$(printf '%s\n' "$ids" | field array)
   merge=$(printf '%s\n' "$ids" | field merge)
   pass "$step: submitted ($ids)"
@@ -220,55 +228,68 @@ if ids=$(QUAKEVIEW_SLURM_CPUS=1 submit --parts 3 "$B" 4 "${options[@]}"); then
   state=
   while [ "$(date +%s)" -lt "$deadline" ]; do
     state=$(job_field "${array}_3" JobState)
-    [ "$state" = PENDING ] || break
+    [ "$state" = PENDING ] || [ -z "$state" ] || break
     sleep 0.2
   done
-  # Let it write part of its output, then cancel it, as a lost node or a killed job would end.
-  sleep 1
-  timeout 10 scancel "$array"
-  if wait_jobs "$array" "$merge"; then
-    state=$(job_field "${array}_3" JobState)
-    if [ "$state" = CANCELLED ]; then
-      check_part "$array" 3 CANCELLED "$step"
-      check_merge "$merge" CANCELLED "$step"
-      reason=$(job_field "$merge" Reason)
-      if [ "$reason" = DependencyNeverSatisfied ]; then
-        pass "$step: Slurm cancelled the merge: DependencyNeverSatisfied (--kill-on-invalid-dep=yes)"
-      else
-        fail "$step: the merge's reason is '$reason', expected DependencyNeverSatisfied"
-      fi
-      if [ -f "$work/logs/qv-response-merge-$merge.out" ]; then
-        fail "$step: the cancelled merge has an output file: it ran"
-        show "$work/logs/qv-response-merge-$merge.out"
-      else
-        pass "$step: the merge never started (no output file)"
-      fi
-      b_unchanged "$step"
-      # The merge alone, every other part in place: it must refuse and name part 3.
-      note "$step: submitting the merge alone"
-      if ids=$(submit --merge-only "$B" 4); then
-        merge=$(printf '%s\n' "$ids" | field merge)
-        if wait_jobs "$merge"; then
-          check_merge "$merge" FAILED "$step, then the merge alone"
-          check_merge_names_part3 "$merge" "$step, then the merge alone"
-        else
-          fail "$step: the merge alone did not end within ${wait_limit}s"
-        fi
-        b_unchanged "$step, then the merge alone"
-      else
-        fail "$step: submit-response.sh --merge-only failed"
-      fi
-    else
-      # The part ended before scancel reached it: nothing was tested here (no failure either).
-      note "$step: part 3 ended ($state) before it could be cancelled; skipping the cancelled-part checks"
-      wait_jobs "$merge" || true
-    fi
+  # Until the part has begun writing (its folder or temporary folder in staging/; 20 s at most).
+  for _ in $(seq 100); do
+    [ -z "$(find "$B/staging" -maxdepth 1 -name '*3-of-4*' -newer "$work/B-tileset.before.json" 2>/dev/null)" ] || break
+    sleep 0.2
+  done
+  if [ "$mode" = cancel ]; then
+    want=CANCELLED
+    timeout 10 scancel "$array"
   else
-    fail "$step: the jobs did not end within ${wait_limit}s"
+    want=FAILED
+    jid=$(job_lines "${array}_3" | sed -nE 's/^JobId=([0-9]+).*/\1/p')
+    pid=
+    for p in $(timeout 10 scontrol listpids "$jid" 2>/dev/null | awk 'NR > 1 {print $1}'); do
+      [ "$(cat "/proc/$p/comm" 2>/dev/null)" = quakeview-prep ] && pid=$p
+    done
+    if [ -n "$pid" ]; then kill -KILL "$pid"; else note "$step: no quakeview-prep process in job $jid to kill"; fi
   fi
-else
-  fail "$step: submit-response.sh failed"
-fi
+  if ! wait_jobs "$array" "$merge"; then
+    fail "$step: the jobs did not end within ${wait_limit}s"
+    return
+  fi
+  state=$(job_field "${array}_3" JobState)
+  if [ "$state" = COMPLETED ]; then
+    # The part ended before it could be stopped: nothing was tested here (no failure either).
+    note "$step: part 3 ended ($state) before it could be stopped; skipping these checks"
+    return
+  fi
+  check_part "$array" 3 "$want" "$step"
+  check_merge "$merge" CANCELLED "$step"
+  reason=$(job_field "$merge" Reason)
+  if [ "$reason" = DependencyNeverSatisfied ]; then
+    pass "$step: Slurm cancelled the merge: DependencyNeverSatisfied (--kill-on-invalid-dep=yes)"
+  else
+    fail "$step: the merge's reason is '$reason', expected DependencyNeverSatisfied"
+  fi
+  if [ -f "$work/logs/qv-response-merge-$merge.out" ]; then
+    fail "$step: the cancelled merge has an output file: it ran"
+    show "$work/logs/qv-response-merge-$merge.out"
+  else
+    pass "$step: the merge never started (no output file)"
+  fi
+  b_unchanged "$step"
+  # The merge alone, every other part in place: it must refuse and name part 3.
+  note "$step: submitting the merge alone"
+  if ids=$(submit --merge-only "$B" 4); then
+    merge=$(printf '%s\n' "$ids" | field merge)
+    if wait_jobs "$merge"; then
+      check_merge "$merge" FAILED "$step, then the merge alone"
+      check_merge_names_part3 "$merge" "$step, then the merge alone"
+    else
+      fail "$step: the merge alone did not end within ${wait_limit}s"
+    fi
+    b_unchanged "$step, then the merge alone"
+  else
+    fail "$step: submit-response.sh --merge-only failed"
+  fi
+}
+failed_part cancel "(b) part 3 cancelled while running"
+failed_part kill "(b') part 3 killed while running"
 
 # --- (c) Part 3 alone, then the merge: published, equal to the one-machine run -------------------
 step="(c) part 3 re-run"
