@@ -224,6 +224,9 @@ failed_part() {
   array=$(printf '%s\n' "$ids" | field array)
   merge=$(printf '%s\n' "$ids" | field merge)
   pass "$step: submitted ($ids)"
+  # Held until the part has ended: should the part finish before it can be stopped, its merge
+  # must not publish (that would end the test's later steps).
+  timeout 10 scontrol hold "$merge" || note "$step: could not hold the merge job $merge"
   deadline=$(($(date +%s) + wait_limit))
   state=
   while [ "$(date +%s)" -lt "$deadline" ]; do
@@ -248,14 +251,20 @@ failed_part() {
     done
     if [ -n "$pid" ]; then kill -KILL "$pid"; else note "$step: no quakeview-prep process in job $jid to kill"; fi
   fi
-  if ! wait_jobs "$array" "$merge"; then
-    fail "$step: the jobs did not end within ${wait_limit}s"
+  if ! wait_jobs "$array"; then
+    fail "$step: part 3 did not end within ${wait_limit}s"
     return
   fi
   state=$(job_field "${array}_3" JobState)
   if [ "$state" = COMPLETED ]; then
     # The part ended before it could be stopped: nothing was tested here (no failure either).
-    note "$step: part 3 ended ($state) before it could be stopped; skipping these checks"
+    timeout 10 scancel "$merge"
+    printf 'SKIP: %s\n' "$step: part 3 ended ($state) before it could be stopped; its checks were not run"
+    return
+  fi
+  timeout 10 scontrol release "$merge" || note "$step: could not release the merge job $merge"
+  if ! wait_jobs "$merge"; then
+    fail "$step: the merge did not end within ${wait_limit}s"
     return
   fi
   check_part "$array" 3 "$want" "$step"
