@@ -120,7 +120,7 @@ command -v sbatch >/dev/null 2>&1 ||
 [ -d "$city_arg" ] || die "city folder '$city_arg' does not exist"
 [ -f "$city_arg/tileset.json" ] ||
   die "'$city_arg' is not a prepared city: $city_arg/tileset.json is missing (make it with quakeview-prep city or synth-city)"
-city=$(cd "$city_arg" && pwd -P)
+city=$(cd "$city_arg" && pwd)
 
 if [ "$merge_only" -eq 1 ]; then
   [ "${#response_options[@]}" -eq 0 ] || usage_error "--merge-only takes CITY_DIR N only (the parts recorded their options)"
@@ -167,7 +167,7 @@ if [ -z "$prep" ]; then
     die "quakeview-prep not found: set QUAKEVIEW_PREP to its path (on shared storage) or put it on PATH"
 fi
 if [ ! -f "$prep" ] || [ ! -x "$prep" ]; then die "QUAKEVIEW_PREP '$prep' is not an executable file"; fi
-prep=$(cd "$(dirname "$prep")" && pwd -P)/$(basename "$prep")
+prep=$(cd "$(dirname "$prep")" && pwd)/$(basename "$prep")
 
 cpus=${QUAKEVIEW_SLURM_CPUS:-2}
 case "$cpus" in '' | *[!0-9]* | 0*) die "QUAKEVIEW_SLURM_CPUS must be a whole number of cores >= 1, not '$cpus'" ;; esac
@@ -215,7 +215,7 @@ fi
 name=${QUAKEVIEW_SLURM_JOB_NAME:-qv-response}
 logs=${QUAKEVIEW_SLURM_LOGS:-$(dirname "$city")/$(basename "$city")-slurm-logs}
 mkdir -p "$logs" || die "cannot create the log folder '$logs' (QUAKEVIEW_SLURM_LOGS)"
-logs=$(cd "$logs" && pwd -P)
+logs=$(cd "$logs" && pwd)
 
 common=(--parsable --ntasks=1)
 [ -z "${QUAKEVIEW_SLURM_PARTITION:-}" ] || common+=("--partition=$QUAKEVIEW_SLURM_PARTITION")
