@@ -45,8 +45,14 @@ USAGE
 action=$1
 case "$action" in start | stop | status) ;; *) usage ;; esac
 [ -n "$2" ] || usage
-mkdir -p "$2" 2>/dev/null || die "cannot create the state folder '$2'"
+if [ "$action" = start ]; then
+  mkdir -p "$2" 2>/dev/null || die "cannot create the state folder '$2'"
+elif [ ! -d "$2" ]; then
+  log "not running ($2 does not exist)"
+  exit 0
+fi
 state_dir=$(cd "$2" && pwd -P)
+case "$state_dir" in *[[:space:]]* | *'#'*) die "the state folder's path '$state_dir' has a space or '#', which slurm.conf cannot hold" ;; esac
 
 timeout_s=${QUAKEVIEW_SLURM_START_TIMEOUT:-60}
 case "$timeout_s" in '' | *[!0-9]*) die "QUAKEVIEW_SLURM_START_TIMEOUT must be whole seconds, not '$timeout_s'" ;; esac
