@@ -161,7 +161,7 @@ stop_cluster() {
 
 port_in_use() {
   command -v ss >/dev/null 2>&1 || return 1
-  ss -Hltn "sport = :$1" 2>/dev/null | grep -q .
+  [ -n "$(ss -Hltn "sport = :$1" 2>/dev/null)" ]
 }
 
 start_munged() {

@@ -54,7 +54,9 @@ if [ ! -x "$prep_src" ]; then
   abort "quakeview-prep not found at '$prep_src' (set QUAKEVIEW_PREP, or build the native-clang preset)"
 fi
 
-if "$prep_src" response --help 2>&1 | grep -q -- '--shard'; then
+# (The help text captured first: grep -q stopping early would fail the pipeline under pipefail.)
+help_text=$("$prep_src" response --help 2>&1) || true
+if grep -q -- '--shard' <<<"$help_text"; then
   pass "quakeview-prep response offers --shard ($prep_src)"
 else
   abort "quakeview-prep response has no --shard option ($prep_src): this build predates sharded responses"
@@ -182,7 +184,7 @@ check_merge() { # ID WANT_STATE WHAT
 # The merge's log names part 3 as the reason it refused.
 check_merge_names_part3() {
   local id=$1 what=$2 log="$work/logs/qv-response-merge-$1.out"
-  if grep -v '^\[quakeview\]' "$log" 2>/dev/null | grep -qiE 'part 3( of 4)?\b'; then
+  if grep -v '^\[quakeview\]' "$log" 2>/dev/null | grep -iE 'part 3( of 4)?\b' >/dev/null; then
     pass "$what: the merge's refusal names part 3: $(grep -v '^\[quakeview\]' "$log" | grep -iE 'part 3' | head -n 1)"
   else
     fail "$what: the merge's log does not name part 3"
