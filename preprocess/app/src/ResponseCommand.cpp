@@ -1,7 +1,8 @@
 // quakeview-prep response --city DIR [--motion FILE|FOLDER... [--dt S] [--units U] [--motion-y FILE] |
 //   --synthetic SEED...] [--pga G] [--epicentre LON,LAT,DEPTH_KM --magnitude M | --shakemap grid.xml]
 //   [--scale-by sa|pga] [--outside-grid error|skip] [--time-of-day night|day|commute] [--districts F]
-//   [--population-night N] [--population-day N] [--population-source TEXT]
+//   [--population-night N] [--population-day N] [--population-source TEXT] [--shard K/N]
+// quakeview-prep response --city DIR --merge
 #include <cmath>
 #include <cstdio>
 #include <iterator>
@@ -11,6 +12,8 @@
 #include "Summary.h"
 #include "qv/prep/Cli.h"
 #include "qv/prep/Files.h"
+#include "qv/prep/ResponseCatalogue.h"
+#include "qv/prep/ResponseParts.h"
 #include "qv/prep/ResponseRun.h"
 
 namespace qv::prep {
@@ -24,7 +27,10 @@ const char* const kUsage =
     "                                  [--site-factor F]] [--wave-speed KM_PER_S] [--scale-by sa|pga]\n"
     "                               [--time-of-day night|day|commute] [--districts FILE.geojson]\n"
     "                               [--population-night N] [--population-day N] [--population-source TEXT]\n"
-    "                               [--accurate-steps] [--threads N]\n"
+    "                               [--accurate-steps] [--threads N] [--shard K/N]\n"
+    "       quakeview-prep response --city DIR --merge [--scenario I]\n"
+    "       quakeview-prep response --city DIR --catalogue FILE --scenario I [--shard K/N] [--threads N]\n"
+    "       quakeview-prep response --catalogue FILE --list\n"
     "  Analyses every building of the city as an MDOF shear building with Bouc-Wen storeys (X and Y)\n"
     "  under every record of the suite, and writes the response tiles, HAZUS damage probabilities and\n"
     "  consequences into DIR (new files first, the manifest last).\n"
@@ -50,13 +56,104 @@ const char* const kUsage =
     "  --population-night N, --population-day N, --population-source TEXT\n"
     "                     the area's published residents and daytime population (e.g. a census): shown\n"
     "                     beside the occupants the city holds at night and by day, with the source\n"
+    "  --shard K/N        analyse only part K (1..N) of the city's N parts (whole tiles, balanced by\n"
+    "                     buildings) into DIR/staging/part-K-of-N, for many machines (docs/cluster.md);\n"
+    "                     the city's response is unchanged until --merge\n"
+    "  --merge            check that DIR/staging holds every part of one run, complete, then publish\n"
+    "                     them as the city's response, byte-identical to the same run on one machine\n"
+    "  --catalogue FILE   a scenario catalogue (JSON: each scenario's name and response options, docs/cluster.md):\n"
+    "  --scenario I       run its scenario I as its own response, beside the others (scenario-I.json,\n"
+    "                     scenarios.json: the viewer switches between them; scenario 1 is also tileset.json);\n"
+    "                     with --merge, merge scenario I's parts; --list prints the scenarios\n"
     "  --accurate-steps   accepted for compatibility; no effect: the default solver steps are the\n"
     "                     accurate ones (exact Bouc-Wen update; yielding buildings' peaks within\n"
     "                     about 0.5 % of converged)\n";
 
+int printReport(const std::string& city, const ResponseRunReport& r, const ResponseRunOptions* given);
+
+// A catalogue's scenario being run: its number and the catalogue's names (ResponseCatalogue.h).
+struct ScenarioTarget {
+  std::size_t index = 0;
+  std::vector<std::string> names;
+};
+
+int runResponseWith(const CommandArgs& argv, const ScenarioTarget* target);
+
+// `response --catalogue FILE (--list | --scenario I [--shard K/N] [--threads N])`: the scenario's
+// options from the catalogue, run as `response` with them.
+int runCatalogue(const Args& args) {
+  auto usage = [](const std::string& message) {
+    std::fprintf(stderr, "response: %s\n%s", message.c_str(), kUsage);
+    return kExitUsage;
+  };
+  for (const char* other : {"motion",
+                            "shakemap",
+                            "scale-by",
+                            "outside-grid",
+                            "time-of-day",
+                            "districts",
+                            "motion-y",
+                            "dt",
+                            "units",
+                            "synthetic",
+                            "pga",
+                            "epicentre",
+                            "epicenter",
+                            "magnitude",
+                            "vs30",
+                            "site-factor",
+                            "wave-speed",
+                            "population-night",
+                            "population-day",
+                            "population-source",
+                            "merge"}) {
+    if (args.has(other)) {
+      return usage(std::string("--catalogue: the scenario's options come from the catalogue, not --") + other +
+                   (std::string(other) == "merge" ? " (merge with --city DIR --merge --scenario I)" : ""));
+    }
+  }
+  const auto catalogue = readCatalogue(*args.value("catalogue"));
+  if (!catalogue.ok()) {
+    std::fprintf(stderr, "response: %s\n", catalogue.error().c_str());
+    return kExitDataError;
+  }
+  const std::size_t count = catalogue->scenarios.size();
+  if (args.has("list")) {
+    for (std::size_t i = 0; i < count; ++i) std::printf("%zu\t%s\n", i + 1, catalogue->scenarios[i].name.c_str());
+    return kExitOk;
+  }
+  const auto scenario = args.value("scenario");
+  const auto index = scenario ? parseInteger(*scenario) : std::nullopt;
+  if (!index || *index < 1 || static_cast<std::size_t>(*index) > count) {
+    return usage("--catalogue needs --scenario I, from 1 to " + std::to_string(count) + " (or --list)");
+  }
+  const auto city = args.value("city");
+  if (!city) return usage("--city DIR is required");
+  ScenarioTarget target;
+  target.index = static_cast<std::size_t>(*index);
+  for (const CatalogueScenario& s : catalogue->scenarios) target.names.push_back(s.name);
+  CommandArgs run = {"--city", *city};
+  const CatalogueScenario& chosen = catalogue->scenarios[target.index - 1];
+  run.insert(run.end(), chosen.args.begin(), chosen.args.end());
+  for (const char* passed : {"shard", "threads"}) {
+    if (const auto v = args.value(passed)) {
+      run.push_back(std::string("--") + passed);
+      run.push_back(*v);
+    }
+  }
+  std::printf("scenario    %zu of %zu: %s\n", target.index, count, chosen.name.c_str());
+  return runResponseWith(run, &target);
+}
+
 }  // namespace
 
 int runResponse(const CommandArgs& argv) {
+  return runResponseWith(argv, nullptr);
+}
+
+namespace {
+
+int runResponseWith(const CommandArgs& argv, const ScenarioTarget* target) {
   std::string error;
   const auto args = Args::parse(argv,
                                 {{"city"},
@@ -81,6 +178,11 @@ int runResponse(const CommandArgs& argv) {
                                  {"population-night"},
                                  {"population-day"},
                                  {"population-source"},
+                                 {"shard"},
+                                 {"merge", false},
+                                 {"catalogue"},
+                                 {"scenario"},
+                                 {"list", false},
                                  {"help", false}},
                                 error);
   if (!args || args->has("help")) {
@@ -94,7 +196,55 @@ int runResponse(const CommandArgs& argv) {
   };
   if (!args->positional().empty()) return usage("unexpected argument '" + args->positional()[0] + "'");
   const auto city = args->value("city");
+  if (args->has("catalogue")) {
+    if (target != nullptr) return usage("a catalogue cannot name another catalogue");
+    return runCatalogue(*args);
+  }
+  if (args->has("list")) return usage("--list goes with --catalogue FILE");
   if (!city) return usage("--city DIR is required");
+  if (args->has("scenario") && !args->has("merge")) return usage("--scenario goes with --catalogue FILE or --merge");
+  if (args->has("merge")) {
+    for (const char* other : {"motion",
+                              "shakemap",
+                              "scale-by",
+                              "outside-grid",
+                              "time-of-day",
+                              "districts",
+                              "motion-y",
+                              "dt",
+                              "units",
+                              "synthetic",
+                              "pga",
+                              "epicentre",
+                              "epicenter",
+                              "magnitude",
+                              "vs30",
+                              "site-factor",
+                              "wave-speed",
+                              "population-night",
+                              "population-day",
+                              "population-source",
+                              "shard"}) {
+      if (args->has(other)) {
+        return usage(std::string("--merge takes only --city (the parts hold the run's options), not --") + other);
+      }
+    }
+    std::size_t scenario = 0;
+    if (const auto v = args->value("scenario")) {
+      const auto i = parseInteger(*v);
+      if (!i || *i < 1 || *i > static_cast<std::int64_t>(kMaxScenarios)) {
+        return usage("--scenario must be a scenario's number in its catalogue, not '" + *v + "'");
+      }
+      scenario = static_cast<std::size_t>(*i);
+    }
+    installInterruptHandler();
+    const auto merged = mergeCityResponse(*city, scenario);
+    if (!merged.ok()) {
+      std::fprintf(stderr, "response: %s\n", merged.error().c_str());
+      return kExitDataError;
+    }
+    return printReport(*city, *merged, nullptr);
+  }
   ResponseRunOptions options;
   const bool hasMotion = args->has("motion"), hasSynthetic = args->has("synthetic");
   const bool hasField = args->has("shakemap") || args->has("epicentre") || args->has("epicenter");
@@ -228,20 +378,54 @@ int runResponse(const CommandArgs& argv) {
         "--pga scales the records without a shaking field; with --shakemap or --epicentre the field "
         "sets each building's target");
   }
+  if (const auto shard = args->value("shard")) {
+    options.shard = parseShardSpec(*shard);
+    if (!options.shard) {
+      return usage("--shard must be K/N, part K of N parts (1 <= K <= N <= " + std::to_string(kMaxParts) + "), not '" +
+                   *shard + "'");
+    }
+  }
   if (const auto threads = args->value("threads")) {
     const auto v = parseInteger(*threads);
     if (!v || *v < 1 || *v > 256) return usage("--threads must be from 1 to 256");
     options.threads = static_cast<unsigned>(*v);
   }
 
+  if (target != nullptr) {
+    options.scenarioIndex = target->index;
+    options.scenarioNames = target->names;
+  }
   installInterruptHandler();
   const auto report = runCityResponse(*city, options);
   if (!report.ok()) {
     std::fprintf(stderr, "response: %s\n", report.error().c_str());
     return kExitDataError;
   }
-  const ResponseRunReport& r = *report;
-  std::printf("response written to %s/%s\n", city->c_str(), r.folder.c_str());
+  return printReport(*city, *report, &options);
+}
+
+int printReport(const std::string& city, const ResponseRunReport& r, const ResponseRunOptions* given) {
+  if (r.part > 0) {
+    const std::size_t scenario = given != nullptr ? given->scenarioIndex : 0;
+    const std::string merge =
+        "response --city " + city + " --merge" + (scenario > 0 ? " --scenario " + std::to_string(scenario) : "");
+    std::printf("part %u of %u written to %s/%s/%s (%llu buildings); the city's response is unchanged until `%s`\n",
+                r.part, r.parts, city.c_str(), stagingFolder(scenario).c_str(),
+                partFolderName({r.part, r.parts}).c_str(), static_cast<unsigned long long>(r.buildings), merge.c_str());
+  } else if (r.parts > 0) {
+    std::printf("response merged from %u parts and written to %s/%s\n", r.parts, city.c_str(), r.folder.c_str());
+  } else {
+    std::printf("response written to %s/%s\n", city.c_str(), r.folder.c_str());
+  }
+  if (r.part > 0) {
+    std::printf(
+        "speed       %.1f million storey-steps/s; CPU %.1f s solving (pass one %.1f s, pass two %.1f s), "
+        "%.1f s encoding\n",
+        r.seconds > 0.0 ? static_cast<double>(r.storeySteps) / r.seconds / 1e6 : 0.0, r.solveSeconds, r.passOneSeconds,
+        r.passTwoSeconds, r.encodeSeconds);
+    std::printf("time        %.2f s\n", r.seconds);
+    return kExitOk;
+  }
   std::printf("motion      %s\n", r.motion.c_str());
   std::printf("shaking     %s%s%s\n",
               r.eventType.empty() ? "NOT STATED whether a scenario or an actual event" : r.eventType.c_str(),
@@ -265,8 +449,10 @@ int runResponse(const CommandArgs& argv) {
     }
     std::printf(" (`info --building ID` gives the details)\n");
   }
-  std::printf("frames      %zu at %.3f s (%.1f s)\n", r.frames, r.timeStepS,
-              static_cast<double>(r.frames - 1) * r.timeStepS);
+  if (r.frames > 0) {
+    std::printf("frames      %zu at %.3f s (%.1f s)\n", r.frames, r.timeStepS,
+                static_cast<double>(r.frames - 1) * r.timeStepS);
+  }
   std::printf(
       "bytes       %s summaries, %s histories (%.0f B per building), mean rate %.1f Hz; %s before compression\n",
       humanBytes(r.summaryBytes).c_str(), humanBytes(r.historyBytes).c_str(),
@@ -285,9 +471,11 @@ int runResponse(const CommandArgs& argv) {
       100.0 * r.worstRelativeError, 100.0 * r.p99RelativeError,
       r.buildings > 0 ? static_cast<double>(r.encodingAttempts) / static_cast<double>(r.buildings) : 0.0);
   std::printf(
-      "speed       %.1f million storey-steps/s (%llu storey-steps; solving %.1f s, encoding %.1f s over threads)\n",
+      "speed       %.1f million storey-steps/s (%llu storey-steps; CPU over threads: solving %.1f s (pass one %.1f s, "
+      "pass two %.1f s), encoding %.1f s)\n",
       r.seconds > 0.0 ? static_cast<double>(r.storeySteps) / r.seconds / 1e6 : 0.0,
-      static_cast<unsigned long long>(r.storeySteps), r.solveSeconds, r.encodeSeconds);
+      static_cast<unsigned long long>(r.storeySteps), r.solveSeconds, r.passOneSeconds, r.passTwoSeconds,
+      r.encodeSeconds);
   if (r.nonConvergedSteps > 0) {
     std::printf(
         "note        %llu buildings are approximate: %llu solver steps were accepted without Newton convergence "
@@ -299,8 +487,7 @@ int runResponse(const CommandArgs& argv) {
     auto line = [](const char* label, const seismic::Estimate& e, const char* unit) {
       std::printf("  %-22s %14.1f  (90 %%: %.1f to %.1f)%s\n", label, e.expected, e.low, e.high, unit);
     };
-    std::printf("consequences (HAZUS 5.1, %s occupancy; expected, 90 %% interval):\n",
-                std::string(seismic::timeOfDayName(options.timeOfDay)).c_str());
+    std::printf("consequences (HAZUS 5.1, %s occupancy; expected, 90 %% interval):\n", r.timeOfDay.c_str());
     const char* states[5] = {"none", "slight", "moderate", "extensive", "complete"};
     for (std::size_t k = 0; k < 5; ++k) line(states[k], t.damageStates[k], " buildings");
     line("collapsed", t.collapsed, " buildings");
@@ -310,11 +497,12 @@ int runResponse(const CommandArgs& argv) {
     line("occupants present", t.occupants, " people");
     std::printf("  %-22s %14.0f night, %.0f day, %.0f commute%s\n", "occupants by time", t.occupantsAt[0],
                 t.occupantsAt[1], t.occupantsAt[2], "");
-    if (options.population.given()) {
+    if (given != nullptr && given->population.given()) {
+      const seismic::PopulationFigures& population = given->population;
       std::printf("  %-22s %14s night, %s day (%s)\n", "population given",
-                  options.population.night >= 0 ? std::to_string(std::llround(options.population.night)).c_str() : "-",
-                  options.population.day >= 0 ? std::to_string(std::llround(options.population.day)).c_str() : "-",
-                  options.population.source.empty() ? "no source given" : options.population.source.c_str());
+                  population.night >= 0 ? std::to_string(std::llround(population.night)).c_str() : "-",
+                  population.day >= 0 ? std::to_string(std::llround(population.day)).c_str() : "-",
+                  population.source.empty() ? "no source given" : population.source.c_str());
     }
     for (std::size_t k = 0; k < 3; ++k) {
       const std::string label = "injuries severity " + std::to_string(k + 1);
@@ -328,4 +516,5 @@ int runResponse(const CommandArgs& argv) {
   return kExitOk;
 }
 
+}  // namespace
 }  // namespace qv::prep

@@ -132,6 +132,18 @@ Status makeDirectories(const std::string& path) {
   return {};
 }
 
+Status linkOrCopyFile(const std::string& from, const std::string& to) {
+  ::unlink(to.c_str());
+  if (::link(from.c_str(), to.c_str()) == 0) return {};
+  const int linkError = errno;
+  if (linkError != EXDEV && linkError != EPERM && linkError != EMLINK && linkError != ENOTSUP) {
+    return Error{to + ": cannot link it to " + from + " (" + std::strerror(linkError) + ")"};
+  }
+  auto bytes = readFile(from);
+  if (!bytes.ok()) return Error{bytes.error()};
+  return writeFileAtomic(to, *bytes);
+}
+
 void removeTree(const std::string& path) {
   std::error_code ec;
   fs::remove_all(path, ec);

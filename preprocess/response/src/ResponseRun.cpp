@@ -1,5 +1,6 @@
 #include "qv/prep/ResponseRun.h"
 
+#include "ResponseFinish.h"
 #include "ShakingField.h"
 
 #include <algorithm>
@@ -21,6 +22,7 @@
 #include "qv/prep/Files.h"
 #include "qv/prep/HistoryEncoder.h"
 #include "qv/prep/Projection.h"
+#include "qv/prep/ResponseParts.h"
 #include "qv/prep/ResponseWriter.h"
 #include "qv/prep/ShakeMap.h"
 #include "qv/seismic/BuildingModel.h"
@@ -100,30 +102,6 @@ struct Record {
   std::optional<seismic::ResponseSpectrum> spectrumX, spectrumY;
 };
 
-// The files of --motion: each file as given, each folder's regular files (not hidden) by name.
-Result<std::vector<std::string>> expandMotionPaths(const std::vector<std::string>& paths) {
-  namespace fs = std::filesystem;
-  std::vector<std::string> out;
-  for (const std::string& path : paths) {
-    std::error_code ec;
-    if (!fs::is_directory(path, ec)) {
-      out.push_back(path);
-      continue;
-    }
-    std::vector<std::string> files;
-    for (const fs::directory_entry& e : fs::directory_iterator(path, ec)) {
-      const std::string name = e.path().filename().string();
-      if (!name.empty() && name[0] != '.' && e.is_regular_file(ec)) files.push_back(e.path().string());
-    }
-    if (ec) return Error{path + ": cannot list the folder (" + ec.message() + ")"};
-    if (files.empty()) return Error{path + ": the folder holds no record files"};
-    std::sort(files.begin(), files.end());
-    out.insert(out.end(), files.begin(), files.end());
-  }
-  if (out.size() > 100) return Error{"--motion: " + std::to_string(out.size()) + " records (at most 100 in a suite)"};
-  return out;
-}
-
 // The records of --motion and --synthetic. The default suite under a field it can be matched to is
 // made later, per site shape (defaultSuiteRecords); here only when it cannot (a ShakeMap without
 // PSA fields): the seeds' Kanai-Tajimi motions as they are.
@@ -148,7 +126,7 @@ Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options, bool 
     r.description = buffer;
     records.push_back(std::move(r));
   }
-  auto files = expandMotionPaths(options.motions);
+  auto files = detail::expandMotionPaths(options.motions);
   if (!files.ok()) return Error{files.error()};
   if (!options.motionY.empty() && files->size() != 1) {
     return Error{"--motion-y goes with exactly one --motion record, not " + std::to_string(files->size())};
@@ -336,6 +314,29 @@ constexpr double kAccelerationFloor = 1e-4;  // m/s²
 
 }  // namespace
 
+Result<std::vector<std::string>> detail::expandMotionPaths(const std::vector<std::string>& paths) {
+  namespace fs = std::filesystem;
+  std::vector<std::string> out;
+  for (const std::string& path : paths) {
+    std::error_code ec;
+    if (!fs::is_directory(path, ec)) {
+      out.push_back(path);
+      continue;
+    }
+    std::vector<std::string> files;
+    for (const fs::directory_entry& e : fs::directory_iterator(path, ec)) {
+      const std::string name = e.path().filename().string();
+      if (!name.empty() && name[0] != '.' && e.is_regular_file(ec)) files.push_back(e.path().string());
+    }
+    if (ec) return Error{path + ": cannot list the folder (" + ec.message() + ")"};
+    if (files.empty()) return Error{path + ": the folder holds no record files"};
+    std::sort(files.begin(), files.end());
+    out.insert(out.end(), files.begin(), files.end());
+  }
+  if (out.size() > 100) return Error{"--motion: " + std::to_string(out.size()) + " records (at most 100 in a suite)"};
+  return out;
+}
+
 Result<ResponseRunReport> runCityResponse(const std::string& dir, const ResponseRunOptions& options) {
   const auto start = Clock::now();
   ResponseRunReport report;
@@ -462,8 +463,20 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     districts = std::move(d).value();
   }
 
-  auto writer = ResponseWriter::create(dir, tileset);
+  // A part of a sharded run: its leaves only (ResponseParts.h), written into the city's staging
+  // area. Everything above (the suite, the time axis, the outside-grid check) is the whole city's.
+  std::optional<detail::PartRun> part;
+  if (options.shard) {
+    auto begun = detail::PartRun::begin(dir, tileset, options, *options.shard);
+    if (!begun.ok()) return Error{begun.error()};
+    part.emplace(std::move(begun).value());
+    leaves = part->leaves();
+    totalBuildings = 0;
+    for (const std::uint32_t node : leaves) totalBuildings += tileset.nodes[node].buildings;
+  }
+  auto writer = part ? ResponseWriter::createPart(dir, tileset, part->folder()) : ResponseWriter::create(dir, tileset);
   if (!writer.ok()) return Error{writer.error()};
+  if (options.scenarioIndex > 0) (*writer)->setScenario(options.scenarioIndex, options.scenarioNames);
   // Big tiles first, for an even finish across threads.
   std::sort(leaves.begin(), leaves.end(),
             [&](std::uint32_t a, std::uint32_t b) { return tileset.nodes[a].buildings > tileset.nodes[b].buildings; });
@@ -474,12 +487,11 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   std::string firstError;
   std::vector<double> relativeErrors;
   relativeErrors.reserve(static_cast<std::size_t>(totalBuildings));
-  std::vector<seismic::BuildingLoss> losses;  // every building with a result
-  std::vector<int> lossDistrict;              // its district (-1: none)
-  std::vector<std::uint64_t> lossKey;         // its leaf and index there (the order of the totals)
-  std::vector<LossClass> lossClass;           // its occupancy class, type and inferred attributes
-  double rateSum = 0.0;
-  std::uint64_t rateCount = 0;
+  std::vector<seismic::BuildingLoss> losses;                      // every building with a result
+  std::vector<int> lossDistrict;                                  // its district (-1: none)
+  std::vector<std::uint64_t> lossKey;                             // its leaf and index there (the order of the totals)
+  std::vector<LossClass> lossClass;                               // its occupancy class, type and inferred attributes
+  std::vector<detail::LeafRate> leafRates(tileset.nodes.size());  // written per leaf by its one thread
   const bool suite = records.size() > 1;
   Progress progress("solving buildings", totalBuildings);
 
@@ -499,8 +511,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     std::vector<int> localDistricts;
     std::vector<std::uint64_t> localKeys;
     std::vector<LossClass> localClasses;
-    double localSolve = 0.0, localEncode = 0.0, localRate = 0.0, localLoss = 0.0;
-    std::uint64_t localRateCount = 0;
+    double localSolve = 0.0, localEncode = 0.0, localLoss = 0.0, localPassOne = 0.0;
     std::uint64_t localStoreySteps = 0;  // storeys × record steps × directions
     std::uint64_t localAttempts = 0;
     std::uint64_t localOutside = 0;
@@ -661,6 +672,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
         }
       }
 
+      localPassOne += threadCpuSeconds() - solveStart;
+
       // Pass two: the stored history, each building under its shown record.
       for (std::size_t r = 0; r < records.size(); ++r) {
         for (std::size_t c = 0; c < shapeSuites.size(); ++c) {
@@ -744,8 +757,8 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
                 out.scaling = scaling;
                 localErrors.push_back(h.relativeError());
                 localAttempts += static_cast<std::uint64_t>(h.attempts);
-                localRate += out.history.sampleRateHz;
-                ++localRateCount;
+                leafRates[node].sum += out.history.sampleRateHz;
+                ++leafRates[node].count;
                 encodeTime += threadCpuSeconds() - encodeStart;
                 // HAZUS probabilities and consequences from the suite's medians and spread.
                 const double lossStart = threadCpuSeconds();
@@ -787,8 +800,7 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     report.storeySteps += localStoreySteps;
     report.encodingAttempts += localAttempts;
     report.outsideGrid += localOutside;
-    rateSum += localRate;
-    rateCount += localRateCount;
+    report.passOneSeconds += localPassOne;
     report.nonConvergedSteps += historySolver.stats().nonConvergedSteps + peakSolver.stats().nonConvergedSteps;
   };
   runOnThreads(options.threads, worker);
@@ -823,7 +835,6 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     info.shakemap = m;
   }
   info.durationSeconds = static_cast<double>(frames - 1) * dt;
-  info.sampleRateHz = rateCount > 0 ? rateSum / static_cast<double>(rateCount) : 0.0;
   // The input record for the viewer's plot: the largest |a| of every 0.1 s, in g.
   info.motionPreviewRateHz = 10.0;
   const seismic::GroundMotion& preview = shapeSuites[commonShape][0].x;
@@ -835,68 +846,30 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
     }
     info.motionPreviewG.push_back(static_cast<float>(best / seismic::kGravityMps2));
   }
-  // The consequences' totals: the city, and each district, over the buildings in the city's order
-  // (leaf by leaf), whichever thread analysed them: the Monte Carlo intervals are the same from
-  // run to run.
-  const double totalsStart = threadCpuSeconds();
-  {
-    std::vector<std::size_t> order(losses.size());
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::sort(order.begin(), order.end(), [&lossKey](std::size_t a, std::size_t b) { return lossKey[a] < lossKey[b]; });
-    std::vector<seismic::BuildingLoss> sorted;
-    sorted.reserve(losses.size());
-    std::vector<int> sortedDistricts;
-    std::vector<LossClass> sortedClasses;
-    sortedClasses.reserve(losses.size());
-    for (const std::size_t i : order) {
-      sorted.push_back(losses[i]);
-      sortedClasses.push_back(lossClass[i]);
-      if (i < lossDistrict.size()) sortedDistricts.push_back(lossDistrict[i]);
-    }
-    losses = std::move(sorted);
-    lossClass = std::move(sortedClasses);
-    if (districts) lossDistrict = std::move(sortedDistricts);
-  }
-  seismic::ConsequenceTotals totals;
-  totals.timeOfDay = info.timeOfDay;
-  totals.population = options.population;
-  totals.city = seismic::totalLosses(losses);
-  totals.city.byTime = seismic::casualtiesByTimeOfDay(losses);
-  addClassTotals(losses, lossClass, totals);
-  if (districts) {
-    for (std::size_t d = 0; d < districts->names.size(); ++d) {
-      std::vector<seismic::BuildingLoss> inside;
-      for (std::size_t i = 0; i < losses.size(); ++i) {
-        if (lossDistrict[i] == static_cast<int>(d)) inside.push_back(losses[i]);
-      }
-      seismic::LossTotals t = seismic::totalLosses(inside);
-      t.byTime = seismic::casualtiesByTimeOfDay(inside);
-      totals.districts.push_back({districts->names[d], std::move(t), districts->outline(d)});
-    }
-  }
-  report.losses = totals.city;
-  report.lossSeconds += threadCpuSeconds() - totalsStart;
-  auto consequences = (*writer)->writeFile("consequences.json", seismic::consequencesToJson(totals));
-  if (!consequences.ok()) return Error{consequences.error()};
-  info.consequences = *consequences;
-  auto written = (*writer)->commit(info);
-  if (!written.ok()) return Error{written.error()};
-  report.buildings = totalBuildings;
-  for (int k = 0; k < 6; ++k) report.damage[k] = written->damage[k];
-  report.noResultReasons = written->noResultReasons;
-  report.approximateBuildings = written->approximate;
-  report.summaryBytes = written->summaryBytes;
-  report.historyBytes = written->historyBytes;
-  report.uncompressedBytes = written->uncompressedBytes;
-  report.driftSeriesBytes = written->driftSeriesBytes;
-  report.driftSeriesBuildings = written->driftSeriesBuildings;
-  report.folder = written->folder;
-  report.meanSampleRateHz = info.sampleRateHz;
+  report.passTwoSeconds = report.solveSeconds - report.passOneSeconds;
   if (!relativeErrors.empty()) {
     std::sort(relativeErrors.begin(), relativeErrors.end());
     report.worstRelativeError = relativeErrors.back();
     report.p99RelativeError =
         relativeErrors[static_cast<std::size_t>(0.99 * static_cast<double>(relativeErrors.size() - 1))];
+  }
+  detail::FinishInputs finish;
+  finish.info = std::move(info);
+  finish.losses.losses = std::move(losses);
+  finish.losses.district = std::move(lossDistrict);
+  finish.losses.key = std::move(lossKey);
+  finish.losses.classes = std::move(lossClass);
+  finish.leafRates = std::move(leafRates);
+  finish.districts = districts ? &*districts : nullptr;
+  finish.population = options.population;
+  report.buildings = totalBuildings;
+  if (part) {
+    report.part = options.shard->part;
+    report.parts = options.shard->parts;
+    report.seconds = secondsSince(start);
+    if (Status s = part->publish(**writer, finish, report); !s.ok()) return Error{s.error()};
+  } else if (Status s = detail::finishResponse(**writer, std::move(finish), report); !s.ok()) {
+    return Error{s.error()};
   }
   report.seconds = secondsSince(start);
   return report;

@@ -2,14 +2,19 @@
 
 #include <dirent.h>
 #include <simdjson.h>
+#include <sys/stat.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cstdlib>
+#include <cstring>
+#include <set>
 
 #include "qv/core/Crc32.h"
 #include "qv/core/JsonWriter.h"
 #include "qv/format/SearchIndex.h"
 #include "qv/prep/Files.h"
+#include "qv/prep/ResponseCatalogue.h"
 
 namespace qv::prep {
 namespace {
@@ -211,10 +216,47 @@ Result<std::unique_ptr<ResponseWriter>> ResponseWriter::create(const std::string
     next = std::max(next, n + 1);
     previous.push_back(name);
   }
-  const std::string folder = "response-" + std::to_string(next);
-  if (const Status s = makeDirectories(cityDir + "/" + folder); !s.ok()) return Error{s.error()};
+  // The next free number, taken by creating the folder (scenarios published at once on several
+  // machines each get their own).
+  std::string folder;
+  for (int attempt = 0;; ++attempt, ++next) {
+    folder = "response-" + std::to_string(next);
+    if (::mkdir((cityDir + "/" + folder).c_str(), 0777) == 0) break;
+    if (errno != EEXIST || attempt > 10000) {
+      return Error{"cannot create directory " + cityDir + "/" + folder + ": " + std::strerror(errno)};
+    }
+  }
   std::unique_ptr<ResponseWriter> w(new ResponseWriter(cityDir, tileset, folder));
   w->previousFolders_ = std::move(previous);
+  w->report_.folder = folder;
+  return w;
+}
+
+std::string responseFolderOf(const std::string& manifestPath) {
+  auto text = readTextFile(manifestPath, 256ull << 20);
+  if (!text.ok()) return "";
+  auto tileset = parseTileset(*text, manifestPath);
+  if (!tileset.ok() || !tileset->response) return "";
+  const ResponseInfo& r = *tileset->response;
+  const std::string file = r.consequences ? r.consequences->file : r.notes ? r.notes->file : "";
+  for (const TileNode& n : tileset->nodes) {
+    const std::string& f = file.empty() && n.response ? n.response->summaryFile : file;
+    const std::size_t slash = f.find('/');
+    if (slash != std::string::npos && f.rfind("response-", 0) == 0) return f.substr(0, slash);
+  }
+  return "";
+}
+
+void ResponseWriter::setScenario(std::size_t index, std::vector<std::string> names) {
+  scenario_ = index;
+  scenarioNames_ = std::move(names);
+}
+
+Result<std::unique_ptr<ResponseWriter>> ResponseWriter::createPart(const std::string& cityDir, const Tileset& tileset,
+                                                                   const std::string& folder) {
+  if (const Status s = makeDirectories(cityDir + "/" + folder); !s.ok()) return Error{s.error()};
+  std::unique_ptr<ResponseWriter> w(new ResponseWriter(cityDir, tileset, folder));
+  w->part_ = true;
   w->report_.folder = folder;
   return w;
 }
@@ -265,14 +307,51 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
   files.historyCrc32 = crc32(historyBytes);
   if (Status s = writeFileAtomic(cityDir_ + "/" + files.summaryFile, summaryBytes); !s.ok()) return s;
   if (Status s = writeFileAtomic(cityDir_ + "/" + files.historyFile, historyBytes); !s.ok()) return s;
+  const LeafStats stats{summaryRaw.size() + historyRaw.size(), summary.seriesBytes(), summary.seriesBuildings()};
+  if (part_) {
+    // Every section, for the merge to rebuild the results from (the leaf's own summary may be slim).
+    SummaryBuilder full(true, false);
+    for (const BuildingResult& r : results) full.add(&r);
+    PartLeaf leaf{node, files, stats, encodeResponseSummary(full.finish())};
+    const std::lock_guard lock(mutex_);
+    partLeaves_.push_back(std::move(leaf));
+  }
+  remember(node, files, tile, results, stats, true);
+  return {};
+}
 
+Status ResponseWriter::adoptLeaf(std::uint32_t node, const TileResponseFiles& files, const CityTile& tile,
+                                 std::vector<BuildingResult>& results, const LeafStats& stats) {
+  if (node >= tileset_.nodes.size() || results.size() != tile.buildings.size()) {
+    return Error{"internal: results do not match tile " + std::to_string(node)};
+  }
+  const TileNode& n = tileset_.nodes[node];
+  TileResponseFiles adopted = files;
+  adopted.summaryFile = folder_ + "/" + tileStem(n) + ".qvs";
+  adopted.historyFile = folder_ + "/" + tileStem(n) + ".qvh";
+  if (Status s = linkOrCopyFile(cityDir_ + "/" + files.summaryFile, cityDir_ + "/" + adopted.summaryFile); !s.ok())
+    return s;
+  if (Status s = linkOrCopyFile(cityDir_ + "/" + files.historyFile, cityDir_ + "/" + adopted.historyFile); !s.ok())
+    return s;
+  remember(node, adopted, tile, results, stats, false);
+  return {};
+}
+
+void ResponseWriter::addNotes(const ResponseNotes& notes) {
+  const std::lock_guard lock(mutex_);
+  notes_.noResult.insert(notes_.noResult.end(), notes.noResult.begin(), notes.noResult.end());
+  notes_.approximate.insert(notes_.approximate.end(), notes.approximate.begin(), notes.approximate.end());
+}
+
+void ResponseWriter::remember(std::uint32_t node, const TileResponseFiles& files, const CityTile& tile,
+                              std::vector<BuildingResult>& results, const LeafStats& stats, bool withNotes) {
   const std::lock_guard lock(mutex_);
   tileset_.nodes[node].response = files;
-  report_.summaryBytes += summaryBytes.size();
-  report_.historyBytes += historyBytes.size();
-  report_.uncompressedBytes += summaryRaw.size() + historyRaw.size();
-  report_.driftSeriesBytes += summary.seriesBytes();
-  report_.driftSeriesBuildings += summary.seriesBuildings();
+  report_.summaryBytes += files.summaryBytes;
+  report_.historyBytes += files.historyBytes;
+  report_.uncompressedBytes += stats.uncompressedBytes;
+  report_.driftSeriesBytes += stats.driftSeriesBytes;
+  report_.driftSeriesBuildings += stats.driftSeriesBuildings;
   for (std::size_t b = 0; b < tile.buildings.size(); ++b) {
     BuildingResult& r = results[b];
     const BuildingResponse& s = r.summary;
@@ -282,15 +361,17 @@ Status ResponseWriter::writeLeaf(std::uint32_t node, const CityTile& tile, std::
       const NoResultReason reason =
           s.noResultReason == NoResultReason::None ? NoResultReason::Unknown : s.noResultReason;
       ++report_.noResultReasons[reason];
-      notes_.noResult.push_back({id, reason, r.noResultDetail});
+      if (withNotes) notes_.noResult.push_back({id, reason, r.noResultDetail});
     } else if (s.approximate) {
       ++report_.approximate;
-      notes_.approximate.push_back({id, s.unconvergedSteps, s.worstResidualRatio});
+      if (withNotes) notes_.approximate.push_back({id, s.unconvergedSteps, s.worstResidualRatio});
     }
+    // A part keeps its full summaries instead (partLeaves_): the merge's writer builds the inner
+    // tiles.
+    if (part_) continue;
     r.history = BuildingHistory{};
     byId_[id] = std::move(r);
   }
-  return {};
 }
 
 Result<CityFile> ResponseWriter::writeFile(const std::string& name, const std::string& text) {
@@ -369,9 +450,38 @@ Result<ResponseWriteReport> ResponseWriter::commit(ResponseInfo info) {
   for (int k = 0; k < 6; ++k) info.damageStates[k] = report_.damage[k];
   tileset_.response = info;
   if (interrupted()) return Error{"interrupted; the city's previous response is unchanged"};
-  if (Status s = writeFileAtomic(cityDir_ + "/tileset.json", tilesetToJson(tileset_)); !s.ok()) return Error{s.error()};
+  const std::string manifest = tilesetToJson(tileset_);
+  if (scenario_ == 0) {
+    if (Status s = writeFileAtomic(cityDir_ + "/tileset.json", manifest); !s.ok()) return Error{s.error()};
+    committed_ = true;
+    // The previous response goes, but not the folders the city's scenarios show (scenarios.json).
+    std::set<std::string> kept = {folder_};
+    for (const std::string& m : scenarioManifestsOf(cityDir_)) kept.insert(responseFolderOf(cityDir_ + "/" + m));
+    for (const std::string& old : previousFolders_) {
+      if (kept.count(old) == 0) removeTree(cityDir_ + "/" + old);
+    }
+    return report_;
+  }
+  // A scenario of a catalogue: its own manifest, the city's default one for scenario 1, and the
+  // list for the viewer; only this scenario's previous folder goes (the others' are theirs, some
+  // perhaps being published right now on other machines).
+  const std::string own = cityDir_ + "/" + scenarioManifestName(scenario_);
+  std::set<std::string> replaced = {responseFolderOf(own)};
+  if (scenario_ == 1) replaced.insert(responseFolderOf(cityDir_ + "/tileset.json"));
+  if (Status s = writeFileAtomic(own, manifest); !s.ok()) return Error{s.error()};
   committed_ = true;
-  for (const std::string& old : previousFolders_) removeTree(cityDir_ + "/" + old);
+  if (scenario_ == 1) {
+    if (Status s = writeFileAtomic(cityDir_ + "/tileset.json", manifest); !s.ok()) return Error{s.error()};
+  }
+  if (Status s = writeFileAtomic(cityDir_ + "/scenarios.json", scenariosToJson(scenarioNames_)); !s.ok()) {
+    return Error{s.error()};
+  }
+  std::set<std::string> shown;
+  for (const std::string& m : scenarioManifestsOf(cityDir_)) shown.insert(responseFolderOf(cityDir_ + "/" + m));
+  shown.insert(responseFolderOf(cityDir_ + "/tileset.json"));
+  for (const std::string& old : replaced) {
+    if (!old.empty() && old != folder_ && shown.count(old) == 0) removeTree(cityDir_ + "/" + old);
+  }
   return report_;
 }
 

@@ -62,6 +62,10 @@ class StagingDirectory {
   bool committed_ = false;
 };
 
+/// Gives `to` the bytes of `from`: a hard link (no copy) where the file system allows it, else a
+/// copy written atomically. A file already at `to` is replaced.
+Status linkOrCopyFile(const std::string& from, const std::string& to);
+
 /// Removes a directory tree; quiet when it does not exist.
 void removeTree(const std::string& path);
 

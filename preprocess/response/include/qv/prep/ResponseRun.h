@@ -27,6 +27,11 @@ enum class ScaleBy { SpectralAcceleration, Pga };
 
 enum class OutsideGrid { Error, Skip };
 
+/// `--shard K/N`: the K-th (1-based) of N parts of the city (ResponseParts.h).
+struct ShardSpec {
+  unsigned part = 1, parts = 1;
+};
+
 struct ResponseRunOptions {
   /// Record files or folders of records (--motion, repeatable): the suite. Every building is analysed
   /// under every record. Empty with syntheticSeeds.
@@ -50,6 +55,13 @@ struct ResponseRunOptions {
   /// Bouc–Wen update; yielding frames within 0.5 % of converged peaks, docs/seismic.md
   /// "Sub-stepping"); the flag once turned on the hysteretic error bound, now the default.
   bool accurateSubsteps = false;
+  /// --shard K/N: analyse only part K of the city's N parts and write it into the staging area
+  /// (ResponseParts.h); `response --merge` publishes the parts as one response.
+  std::optional<ShardSpec> shard;
+  /// --catalogue FILE --scenario I: scenario I (1-based; 0: none) of a catalogue whose scenarios are
+  /// named scenarioNames, published beside the others (ResponseWriter::setScenario).
+  std::size_t scenarioIndex = 0;
+  std::vector<std::string> scenarioNames;
   unsigned threads = 0;             ///< 0: all cores
   double historyTolerance = 0.019;  ///< of each building's peak roof displacement
 };
@@ -62,10 +74,14 @@ struct ResponseRunReport {
   std::uint64_t approximateBuildings = 0;                   ///< buildings with such steps (listed in the notes)
   std::map<NoResultReason, std::uint64_t> noResultReasons;  ///< buildings without a result, by reason
   double seconds = 0.0;
-  double solveSeconds = 0.0;                         ///< CPU time in the solver (the encoder excluded), all threads
-  double encodeSeconds = 0.0;                        ///< CPU time of the history encoder, all threads
-  std::uint64_t summaryBytes = 0, historyBytes = 0;  ///< as stored (Zstandard frames)
-  std::uint64_t uncompressedBytes = 0;               ///< the same before compression
+  double solveSeconds = 0.0;   ///< CPU time in the solver (the encoder excluded), all threads
+  double encodeSeconds = 0.0;  ///< CPU time of the history encoder, all threads
+  /// Of solveSeconds: pass one (a suite's every record, peaks only; 0 for one record) and pass two
+  /// (each building's stored history under its shown record, with its losses).
+  double passOneSeconds = 0.0, passTwoSeconds = 0.0;
+  unsigned part = 0, parts = 0;  ///< a part of a sharded run (K of N), or a merge of N parts (0 of N)
+  std::uint64_t summaryBytes = 0, historyBytes = 0;              ///< as stored (Zstandard frames)
+  std::uint64_t uncompressedBytes = 0;                           ///< the same before compression
   std::uint64_t driftSeriesBytes = 0, driftSeriesBuildings = 0;  ///< the far view's series (ResponseWriteReport)
   double worstRelativeError = 0.0;                               ///< history vs full rate, / peak roof
   double p99RelativeError = 0.0;
@@ -79,6 +95,7 @@ struct ResponseRunReport {
   std::size_t records = 0;                    ///< records in the suite
   std::string scaling;                        ///< how the records were scaled, for people
   std::string eventType;                      ///< "SCENARIO" or "ACTUAL"
+  std::string timeOfDay;                      ///< of the consequences' occupants: night, day, commute
   std::uint64_t outsideGrid = 0;              ///< buildings skipped outside the ShakeMap (--outside-grid skip)
   std::optional<seismic::LossTotals> losses;  ///< the city's consequences
   double lossSeconds = 0.0;

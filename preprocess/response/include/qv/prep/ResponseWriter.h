@@ -77,10 +77,19 @@ struct ResponseWriteReport {
   std::string folder;                                       ///< response-<n>
 };
 
+/// The response-<n> folder a manifest's response is in ("" when it names none or cannot be read).
+std::string responseFolderOf(const std::string& manifestPath);
+
 class ResponseWriter {
  public:
   /// Prepares a new response folder in `cityDir` for `tileset` (the manifest as read).
   static Result<std::unique_ptr<ResponseWriter>> create(const std::string& cityDir, const Tileset& tileset);
+  /// A writer for one part of a sharded run (`response --shard`, ResponseParts.h): the leaves go
+  /// into `folder` (relative to `cityDir`, created here), each leaf's full summary is kept for
+  /// partSummaries(), and commit() is not called: the part is published by renaming the folder
+  /// (keep() then stops the destructor removing it).
+  static Result<std::unique_ptr<ResponseWriter>> createPart(const std::string& cityDir, const Tileset& tileset,
+                                                            const std::string& folder);
   /// Removes the new folder unless commit() succeeded.
   ~ResponseWriter();
   ResponseWriter(const ResponseWriter&) = delete;
@@ -90,6 +99,21 @@ class ResponseWriter {
   /// leaf, in file order; thread-safe across different leaves) and remembers the summaries for
   /// the inner tiles.
   Status writeLeaf(std::uint32_t node, const CityTile& tile, std::vector<BuildingResult>& results);
+  /// A leaf written by a part (ResponseParts.h), taken into this response: its files `files` (paths
+  /// relative to the city) are linked (copied across file systems) into the new folder, its results
+  /// remembered as writeLeaf does (`results`: one per building of `tile`, from the part's full
+  /// summary; their notes come separately, addNotes). `stats` are what writeLeaf counted for it.
+  struct LeafStats {
+    std::uint64_t uncompressedBytes = 0, driftSeriesBytes = 0, driftSeriesBuildings = 0;
+  };
+  Status adoptLeaf(std::uint32_t node, const TileResponseFiles& files, const CityTile& tile,
+                   std::vector<BuildingResult>& results, const LeafStats& stats);
+  /// Publishes the response as scenario `index` (1-based) of a catalogue whose scenarios are
+  /// `names` (ResponseCatalogue.h): commit() writes scenario-<index>.json (and tileset.json for
+  /// scenario 1) and scenarios.json, and removes only this scenario's previous folder.
+  void setScenario(std::size_t index, std::vector<std::string> names);
+  /// Notes of adopted leaves (sorted at commit()).
+  void addNotes(const ResponseNotes& notes);
 
   /// Writes the inner tiles' summaries (by building id from the leaves), then the manifest with
   /// `info`, and removes the previous response folder. Call once, after every leaf.
@@ -100,9 +124,27 @@ class ResponseWriter {
   Result<CityFile> writeFile(const std::string& name, const std::string& text);
 
   [[nodiscard]] const std::string& folder() const { return folder_; }
+  /// Part writers: the leaves written so far, with their files, counts and full summaries (every
+  /// section, as a response without a city-wide index keeps them: what adoptLeaf rebuilds the
+  /// results from).
+  struct PartLeaf {
+    std::uint32_t node = 0;
+    TileResponseFiles files;
+    LeafStats stats;
+    std::vector<std::uint8_t> fullSummary;  ///< encodeResponseSummary, uncompressed
+  };
+  [[nodiscard]] const std::vector<PartLeaf>& partLeaves() const { return partLeaves_; }
+  [[nodiscard]] const ResponseNotes& notes() const { return notes_; }
+  [[nodiscard]] const ResponseWriteReport& report() const { return report_; }
+  /// Stops the destructor removing the folder (a part writer whose folder was published).
+  void keep() { committed_ = true; }
 
  private:
   ResponseWriter(std::string cityDir, Tileset tileset, std::string folder);
+  /// writeLeaf's and adoptLeaf's bookkeeping under the lock: the counts, the summaries by id for
+  /// the inner tiles, and (writeLeaf) the notes.
+  void remember(std::uint32_t node, const TileResponseFiles& files, const CityTile& tile,
+                std::vector<BuildingResult>& results, const LeafStats& stats, bool withNotes);
   std::string cityDir_;
   Tileset tileset_;
   std::string folder_;
@@ -112,6 +154,10 @@ class ResponseWriter {
   ResponseWriteReport report_;
   ResponseNotes notes_;
   bool committed_ = false;
+  bool part_ = false;
+  std::size_t scenario_ = 0;  ///< 0: not a catalogue's scenario
+  std::vector<std::string> scenarioNames_;
+  std::vector<PartLeaf> partLeaves_;
 };
 
 }  // namespace qv::prep
