@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <set>
 
+#include "qv/prep/ResponseCatalogue.h"
 #include "qv/prep/ResponseParts.h"
 
 namespace {
@@ -133,4 +134,50 @@ TEST_CASE("a part's results file reads back exactly, and a damaged one is refuse
   const auto refused = qv::prep::decodePartResults(badClass, "x");
   REQUIRE_FALSE(refused.ok());
   CHECK(refused.error().find("out of range") != std::string::npos);
+}
+
+TEST_CASE("a catalogue's scenarios are response options, shared ones overridden, files beside the catalogue",
+          "[response][catalogue]") {
+  const auto c = qv::prep::parseCatalogue(
+      R"({"options": {"synthetic": [1, 2], "time-of-day": "day", "districts": "d.geojson"},
+          "scenarios": [
+            {"name": "ShakeMap M5.8", "shakemap": "events/grid.xml", "accurate-steps": true},
+            {"name": "M6.5 at night", "epicentre": "-74.01,40.70,10", "magnitude": 6.5, "time-of-day": "night",
+             "districts": "/abs/d.geojson", "scale-by": "pga", "accurate-steps": false}]})",
+      "/data/cat", "catalogue.json");
+  REQUIRE(c.ok());
+  REQUIRE(c->scenarios.size() == 2);
+  CHECK(c->scenarios[0].name == "ShakeMap M5.8");
+  // Options in name order, each with its values.
+  CHECK(c->scenarios[0].args ==
+        std::vector<std::string>{"--accurate-steps", "--districts", "/data/cat/d.geojson", "--shakemap",
+                                 "/data/cat/events/grid.xml", "--synthetic", "1", "2", "--time-of-day", "day"});
+  CHECK(c->scenarios[1].args == std::vector<std::string>{"--districts", "/abs/d.geojson", "--epicentre",
+                                                         "-74.01,40.70,10", "--magnitude", "6.5", "--scale-by", "pga",
+                                                         "--synthetic", "1", "2", "--time-of-day", "night"});
+  CHECK(qv::prep::scenariosToJson({"A \"quoted\" name", "B"}) ==
+        "{\"format\":\"quakeview-scenarios\",\"version\":1,\"scenarios\":[{\"index\":1,\"name\":\"A \\\"quoted\\\" "
+        "name\",\"manifest\":\"scenario-1.json\"},{\"index\":2,\"name\":\"B\",\"manifest\":\"scenario-2.json\"}]}\n");
+}
+
+TEST_CASE("a catalogue that cannot be run is refused with its name and the scenario", "[response][catalogue]") {
+  const std::vector<std::pair<const char*, const char*>> cases = {
+      {"not json", "not valid JSON"},
+      {R"({"scenarios": []})", "at least one scenario"},
+      {R"({"scenarios": [{"shakemap": "x.xml"}]})", "scenario 1: needs a \"name\""},
+      {R"({"scenarios": [{"name": "a"}, {"name": "a"}]})", "scenario 2: another scenario is also named \"a\""},
+      {R"({"scenarios": [{"name": "bell\u0007"}]})", "control character"},
+      {R"({"scenarios": [{"name": "a", "threads": 4}]})", "\"threads\" cannot be set in a catalogue"},
+      {R"({"scenarios": [{"name": "a", "--shakemap": "x"}]})", "is not an option name"},
+      {R"({"options": {"city": "/x"}, "scenarios": [{"name": "a"}]})", "\"options\": \"city\" cannot be set"},
+      {R"({"scenarios": [{"name": "a", "synthetic": [{"seed": 1}]}]})", "not text or a number"},
+      {R"({"scenarios": [{"name": "a", "magnitude": null}]})", "not text, a number, true or a list"},
+  };
+  for (const auto& [json, message] : cases) {
+    INFO(json);
+    const auto c = qv::prep::parseCatalogue(json, "", "my-catalogue.json");
+    REQUIRE_FALSE(c.ok());
+    CHECK(c.error().find("my-catalogue.json") != std::string::npos);
+    CHECK(c.error().find(message) != std::string::npos);
+  }
 }

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -44,10 +45,24 @@ void writeDistricts(const std::string& path) {
 {"type":"Feature","properties":{"name":"East"},"geometry":{"type":"Polygon","coordinates":[[[-74.0,40.6],[-73.9,40.6],[-73.9,40.8],[-74.0,40.8],[-74.0,40.6]]]}}]})";
 }
 
+// A short record (8 s of a decaying 2 Hz and 0.7 Hz mix, in g, as "time,acceleration" lines): the
+// solver's time under the sanitizers stays small.
+void writeRecord(const std::string& path, double phase) {
+  std::ofstream out(path);
+  for (int i = 0; i <= 800; ++i) {
+    const double t = 0.01 * i;
+    const double a = 0.3 * std::exp(-0.3 * t) *
+                     (std::sin(2 * 3.14159265 * 2.0 * t + phase) + 0.6 * std::sin(2 * 3.14159265 * 0.7 * t));
+    out << t << "," << a << "\n";
+  }
+}
+
 struct Cities {
   std::string root, one, sharded, districts, options;
-  // `records`: the --synthetic seeds (two make a suite: pass one and the spread across records).
-  Cities(const std::string& name, int buildings, const std::string& records) {
+  std::string quick;  ///< another response: the first record as given
+  // `records`: how many of the two short records (two make a suite: pass one and the spread across
+  // records).
+  Cities(const std::string& name, int buildings, int records) {
     root = "/tmp/qv-shards-" + name + "-" + std::to_string(getpid());
     fs::remove_all(root);
     fs::create_directories(root);
@@ -55,13 +70,17 @@ struct Cities {
     sharded = root + "/sharded";
     districts = root + "/districts.geojson";
     writeDistricts(districts);
+    writeRecord(root + "/record-1.csv", 0.0);
+    writeRecord(root + "/record-2.csv", 1.0);
+    quick = "--motion '" + root + "/record-1.csv' --units g";
     const auto made = run("synth-city --buildings " + std::to_string(buildings) +
                           " --seed 4 --max-leaf-buildings 12 --out '" + one + "'");
     INFO(made.output);
     REQUIRE(made.exitCode == 0);
     fs::copy(one, sharded, fs::copy_options::recursive);
-    options = "--synthetic " + records +
-              " --epicentre -74.004,40.708,8 --magnitude 6.6 --time-of-day night --districts '" + districts + "'";
+    options = "--motion '" + root + "/record-1.csv'" + (records > 1 ? " '" + root + "/record-2.csv'" : "") +
+              " --units g --epicentre -74.004,40.708,8 --magnitude 6.6 --time-of-day night --districts '" + districts +
+              "'";
   }
   ~Cities() { fs::remove_all(root); }
   [[nodiscard]] qv::test::ToolRun part(const std::string& spec, const std::string& extra = "") const {
@@ -73,7 +92,7 @@ struct Cities {
 }  // namespace
 
 TEST_CASE("a response run in parts and merged is byte-identical to the run on one machine", "[response][cli][parts]") {
-  const Cities c("same", 150, "7 8");
+  const Cities c("same", 150, 2);
   const auto one = run("response --city '" + c.one + "' " + c.options);
   INFO(one.output);
   REQUIRE(one.exitCode == 0);
@@ -111,9 +130,9 @@ TEST_CASE("a response run in parts and merged is byte-identical to the run on on
 
 TEST_CASE("a merge with a part missing, failed, damaged or from another run publishes nothing and names the part",
           "[response][cli][parts]") {
-  const Cities c("refused", 60, "7");
+  const Cities c("refused", 60, 1);
   // The city's current response, which must stay published until a merge succeeds.
-  const auto earlier = run("response --city '" + c.sharded + "' --synthetic 3");
+  const auto earlier = run("response --city '" + c.sharded + "' " + c.quick);
   REQUIRE(earlier.exitCode == 0);
   const std::string published = readAll(c.sharded + "/tileset.json");
   auto unchanged = [&] {
@@ -148,10 +167,9 @@ TEST_CASE("a merge with a part missing, failed, damaged or from another run publ
   unchanged();
 
   // Part 3 run with other options: another run.
-  const auto other =
-      run("response --city '" + c.sharded +
-          "' --synthetic 7 --epicentre -74.004,40.708,8 --magnitude 6.6 --time-of-day day --districts '" + c.districts +
-          "' --shard 3/3");
+  const auto other = run("response --city '" + c.sharded + "' " + c.quick +
+                         " --epicentre -74.004,40.708,8 --magnitude 6.6 --time-of-day day --districts '" + c.districts +
+                         "' --shard 3/3");
   REQUIRE(other.exitCode == 0);
   auto mismatched = c.merge();
   INFO(mismatched.output);
@@ -185,7 +203,7 @@ TEST_CASE("a merge with a part missing, failed, damaged or from another run publ
   CHECK_FALSE(fs::exists(c.sharded + "/response-1"));
   CHECK_FALSE(fs::exists(c.sharded + "/staging"));
   // The published response is the one-machine run's.
-  REQUIRE(run("response --city '" + c.one + "' --synthetic 3").exitCode == 0);
+  REQUIRE(run("response --city '" + c.one + "' " + c.quick).exitCode == 0);
   REQUIRE(run("response --city '" + c.one + "' " + c.options).exitCode == 0);
   const auto expected = filesUnder(c.one);
   const auto got = filesUnder(c.sharded);
@@ -199,7 +217,7 @@ TEST_CASE("a merge with a part missing, failed, damaged or from another run publ
   // A city changed after its parts were made (here: renamed) is not merged; a response published
   // meanwhile does not matter (the parts are of the city, not of its response).
   REQUIRE(c.part("1/1").exitCode == 0);
-  REQUIRE(run("response --city '" + c.sharded + "' --synthetic 3").exitCode == 0);
+  REQUIRE(run("response --city '" + c.sharded + "' " + c.quick).exitCode == 0);
   std::string manifest = readAll(c.sharded + "/tileset.json");
   const std::size_t name = manifest.find("\"name\":\"Synthetic city");
   REQUIRE(name != std::string::npos);
@@ -211,4 +229,67 @@ TEST_CASE("a merge with a part missing, failed, damaged or from another run publ
   CHECK(changed.exitCode == 1);
   CHECK(changed.output.find("the city changed since its parts were made") != std::string::npos);
   CHECK(readAll(c.sharded + "/tileset.json") == before);
+}
+
+TEST_CASE("a catalogue's scenarios are published side by side, each as its own response, in parts or not",
+          "[response][cli][catalogue]") {
+  const Cities c("catalogue", 60, 1);
+  const std::string catalogue = c.root + "/catalogue.json";
+  std::ofstream(catalogue) << R"({"options": {"motion": "record-1.csv", "units": "g", "time-of-day": "night"},
+ "scenarios": [
+  {"name": "M6.6 under Lower Manhattan", "epicentre": "-74.004,40.708,8", "magnitude": 6.6, "districts": "districts.geojson"},
+  {"name": "M5.0 to the north-east", "epicentre": "-73.99,40.72,8", "magnitude": 5.0, "time-of-day": "day"}]})";
+  const auto list = run("response --catalogue '" + catalogue + "' --list");
+  CHECK(list.exitCode == 0);
+  CHECK(list.output == "1\tM6.6 under Lower Manhattan\n2\tM5.0 to the north-east\n");
+  const std::string city = "response --city '" + c.sharded + "' --catalogue '" + catalogue + "'";
+  // Usage: a scenario out of range, or options the catalogue gives.
+  CHECK(run(city + " --scenario 3").exitCode == 2);
+  CHECK(run(city + " --scenario 1 --magnitude 7").exitCode == 2);
+  CHECK(run("response --city '" + c.sharded + "' --scenario 1").exitCode == 2);
+
+  // Scenario 2 in two parts, scenario 1 on one machine, in that order.
+  REQUIRE(run(city + " --scenario 2 --shard 2/2").exitCode == 0);
+  REQUIRE(run(city + " --scenario 2 --shard 1/2").exitCode == 0);
+  CHECK(fs::exists(c.sharded + "/staging/scenario-2/part-1-of-2/part.json"));
+  const auto plain = c.merge();  // the parts are a scenario's: --scenario is needed
+  CHECK(plain.exitCode == 1);
+  CHECK(plain.output.find("--merge --scenario I") != std::string::npos);
+  const auto merged = run("response --city '" + c.sharded + "' --merge --scenario 2");
+  INFO(merged.output);
+  REQUIRE(merged.exitCode == 0);
+  const auto first = run(city + " --scenario 1");
+  INFO(first.output);
+  REQUIRE(first.exitCode == 0);
+  CHECK(first.output.find("scenario    1 of 2: M6.6 under Lower Manhattan") != std::string::npos);
+  CHECK_FALSE(fs::exists(c.sharded + "/staging"));
+
+  const std::string scenarios = readAll(c.sharded + "/scenarios.json");
+  CHECK(scenarios.find("{\"index\":1,\"name\":\"M6.6 under Lower Manhattan\",\"manifest\":\"scenario-1.json\"}") !=
+        std::string::npos);
+  CHECK(scenarios.find("{\"index\":2,\"name\":\"M5.0 to the north-east\",\"manifest\":\"scenario-2.json\"}") !=
+        std::string::npos);
+  const std::string one = readAll(c.sharded + "/scenario-1.json");
+  const std::string two = readAll(c.sharded + "/scenario-2.json");
+  CHECK(readAll(c.sharded + "/tileset.json") == one);
+  CHECK(one.find("M6.6 at") != std::string::npos);
+  CHECK(two.find("M5.0 at") != std::string::npos);
+  CHECK(one.find("\"timeOfDay\":\"night\"") != std::string::npos);
+  CHECK(two.find("\"timeOfDay\":\"day\"") != std::string::npos);
+  // Each scenario's folder, both kept.
+  CHECK(two.find("\"response-1/consequences.json\"") != std::string::npos);
+  CHECK(one.find("\"response-2/consequences.json\"") != std::string::npos);
+
+  // Scenario 2 again: its own previous folder goes, scenario 1's stays.
+  REQUIRE(run(city + " --scenario 2").exitCode == 0);
+  CHECK(readAll(c.sharded + "/scenario-2.json").find("\"response-3/consequences.json\"") != std::string::npos);
+  CHECK_FALSE(fs::exists(c.sharded + "/response-1"));
+  CHECK(fs::exists(c.sharded + "/response-2"));
+  CHECK(fs::exists(c.sharded + "/response-3"));
+  // A plain run replaces tileset.json and keeps the scenarios' folders.
+  REQUIRE(run("response --city '" + c.sharded + "' " + c.quick).exitCode == 0);
+  CHECK(fs::exists(c.sharded + "/response-2"));
+  CHECK(fs::exists(c.sharded + "/response-3"));
+  CHECK(fs::exists(c.sharded + "/response-4"));
+  CHECK(readAll(c.sharded + "/tileset.json").find("\"response-4/consequences.json\"") != std::string::npos);
 }

@@ -802,8 +802,11 @@ Result<ResponseRunReport> mergeCityResponse(const std::string& dir, std::size_t 
     std::string list;
     for (std::size_t i = 0; i < missing.size(); ++i) list += (i == 0 ? "" : ", ") + missing[i];
     return Error{"cannot merge: " + list + (missing.size() == 1 ? " is" : " are") + " missing in " + staging +
-                 "; run " + (missing.size() == 1 ? "it" : "them") + " (`response` with the run's options and " + rerun +
-                 ") and merge again. Nothing was published; the city's response is unchanged."};
+                 "; run " + (missing.size() == 1 ? "it" : "them") +
+                 (scenario > 0
+                      ? " (`response --catalogue FILE --scenario " + std::to_string(scenario) + "` with " + rerun + ")"
+                      : " (`response` with the run's options and " + rerun + ")") +
+                 " and merge again. Nothing was published; the city's response is unchanged."};
   }
   // One run: every part's identity equals part 1's, and the city is still the one they were made of.
   const PartManifest& first = parts.begin()->second.second;
