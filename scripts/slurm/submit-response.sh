@@ -82,14 +82,14 @@
 set -euo pipefail
 
 prog="submit-response.sh"
-die() { printf '%s: error: %s\n' "$prog" "$*" >&2; exit 1; }
 usage_error() {
   printf '%s: %s\n' "$prog" "$*" >&2
   printf 'usage: %s [--parts K,K,...] CITY_DIR N [response options...]\n       %s --merge-only CITY_DIR N\n' "$0" "$0" >&2
   printf '(the header of %s explains every option and setting)\n' "$0" >&2
   exit 2
 }
-info() { printf '%s: %s\n' "$prog" "$*" >&2; }
+# shellcheck source=SCRIPTDIR/lib.sh
+. "$(dirname "${BASH_SOURCE[0]}")/lib.sh" || { printf '%s: error: %s\n' "$prog" "lib.sh is missing beside $0" >&2; exit 1; }
 
 parts_spec=${QUAKEVIEW_SLURM_PARTS:-}
 merge_only=0
@@ -110,17 +110,9 @@ n=$2
 shift 2
 response_options=("$@")
 
-# N: a whole number of parts.
-case "$n" in '' | *[!0-9]* | 0*) usage_error "N must be a whole number of parts >= 1, not '$n'" ;; esac
-[ "${#n}" -le 6 ] || usage_error "N must be a whole number of parts >= 1, not '$n'"
-
-command -v sbatch >/dev/null 2>&1 ||
-  die "sbatch not found: run this on a machine that submits to your Slurm cluster (a login node), or install Slurm's client commands (Debian: slurm-client)"
-
-[ -d "$city_arg" ] || die "city folder '$city_arg' does not exist"
-[ -f "$city_arg/tileset.json" ] ||
-  die "'$city_arg' is not a prepared city: $city_arg/tileset.json is missing (make it with quakeview-prep city or synth-city)"
-city=$(cd "$city_arg" && pwd)
+qv_check_parts_count "$n"
+qv_need_sbatch
+qv_city "$city_arg"
 
 if [ "$merge_only" -eq 1 ]; then
   [ "${#response_options[@]}" -eq 0 ] || usage_error "--merge-only takes CITY_DIR N only (the parts recorded their options)"
@@ -136,100 +128,24 @@ done
 
 # The parts to run: all of them, or the list given.
 if [ -n "$parts_spec" ]; then
-  declare -A seen=()
-  parts=()
-  IFS=',' read -r -a requested <<<"$parts_spec"
-  [ "${#requested[@]}" -gt 0 ] || usage_error "--parts needs a list such as 3 or 1,3"
-  for k in "${requested[@]}"; do
-    k=${k// /}
-    case "$k" in '' | *[!0-9]* | 0*) usage_error "--parts: '$k' is not a part number (1 to $n)" ;; esac
-    if [ "${#k}" -gt 6 ] || [ "$k" -gt "$n" ]; then usage_error "--parts: part $k does not exist (parts are 1 to $n)"; fi
-    [ -n "${seen[$k]:-}" ] || parts+=("$k")
-    seen[$k]=1
-  done
-  array_spec=$(printf '%s\n' "${parts[@]}" | sort -n | paste -sd, -)
+  qv_parse_list "$parts_spec" --parts part "$n"
+  array_spec=$(printf '%s\n' "${qv_list[@]}" | paste -sd, -)
 else
   array_spec="1-$n"
 fi
 
 # The array's largest index must be below the cluster's MaxArraySize.
-if command -v scontrol >/dev/null 2>&1; then
-  max_array=$(timeout 10 scontrol show config 2>/dev/null | sed -nE 's/^MaxArraySize *= *([0-9]+).*/\1/p') || max_array=
-  if [ -n "$max_array" ] && [ "$n" -ge "$max_array" ]; then
-    die "N=$n parts: this cluster's MaxArraySize is $max_array, so at most $((max_array - 1)) parts"
-  fi
+max_array=$(qv_max_array_size)
+if [ -n "$max_array" ] && [ "$n" -ge "$max_array" ]; then
+  die "N=$n parts: this cluster's MaxArraySize is $max_array, so at most $((max_array - 1)) parts"
 fi
 
-# quakeview-prep: QUAKEVIEW_PREP or PATH; an absolute path, since the jobs run elsewhere.
-prep=${QUAKEVIEW_PREP:-}
-if [ -z "$prep" ]; then
-  prep=$(command -v quakeview-prep 2>/dev/null) ||
-    die "quakeview-prep not found: set QUAKEVIEW_PREP to its path (on shared storage) or put it on PATH"
-fi
-if [ ! -f "$prep" ] || [ ! -x "$prep" ]; then die "QUAKEVIEW_PREP '$prep' is not an executable file"; fi
-prep=$(cd "$(dirname "$prep")" && pwd)/$(basename "$prep")
-
-cpus=${QUAKEVIEW_SLURM_CPUS:-2}
-case "$cpus" in '' | *[!0-9]* | 0*) die "QUAKEVIEW_SLURM_CPUS must be a whole number of cores >= 1, not '$cpus'" ;; esac
-[ "$cpus" -le 256 ] || die "QUAKEVIEW_SLURM_CPUS: at most 256 cores (quakeview-prep --threads), not $cpus"
-# The city's building count (tileset.json's top-level "buildings", first in the file), for the
-# memory estimates; empty when it cannot be read.
-buildings=$(grep -o -m 1 '"buildings": *[0-9][0-9]*' "$city/tileset.json" 2>/dev/null | head -n 1 | grep -o '[0-9][0-9]*$') ||
-  buildings=
-# A Slurm size in MB (no suffix: MB, as sbatch reads it).
-size_mb() {
-  local v=${1%[KMGTkmgt]} unit=${1:${#1}-1}
-  case "$unit" in
-    K | k) echo $((v / 1024)) ;;
-    G | g) echo $((v * 1024)) ;;
-    T | t) echo $((v * 1024 * 1024)) ;;
-    *) echo "$v" ;;
-  esac
-}
-mem=${QUAKEVIEW_SLURM_MEM:-2G}
-if [ -n "${QUAKEVIEW_SLURM_MERGE_MEM:-}" ]; then
-  merge_mem=$QUAKEVIEW_SLURM_MERGE_MEM
-elif [ -n "$buildings" ]; then
-  merge_mb=$((256 + buildings * 8 / 1024))
-  [ "$merge_mb" -ge 1024 ] || merge_mb=1024
-  merge_mem="${merge_mb}M"
-else
-  merge_mem=2G
-fi
-for m in "$mem" "$merge_mem"; do
-  [[ "$m" =~ ^[1-9][0-9]*[KMGTkmgt]?$ ]] || die "memory '$m' is not a Slurm size (e.g. 2G, 1500M): QUAKEVIEW_SLURM_MEM / QUAKEVIEW_SLURM_MERGE_MEM"
-done
-if [ -n "$buildings" ] && [ "$merge_only" -eq 0 ]; then
-  part_buildings=$(((buildings + n - 1) / n))
-  part_need_mb=$((64 + part_buildings * 8 / 1024))
-  if [ "$part_need_mb" -gt "$(size_mb "$mem")" ]; then
-    info "warning: parts of about $part_buildings buildings may need about ${part_need_mb}M each, more than QUAKEVIEW_SLURM_MEM=$mem: raise it or N"
-  fi
-fi
-max_running=${QUAKEVIEW_SLURM_MAX_RUNNING:-}
-if [ -n "$max_running" ]; then
-  case "$max_running" in *[!0-9]* | 0*) die "QUAKEVIEW_SLURM_MAX_RUNNING must be a whole number >= 1, not '$max_running'" ;; esac
-  array_spec="$array_spec%$max_running"
-fi
-
-name=${QUAKEVIEW_SLURM_JOB_NAME:-qv-response}
-logs=${QUAKEVIEW_SLURM_LOGS:-$(dirname "$city")/$(basename "$city")-slurm-logs}
-mkdir -p "$logs" || die "cannot create the log folder '$logs' (QUAKEVIEW_SLURM_LOGS)"
-logs=$(cd "$logs" && pwd)
-
-common=(--parsable --ntasks=1)
-[ -z "${QUAKEVIEW_SLURM_PARTITION:-}" ] || common+=("--partition=$QUAKEVIEW_SLURM_PARTITION")
-[ -z "${QUAKEVIEW_SLURM_ACCOUNT:-}" ] || common+=("--account=$QUAKEVIEW_SLURM_ACCOUNT")
-if [ -n "${QUAKEVIEW_SLURM_SBATCH_ARGS:-}" ]; then
-  read -r -a extra <<<"$QUAKEVIEW_SLURM_SBATCH_ARGS"
-  common+=("${extra[@]}")
-fi
-part_time=()
-[ -z "${QUAKEVIEW_SLURM_TIME:-}" ] || part_time=("--time=$QUAKEVIEW_SLURM_TIME")
-merge_time=()
-if [ -n "${QUAKEVIEW_SLURM_MERGE_TIME:-${QUAKEVIEW_SLURM_TIME:-}}" ]; then
-  merge_time=("--time=${QUAKEVIEW_SLURM_MERGE_TIME:-$QUAKEVIEW_SLURM_TIME}")
-fi
+qv_find_prep
+qv_resources "$n" "$merge_only"
+qv_max_running
+[ -z "$max_running" ] || array_spec="$array_spec%$max_running"
+qv_name_and_logs qv-response
+qv_sbatch_options
 
 # The job scripts, every word quoted for bash (printf %q).
 q_prep=$(printf '%q' "$prep")
@@ -262,15 +178,6 @@ echo "[quakeview] merge finished with exit status \$status at \$(date -u +%Y-%m-
 exit \$status
 SCRIPT
 )
-
-# sbatch --parsable prints "jobid" or "jobid;cluster".
-submit() {
-  local out
-  out=$(sbatch "$@") || return 1
-  out=${out%%;*}
-  [[ "$out" =~ ^[0-9]+$ ]] || { printf '%s: sbatch printed "%s", not a job id\n' "$prog" "$out" >&2; return 1; }
-  printf '%s\n' "$out"
-}
 
 merge_options=("${common[@]}" --job-name="$name-merge" --cpus-per-task=1 --mem="$merge_mem" "${merge_time[@]}"
   --output="$logs/$name-merge-%j.out")

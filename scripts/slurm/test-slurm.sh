@@ -13,6 +13,15 @@
 #    met), a merge submitted alone refuses and names part 3, and B is unchanged;
 # 4. B, part 3 alone and the merge: published; A and B equal byte for byte (tileset.json and every
 #    file of the response folder: diff -r, the staging folder aside).
+# 5. A catalogue of 2 scenarios (written into the test's folder, with a districts file named
+#    relative to it) on a city C of 2,000 buildings through scripts/slurm/submit-catalogue.sh C 2:
+#    one array of 4 tasks and a merge per scenario, each depending only on its own scenario's two
+#    tasks (scontrol's Dependency); then C's scenarios.json lists both names, scenario-1.json,
+#    scenario-2.json and tileset.json (== scenario-1.json) exist, staging/ is gone, and C equals
+#    byte for byte a copy D on which the two scenarios ran on one machine (every manifest and every
+#    response folder, no normalisation: D runs the scenarios in the order C's merges took their
+#    folder numbers, scenario 1 then 2 unless the merges raced the other way, so that each
+#    scenario's folder has the same name in both cities).
 # Every job is checked in Slurm itself (scontrol show job: state, exit code, node) and by its
 # output file. Prints PASS/FAIL lines and a summary; exits 1 if any check failed. Needs root and
 # Debian's slurm-wlm and munge (scripts/setup.sh). Keeps its folder (printed) when a check fails.
@@ -355,6 +364,187 @@ if [ -e "$B/staging" ]; then
   note "B/staging/ is still there after the merge ($(find "$B/staging" -type f | wc -l) files); the comparison leaves it aside"
 else
   note "B/staging/ is gone after the merge"
+fi
+
+# --- (d) A catalogue of two scenarios: one array, a merge per scenario -------------------------
+# C through Slurm (submit-catalogue.sh), D on one machine; a smaller city than A's: two scenarios.
+step="(d) catalogue"
+C="$work/C"
+D="$work/D"
+catalogue_dir="$work/catalogue"
+catalogue="$catalogue_dir/catalogue.json"
+names=("M6.6 under Lower Manhattan" "M5.0 to the north-east, by day")
+catalogue_ok=1
+note "$step: making a city of 2,000 buildings (synth-city --seed 22) and a catalogue of 2 scenarios"
+mkdir -p "$catalogue_dir"
+if ! cp "$root/tests/e2e/data/districts.geojson" "$catalogue_dir/districts.geojson"; then
+  fail "$step: cannot copy tests/e2e/data/districts.geojson"
+  catalogue_ok=0
+fi
+cat >"$catalogue" <<CATALOGUE
+{"options": {"synthetic": [7], "time-of-day": "night", "districts": "districts.geojson"},
+ "scenarios": [
+  {"name": "${names[0]}", "epicentre": "-74.005,40.705,8", "magnitude": 6.6},
+  {"name": "${names[1]}", "epicentre": "-73.99,40.72,8", "magnitude": 5.0, "time-of-day": "day"}]}
+CATALOGUE
+if ! "$prep" synth-city --buildings 2000 --seed 22 --max-leaf-buildings 300 --out "$C" >"$work/synth-C.log" 2>&1; then
+  show "$work/synth-C.log"
+  fail "$step: quakeview-prep synth-city failed"
+  catalogue_ok=0
+fi
+cp -a "$C" "$D"
+if list=$("$prep" response --catalogue "$catalogue" --list 2>"$work/list.err") &&
+  [ "$list" = "$(printf '1\t%s\n2\t%s' "${names[0]}" "${names[1]}")" ]; then
+  pass "$step: quakeview-prep response --catalogue --list names both scenarios"
+else
+  fail "$step: quakeview-prep response --catalogue --list: '${list:-}' (expected the 2 scenarios)"
+  show "$work/list.err"
+  catalogue_ok=0
+fi
+
+# The array's tasks are scenario I's part K at index (I-1)*2 + K-1.
+check_catalogue_task() { # ARRAY T
+  local array=$1 t=$2 line state exit_code nodes log scenario part
+  scenario=$((t / 2 + 1))
+  part=$((t % 2 + 1))
+  line=$(job_lines "${array}_$t")
+  state=$(printf '%s\n' "$line" | field JobState)
+  exit_code=$(printf '%s\n' "$line" | field ExitCode)
+  nodes=$(printf '%s\n' "$line" | field NodeList)
+  log="$work/logs/qv-catalogue-${array}_$t.out"
+  if [ "$state" = COMPLETED ] && [ "$nodes" = "$node" ] &&
+    grep -q "^\[quakeview\] scenario $scenario part $part/2 of .* on $node" "$log" 2>/dev/null; then
+    pass "$step: array task ${array}_$t ran scenario $scenario part $part/2 on $node: $state (exit $exit_code)"
+  else
+    fail "$step: array task ${array}_$t (scenario $scenario part $part/2) is '${state:-unknown}' (exit ${exit_code:-?}) on '${nodes:-?}', expected COMPLETED on $node"
+    show "$log"
+  fi
+}
+# The folder a manifest's response is in (every file it names is in that one folder).
+folder_of() { grep -o '"response-[0-9]*/' "$1" 2>/dev/null | sort -u | tr -d '"/'; }
+
+merges=()
+if [ "$catalogue_ok" -eq 1 ]; then
+  note "$step: submitting"
+  if ids=$(QUAKEVIEW_PREP="$prep" QUAKEVIEW_SLURM_LOGS="$work/logs" bash "$slurm_scripts/submit-catalogue.sh" "$C" 2 "$catalogue" 2>"$work/submit.err"); then
+    sed 's/^/  /' "$work/submit.err" >&2
+    array=$(printf '%s\n' "$ids" | field array)
+    IFS=, read -r -a merges <<<"$(printf '%s\n' "$ids" | field merges)"
+    if [[ "$array" =~ ^[0-9]+$ ]] && [ "${#merges[@]}" -eq 2 ]; then
+      pass "$step: submitted ($ids)"
+    else
+      fail "$step: submit-catalogue.sh printed '$ids', expected array=<id> merges=<id>,<id>"
+      catalogue_ok=0
+    fi
+  else
+    sed 's/^/  /' "$work/submit.err" >&2
+    fail "$step: submit-catalogue.sh failed"
+    catalogue_ok=0
+  fi
+fi
+if [ "$catalogue_ok" -eq 1 ]; then
+  # Each merge waits on its own scenario's tasks only: Slurm's record, read at once (a task's
+  # entry leaves the list when it has succeeded, so a list may be shorter, never another's).
+  for i in 0 1; do
+    want=$(printf '%s_%s\n' "$array" $((2 * i)) "$array" $((2 * i + 1)))
+    got=$(job_field "${merges[$i]}" Dependency | tr ',' '\n' | sed -nE 's/^afterok:([0-9]+_[0-9]+)\(.*/\1/p')
+    if [ -n "$got" ] && [ -z "$(comm -13 <(printf '%s\n' "$want" | sort) <(printf '%s\n' "$got" | sort))" ]; then
+      pass "$step: scenario $((i + 1))'s merge ${merges[$i]} depends on its own tasks only: $(printf '%s' "$got" | paste -sd' ' -) (afterok)"
+    else
+      fail "$step: scenario $((i + 1))'s merge ${merges[$i]} depends on '$(job_field "${merges[$i]}" Dependency)', expected afterok on $(printf '%s' "$want" | paste -sd' ' -)"
+    fi
+  done
+  if wait_jobs "$array" "${merges[@]}"; then
+    for t in 0 1 2 3; do check_catalogue_task "$array" "$t"; done
+    for i in 0 1; do
+      check_merge "${merges[$i]}" COMPLETED "$step, scenario $((i + 1))"
+      log="$work/logs/qv-catalogue-merge-$((i + 1))-${merges[$i]}.out"
+      if grep -q "^\[quakeview\] merge of scenario $((i + 1)) of .* on $node" "$log" 2>/dev/null; then
+        pass "$step: the merge's output file shows it merged scenario $((i + 1)) on $node"
+      else
+        fail "$step: the output file of scenario $((i + 1))'s merge does not show it ran"
+        show "$log"
+      fi
+    done
+  else
+    fail "$step: the jobs did not end within ${wait_limit}s"
+    timeout 10 squeue | sed 's/^/  | /'
+    catalogue_ok=0
+  fi
+fi
+if [ "$catalogue_ok" -eq 1 ]; then
+  missing=
+  for f in scenario-1.json scenario-2.json tileset.json scenarios.json; do [ -f "$C/$f" ] || missing+=" $f"; done
+  if [ -z "$missing" ]; then
+    pass "$step: C has scenario-1.json, scenario-2.json, tileset.json and scenarios.json"
+  else
+    fail "$step: C lacks$missing"
+  fi
+  if grep -qF "\"${names[0]}\"" "$C/scenarios.json" 2>/dev/null && grep -qF "\"${names[1]}\"" "$C/scenarios.json"; then
+    pass "$step: scenarios.json lists both: $(cat "$C/scenarios.json")"
+  else
+    fail "$step: scenarios.json does not list both scenarios' names"
+    show "$C/scenarios.json"
+  fi
+  if cmp -s "$C/tileset.json" "$C/scenario-1.json"; then
+    pass "$step: tileset.json is scenario-1.json (byte for byte)"
+  else
+    fail "$step: tileset.json differs from scenario-1.json"
+  fi
+  if [ -e "$C/staging" ]; then
+    fail "$step: C/staging/ is still there after both merges: $(find "$C/staging" | head -n 5 | paste -sd' ' -)"
+  else
+    pass "$step: C/staging/ is gone after both merges"
+  fi
+  folder1=$(folder_of "$C/scenario-1.json")
+  folder2=$(folder_of "$C/scenario-2.json")
+  if [[ "$folder1" =~ ^response-[0-9]+$ ]] && [[ "$folder2" =~ ^response-[0-9]+$ ]] && [ "$folder1" != "$folder2" ]; then
+    pass "$step: each scenario in its own folder: scenario 1 $folder1, scenario 2 $folder2"
+  else
+    fail "$step: the scenarios' folders are '$folder1' and '$folder2': expected one folder each, not the same"
+    catalogue_ok=0
+  fi
+fi
+if [ "$catalogue_ok" -eq 1 ]; then
+  # D, one machine: each scenario takes the next free folder number, so the scenarios run in the
+  # order C's merges numbered them (1 then 2, unless the merges raced the other way).
+  order=(1 2)
+  if [ "${folder2#response-}" -lt "${folder1#response-}" ]; then
+    order=(2 1)
+    note "$step: C's merges published scenario 2 first ($folder2, scenario 1 $folder1): D runs scenario 2 first"
+  fi
+  for s in "${order[@]}"; do
+    t0=$(date +%s)
+    if "$prep" response --city "$D" --catalogue "$catalogue" --scenario "$s" >"$work/one-machine-D-$s.log" 2>&1; then
+      pass "$step: one-machine run of scenario $s on D in $(($(date +%s) - t0))s"
+    else
+      show "$work/one-machine-D-$s.log"
+      fail "$step: one-machine run of scenario $s on D failed: $prep response --city $D --catalogue $catalogue --scenario $s"
+    fi
+  done
+  for f in scenario-1.json scenario-2.json tileset.json scenarios.json; do
+    if cmp "$D/$f" "$C/$f"; then
+      pass "$step: $f identical (one machine and Slurm)"
+    else
+      fail "$step: $f differs between D (one machine) and C (Slurm)"
+    fi
+  done
+  for s in 1 2; do
+    d=$(folder_of "$C/scenario-$s.json")
+    n_files=$(find "$D/$d" -type f 2>/dev/null | wc -l)
+    if [ "$(folder_of "$D/scenario-$s.json")" = "$d" ] && [ -d "$D/$d" ] && diff -r "$D/$d" "$C/$d" >"$work/diff-C-$d.txt" 2>&1; then
+      pass "$step: scenario $s's $d identical ($n_files files)"
+    else
+      fail "$step: scenario $s's $d differs or is missing (D's scenario-$s.json shows $(folder_of "$D/scenario-$s.json"))"
+      head -n 10 "$work/diff-C-$d.txt" | sed 's/^/  | /'
+    fi
+  done
+  if diff -r "$D" "$C" >"$work/diff-C-all.txt" 2>&1; then
+    pass "$step: the whole city identical (diff -r; $(find "$C" -type f | wc -l) files)"
+  else
+    fail "$step: the cities differ (diff -r D C)"
+    head -n 20 "$work/diff-C-all.txt" | sed 's/^/  | /'
+  fi
 fi
 
 finish
