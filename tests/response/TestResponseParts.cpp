@@ -149,9 +149,9 @@ TEST_CASE("a catalogue's scenarios are response options, shared ones overridden,
   REQUIRE(c->scenarios.size() == 2);
   CHECK(c->scenarios[0].name == "ShakeMap M5.8");
   // Options in name order, each with its values.
-  CHECK(c->scenarios[0].args ==
-        std::vector<std::string>{"--accurate-steps", "--districts", "/data/cat/d.geojson", "--shakemap",
-                                 "/data/cat/events/grid.xml", "--synthetic", "1", "2", "--time-of-day", "day"});
+  CHECK(c->scenarios[0].args == std::vector<std::string>{"--accurate-steps", "--districts", "/data/cat/d.geojson",
+                                                         "--shakemap", "/data/cat/events/grid.xml", "--synthetic", "1",
+                                                         "2", "--time-of-day", "day"});
   CHECK(c->scenarios[1].args == std::vector<std::string>{"--districts", "/abs/d.geojson", "--epicentre",
                                                          "-74.01,40.70,10", "--magnitude", "6.5", "--scale-by", "pga",
                                                          "--synthetic", "1", "2", "--time-of-day", "night"});
