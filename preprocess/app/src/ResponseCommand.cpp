@@ -71,6 +71,29 @@ const char* const kUsage =
 
 int printReport(const std::string& city, const ResponseRunReport& r, const ResponseRunOptions* given);
 
+// The options that say what a run computes: given by a catalogue's scenario or by the parts of a
+// merge, never beside --catalogue or --merge.
+constexpr const char* kRunOptionNames[] = {"motion",
+                                           "shakemap",
+                                           "scale-by",
+                                           "outside-grid",
+                                           "time-of-day",
+                                           "districts",
+                                           "motion-y",
+                                           "dt",
+                                           "units",
+                                           "synthetic",
+                                           "pga",
+                                           "epicentre",
+                                           "epicenter",
+                                           "magnitude",
+                                           "vs30",
+                                           "site-factor",
+                                           "wave-speed",
+                                           "population-night",
+                                           "population-day",
+                                           "population-source"};
+
 // A catalogue's scenario being run: its number and the catalogue's names (ResponseCatalogue.h).
 struct ScenarioTarget {
   std::size_t index = 0;
@@ -86,28 +109,9 @@ int runCatalogue(const Args& args) {
     std::fprintf(stderr, "response: %s\n%s", message.c_str(), kUsage);
     return kExitUsage;
   };
-  for (const char* other : {"motion",
-                            "shakemap",
-                            "scale-by",
-                            "outside-grid",
-                            "time-of-day",
-                            "districts",
-                            "motion-y",
-                            "dt",
-                            "units",
-                            "synthetic",
-                            "pga",
-                            "epicentre",
-                            "epicenter",
-                            "magnitude",
-                            "vs30",
-                            "site-factor",
-                            "wave-speed",
-                            "population-night",
-                            "population-day",
-                            "population-source",
-                            "merge"}) {
-    if (args.has(other)) {
+  for (const char* other : kRunOptionNames) {
+    if (args.has(other) || args.has("merge")) {
+      if (!args.has(other)) other = "merge";
       return usage(std::string("--catalogue: the scenario's options come from the catalogue, not --") + other +
                    (std::string(other) == "merge" ? " (merge with --city DIR --merge --scenario I)" : ""));
     }
@@ -204,27 +208,8 @@ int runResponseWith(const CommandArgs& argv, const ScenarioTarget* target) {
   if (!city) return usage("--city DIR is required");
   if (args->has("scenario") && !args->has("merge")) return usage("--scenario goes with --catalogue FILE or --merge");
   if (args->has("merge")) {
-    for (const char* other : {"motion",
-                              "shakemap",
-                              "scale-by",
-                              "outside-grid",
-                              "time-of-day",
-                              "districts",
-                              "motion-y",
-                              "dt",
-                              "units",
-                              "synthetic",
-                              "pga",
-                              "epicentre",
-                              "epicenter",
-                              "magnitude",
-                              "vs30",
-                              "site-factor",
-                              "wave-speed",
-                              "population-night",
-                              "population-day",
-                              "population-source",
-                              "shard"}) {
+    for (const char* other : kRunOptionNames) {
+      if (args->has("shard")) other = "shard";
       if (args->has(other)) {
         return usage(std::string("--merge takes only --city (the parts hold the run's options), not --") + other);
       }
