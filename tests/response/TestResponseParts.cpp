@@ -25,7 +25,7 @@ qv::Tileset leavesOf(const std::vector<std::uint32_t>& buildings) {
 
 }  // namespace
 
-TEST_CASE("--shard K/N takes part K of N parts, 1-based", "[response][parts]") {
+TEST_CASE("A shard spec K/N takes part K of N parts, 1-based", "[response][parts]") {
   const auto spec = qv::prep::parseShardSpec("3/4");
   REQUIRE(spec);
   CHECK(spec->part == 3);
