@@ -52,7 +52,8 @@ for target in $targets; do
   corpus="$build/corpus/$what"
   crashes="$build/crashes/$what"
   log="$build/logs/$what.log"
-  rm -rf "$crashes" && mkdir -p "$corpus" "$crashes" "$(dirname "$log")"
+  # A target without seeds starts from an empty seed folder (libFuzzer refuses a missing one).
+  rm -rf "$crashes" && mkdir -p "$corpus" "$crashes" "$build/seeds/$what" "$(dirname "$log")"
   echo "==== $target: ${seconds}s ===="
   # The working corpus keeps what earlier runs found; the seeds are read alongside it.
   extra_args=()

@@ -15,8 +15,12 @@ work="$out/.work"
 warn() { printf '[seeds] warning: %s\n' "$*" >&2; }
 
 rm -rf "$out" && mkdir -p "$out" "$work"
+# Every target that gets seeds written below, and every target with hand-written seeds committed.
+committed=()
+for d in "$root"/tests/fuzz/seeds/*/; do committed+=("$(basename "$d")"); done
 for t in city_tile city_tile_roundtrip tileset consequences search_index search_index_roundtrip response_summary \
-         response_history response_roundtrip ground_motion osm geojson response_import cityjson obj shakemap; do
+         response_history response_roundtrip ground_motion osm geojson response_import cityjson obj shakemap \
+         "${committed[@]}"; do
   mkdir -p "$out/$t"
   if [ -d "$root/tests/fuzz/seeds/$t" ]; then cp "$root/tests/fuzz/seeds/$t"/* "$out/$t/" 2>/dev/null; fi
 done

@@ -74,6 +74,13 @@ Status readOptions(simdjson::dom::object o, const std::string& where, const std:
       if (!valueText(field.value, v)) return Error{where + ": \"" + key + "\" is not text, a number, true or a list"};
       values.push_back(v);
     }
+    for (const std::string& v : values) {
+      // The values become arguments: one that reads as an option would set that option instead.
+      if (v.rfind("--", 0) == 0) {
+        return Error{where + ": \"" + key + "\" has the value \"" + v.substr(0, 40) +
+                     "\", which reads as an option, not a value"};
+      }
+    }
     if (kFileOptions.count(key) != 0) {
       for (std::string& v : values) v = resolve(folder, v);
     }

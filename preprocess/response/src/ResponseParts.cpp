@@ -123,6 +123,8 @@ void readLoss(ByteReader& r, seismic::BuildingLoss& l) {
   l.occupantsPresent = r.f64("occupants");
   readArray(r, l.occupantsAt, "occupants by time");
   const std::uint8_t flags = r.u8("loss flags");
+  // Bits this version never writes mean the file was not written by it.
+  if ((flags & ~3u) != 0) r.fail("a building's loss flags hold unknown bits");
   l.occupantsInferred = (flags & 1) != 0;
   l.valueInferred = (flags & 2) != 0;
   readArray(r, l.injuries, "injuries");
@@ -609,8 +611,8 @@ Result<PartResults> decodePartResults(std::span<const std::uint8_t> bytes, std::
     const std::uint8_t type = r.u8("structural type");
     const std::uint8_t flags = r.u8("class flags");
     if (occupancy >= static_cast<std::uint8_t>(seismic::Occupancy::Count) ||
-        type >= static_cast<std::uint8_t>(StructuralType::Count) || l.district < -1) {
-      r.fail("a building's class or district is out of range");
+        type >= static_cast<std::uint8_t>(StructuralType::Count) || l.district < -1 || (flags & ~7u) != 0) {
+      r.fail("a building's class, its flags or its district is out of range");
       break;
     }
     l.lossClass.occupancy = static_cast<seismic::Occupancy>(occupancy);
