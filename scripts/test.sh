@@ -23,7 +23,13 @@ declare -a failures=()
 declare -A counts=()
 start=$(date +%s)
 
-stage() { printf '\n==== %s ====\n' "$*"; }
+# Each stage's start, for the table of times at the end (where a slow run spent its time).
+declare -a stage_names=() stage_starts=()
+stage() {
+  stage_names+=("$*")
+  stage_starts+=("$(date +%s)")
+  printf '\n==== %s ====\n' "$*"
+}
 
 # ctest prints "N% tests passed, F tests failed out of T"; keep T and F.
 run_ctest() {
@@ -153,7 +159,14 @@ else
   failures+=("wasm build")
 fi
 
-elapsed=$(( $(date +%s) - start ))
+end=$(date +%s)
+elapsed=$(( end - start ))
+printf '\n%8s  %s\n' "seconds" "stage"
+for i in "${!stage_names[@]}"; do
+  next=$end
+  [ $((i + 1)) -lt "${#stage_starts[@]}" ] && next=${stage_starts[$((i + 1))]}
+  printf '%8d  %s\n' $(( next - stage_starts[i] )) "${stage_names[$i]}"
+done
 summary="native ${counts[native]:-0}, wasm ${counts[wasm]:-0}, e2e ${counts[e2e]:-0} tests, e2e-firefox ${counts[e2e_firefox]:-0} tests, fuzz ${counts[fuzz]:-0} targets, slurm ${counts[slurm]:-0} checks in ${elapsed}s"
 if [ "${#failures[@]}" -eq 0 ]; then
   echo "QuakeView tests: ALL PASSED ($summary)"
