@@ -15,7 +15,7 @@ work="$out/.work"
 warn() { printf '[seeds] warning: %s\n' "$*" >&2; }
 
 rm -rf "$out" && mkdir -p "$out" "$work"
-for t in city_tile city_tile_roundtrip tileset consequences search_index search_index_roundtrip response_summary \
+for t in city_tile city_tile_roundtrip tileset scenario_catalogue consequences search_index search_index_roundtrip response_summary \
          response_history response_roundtrip ground_motion osm geojson response_import cityjson obj shakemap; do
   mkdir -p "$out/$t"
   if [ -d "$root/tests/fuzz/seeds/$t" ]; then cp "$root/tests/fuzz/seeds/$t"/* "$out/$t/" 2>/dev/null; fi
