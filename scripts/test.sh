@@ -96,7 +96,8 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
    ! "$prep" response --city "$e2e_data/actual" --shakemap tests/e2e/data/actual-shakemap.xml --synthetic 7 8 \
        --time-of-day night --districts tests/e2e/data/districts.geojson >/dev/null ||
    ! "$prep" info "$e2e_data/actual" --json >"$e2e_data/actual-info.json" ||
-   ! "$prep" $QV_DEMO_CITY_RECIPE --out "$e2e_data/demo" >/dev/null; then
+   ! "$prep" $QV_DEMO_CITY_RECIPE --out "$e2e_data/demo" >/dev/null ||
+   ! bash tests/e2e/data/make-scenario-city.sh "$prep" "$e2e_data/scenarios"; then
   failures+=("e2e data")
 fi
 # The cities a user meets first, for the shaking test (shaking.test.mjs): the README demo with its
@@ -141,15 +142,16 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
 
   # The same tests of what a user meets first (first light, the city with its broken tiles,
   # interaction on a real city, weak-device detection, taps and swipes on a phone and a tablet,
-  # the city shaking at its opening view, the picture of the view, the situation report and the 2D
-  # city without WebGL2, with touch emulation) in a second engine: Debian's Firefox ESR, WebGL2 on llvmpipe,
+  # the city shaking at its opening view, the picture of the view, the situation report, the 2D
+  # city without WebGL2, with touch emulation, switching between a city's scenarios) in a second
+  # engine: Debian's Firefox ESR, WebGL2 on llvmpipe,
   # driven by puppeteer-core over WebDriver BiDi (tests/e2e/lib/browser.mjs). A few minutes.
   stage "browser end-to-end tests (headless Firefox ESR)"
   log=$(mktemp)
   (cd tests/e2e && QUAKEVIEW_BROWSER=firefox QUAKEVIEW_SITE="$root/build/wasm-release/site" \
     QUAKEVIEW_E2E_DATA="$e2e_data" QUAKEVIEW_DEMO_DATA="$demo_data" \
     node --test --test-reporter=tap first-light.test.mjs city.test.mjs interaction.test.mjs weak-device.test.mjs touch.test.mjs \
-      shaking.test.mjs images.test.mjs report.test.mjs map2d.test.mjs) 2>&1 | tee "$log"
+      shaking.test.mjs images.test.mjs report.test.mjs map2d.test.mjs scenarios.test.mjs) 2>&1 | tee "$log"
   e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)
   e2e_fail=$(sed -nE 's/^# fail ([0-9]+)/\1/p' "$log" | tail -n 1)
   counts[e2e_firefox]="${e2e_pass:-0}"

@@ -42,6 +42,15 @@
 //              at 2 AM / 2 PM / 5 PM, districts, limits and sources), the same as `quakeview-prep
 //              report` writes; it resolves once the city's index and totals have loaded (rejects
 //              after 120 s or without a city). saveReport() downloads it (the panel's "Report").
+//   scenarios()  a Promise of the city's scenarios (scenarios.json beside its manifest), once the
+//              list has loaded ([] for a city without one): [{index, name, manifest, current, state
+//              ('not checked' | 'checking' | 'ready' | 'not ready' | 'broken'), eventType ('SCENARIO' |
+//              'ACTUAL' | null until its manifest is read), earthquake, sameResultsAsOpen}]; current:
+//              the manifest shown is this one's (by file name).
+//   selectScenario(index)  shows scenario `index` in the same view (camera, time, filters and
+//              selection kept); a Promise resolving with its entry once its view and totals have
+//              loaded, rejecting with the reason when it is not ready or not listed. The URL's
+//              data= follows the scenario shown.
 //   screenshot()  the view as a PNG data URL with its caption (event, city, attribution); saveImage()
 //              downloads it (the panel's "Save image")
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
@@ -89,6 +98,12 @@
   function callString(name) {
     if (!engine) return null;
     return engine.UTF8ToString(engine['_' + name]());
+  }
+
+  // The city's scenario catalogue as the engine knows it (qv_scenarios_json), or null.
+  function scenarioInfo() {
+    const text = callString('qv_scenarios_json');
+    return text ? JSON.parse(text) : null;
   }
 
   const api = {
@@ -259,6 +274,56 @@
     exportList(format = 'csv') {
       if (!engine) return '';
       return engine.ccall('qv_export', 'string', ['string'], [format]).replace(/^\uFEFF/, '');
+    },
+    // The city folder's scenarios (see the header): a Promise resolving once the engine knows
+    // whether the city has a catalogue (its manifest loaded and scenarios.json answered).
+    scenarios() {
+      return new Promise((resolve, reject) => {
+        const started = Date.now();
+        const poll = () => {
+          const info = engine ? scenarioInfo() : null;
+          if (info && info.catalogue !== 'loading') { resolve(info.scenarios); return; }
+          if (Date.now() - started > 120000) {
+            reject(new Error('the scenario list waited 120 s for the city\'s manifest and scenarios.json'));
+            return;
+          }
+          setTimeout(poll, 100);
+        };
+        ready.then(poll, (e) => reject(e));
+      });
+    },
+    // Shows scenario `index` of the catalogue (see the header).
+    selectScenario(index) {
+      return new Promise((resolve, reject) => {
+        if (!engine) { reject(new Error('the viewer has not started')); return; }
+        if (typeof index !== 'number' || !Number.isInteger(index) || index < 1) {
+          reject(new Error('selectScenario(index): a scenario\'s index is a whole number from 1'));
+          return;
+        }
+        const answer = JSON.parse(engine.UTF8ToString(engine._qv_select_scenario(index)));
+        if (!answer.serial) { reject(new Error(answer.problem)); return; }
+        const started = Date.now();
+        const poll = () => {
+          const info = scenarioInfo();
+          const change = info && info.switch;
+          if (!change || change.serial !== answer.serial) {
+            reject(new Error(`another scenario was selected before scenario ${index} had loaded`));
+            return;
+          }
+          if (change.state === 'loaded') {
+            keepHash();
+            resolve(info.scenarios.find((s) => s.index === index) || null);
+            return;
+          }
+          if (change.state === 'failed') { reject(new Error(change.problem)); return; }
+          if (Date.now() - started > 120000) {
+            reject(new Error(`scenario ${index} had not loaded after 120 s`));
+            return;
+          }
+          setTimeout(poll, 100);
+        };
+        poll();
+      });
     },
     // The picture of the view as a PNG data URL: the canvas as drawn (panels, colour key and scale
     // bar included; a frame drawn now and read in the same task) with a caption band under it: the
@@ -606,10 +671,23 @@
     }
     return parts.join('&');
   }
+  // The page's query with ?data= naming the manifest shown: after a switch to another scenario
+  // (selectScenario, the panel's Scenarios) a shared link opens that scenario. Unchanged while it
+  // names the manifest shown.
+  function viewSearch() {
+    const shown = engine ? callString('qv_manifest_url') : '';
+    const query = new URLSearchParams(window.location.search);
+    if (!shown || shown === (query.get('data') || DEFAULT_DATA)) return window.location.search;
+    query.set('data', shown);
+    // Slashes and colons read better unescaped, and mean the same in a query's value.
+    return '?' + query.toString().replace(/%2F/gi, '/').replace(/%3A/gi, ':');
+  }
   function keepHash() {
     const h = viewHash();
-    if (h !== null && '#' + h !== window.location.hash) {
-      history.replaceState(null, '', window.location.pathname + window.location.search + '#' + h);
+    if (h === null) return;
+    const search = viewSearch();
+    if ('#' + h !== window.location.hash || search !== window.location.search) {
+      history.replaceState(null, '', window.location.pathname + search + '#' + h);
     }
   }
 
@@ -699,6 +777,9 @@
     });
   }
 
+  // The city shown without ?data=.
+  const DEFAULT_DATA = 'data/default/tileset.json';
+
   async function start() {
     setProgress(0.02, 'Loading QuakeView…');
     if (!params.get('scene')) {
@@ -709,7 +790,7 @@
         console.warn(problem);
         args.push('--shell-error', problem);
       }
-      const address = params.get('data') || 'data/default/tileset.json';
+      const address = params.get('data') || DEFAULT_DATA;
       args.push('--data', address, '--page-origin', window.location.origin);
       try {
         args.push('--data-origin', new URL(address, window.location.href).origin);
@@ -806,6 +887,41 @@
     time.addEventListener('input', () => { api.pause(); api.setTime(Number(time.value)); });
     const timeText = el('span', { id: 'qv-map2d-time-text' });
     controls.appendChild(el('div', { class: 'qv-row' }, [el('label', { text: 'Colour ' }, [mode])]));
+    // The city's scenarios (scenarios.json), as the 3D panel's Scenarios section lists them: the
+    // one shown selected, a choice showing another.
+    const scenario = el('select', { id: 'qv-map2d-scenario', 'aria-label': 'Scenario' });
+    const scenarioRow = el('div', { class: 'qv-row', id: 'qv-map2d-scenarios' }, [el('label', { text: 'Scenario ' }, [scenario])]);
+    scenarioRow.hidden = true;
+    controls.appendChild(scenarioRow);
+    scenario.addEventListener('change', () => {
+      const index = Number(scenario.value);
+      if (!Number.isInteger(index) || index < 1) return;
+      setText(statusBox, 'Opening scenario ' + index + '...');
+      api.selectScenario(index).then((s) => setText(statusBox, 'Showing ' + (s ? s.name : 'scenario ' + index)),
+        (e) => { scenarioKey = ''; setText(statusBox, 'Scenario: ' + e.message); });
+    });
+    let scenarioKey = '';
+    const refreshScenarios = () => {
+      const info = scenarioInfo();
+      const list = info && info.catalogue === 'loaded' ? info.scenarios : [];
+      scenarioRow.hidden = list.length === 0;
+      const current = list.find((s) => s.current);
+      const change = info && info.switch && ['checking', 'loading'].includes(info.switch.state) ? info.switch.index : 0;
+      const key = JSON.stringify([list.map((s) => [s.index, s.name, s.state, s.eventType, s.current]), change]);
+      if (key === scenarioKey) return;  // rebuilt only when something changed (an open list stays open)
+      scenarioKey = key;
+      const words = { 'not ready': 'not ready', broken: 'cannot be read', checking: 'checking...', 'not checked': '' };
+      const options = list.map((s) => el('option', { value: String(s.index),
+        text: s.name + (s.eventType ? ` (${s.eventType})` : words[s.state] ? ` (${words[s.state]})` : '') }));
+      if (!current) {
+        // The manifest shown is not listed by name (tileset.json): say so rather than pretend.
+        const same = list.find((s) => s.sameResultsAsOpen);
+        options.unshift(el('option', { value: '', disabled: true,
+          text: same ? `${same.name} (as opened)` : 'the city as opened (not in the list)' }));
+      }
+      scenario.replaceChildren(...options);
+      scenario.value = change ? String(change) : current ? String(current.index) : '';
+    };
     // The colour key of the mode shown (the engine's palette; the 3D view's legend says the same).
     const palette = JSON.parse(engine.UTF8ToString(engine._qv_palette_json()));
     const keys = {
@@ -887,13 +1003,19 @@
     let listKey = '';
     const refreshPanel = () => {
       refreshLegend();
+      refreshScenarios();
       const m = api.colorMode();
       if (m && mode.value !== m) mode.value = m;
       play.textContent = api.playing() ? 'Pause' : 'Play';
       time.max = String(Math.max(api.duration(), 0.1));
       if (document.activeElement !== time) time.value = String(api.time());
       timeText.textContent = ` ${api.time().toFixed(1)} s of ${api.duration().toFixed(1)} s`;
-      if (!api.searchReady()) { listTitle.textContent = 'The city-wide list loads with the search index...'; return; }
+      if (!api.searchReady()) {
+        // Also after a switch to another scenario: the last one's list is not this one's.
+        listTitle.textContent = 'The city-wide list loads with the search index...';
+        if (listKey !== '') { list.replaceChildren(); listKey = ''; }
+        return;
+      }
       const f = api.filteredList(10);
       const key = JSON.stringify([f.total, f.buildings.map((b) => b.id), api.selection()]);
       if (key === listKey) return;

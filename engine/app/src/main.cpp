@@ -204,6 +204,93 @@ EMSCRIPTEN_KEEPALIVE const char* qv_consequences() {
                                    city->consequencesInViewComplete() ? &view : nullptr, area ? &*area : nullptr));
 }
 
+namespace {
+const char* switchStateName(qv::ScenarioSwitch::State state) {
+  switch (state) {
+    case qv::ScenarioSwitch::State::Checking:
+      return "checking";
+    case qv::ScenarioSwitch::State::Loading:
+      return "loading";
+    case qv::ScenarioSwitch::State::Loaded:
+      return "loaded";
+    case qv::ScenarioSwitch::State::Failed:
+      return "failed";
+    default:
+      return "none";
+  }
+}
+}  // namespace
+
+/// `quakeview.scenarios()`: the city folder's scenario catalogue as the viewer knows it
+/// (qv::CityScenarios): {"catalogue": "loading" | "none" (no catalogue, no city, or its manifest
+/// failed) | "loaded" | "failed", "manifestUrl": the manifest shown, "scenarios":
+/// [{index, name, manifest, current, state, eventType, earthquake, sameResultsAsOpen}], "switch":
+/// {serial, index, state: "none" | "checking" | "loading" | "loaded" | "failed", problem}}.
+EMSCRIPTEN_KEEPALIVE const char* qv_scenarios_json() {
+  if (gApp == nullptr) return hand("null");
+  const qv::Viewer& viewer = gApp->viewer();
+  const qv::CityScenarios* scenarios = viewer.scenarios();
+  qv::JsonWriter w;
+  w.beginObject().key("catalogue");
+  if (scenarios != nullptr) {
+    using State = qv::CityScenarios::CatalogueState;
+    const State s = scenarios->state();
+    w.value(s == State::Loading ? "loading" : s == State::Absent ? "none" : s == State::Loaded ? "loaded" : "failed");
+  } else {
+    // Requested once the city's manifest has loaded; none without a city or when it failed.
+    const qv::CityScene* city = viewer.city();
+    w.value(city == nullptr || city->manifestFailed() ? "none" : "loading");
+  }
+  w.field("manifestUrl", viewer.manifestUrl());
+  w.key("scenarios").beginArray();
+  if (scenarios != nullptr) {
+    const qv::ScenarioStatus* current = scenarios->current();
+    for (const qv::ScenarioStatus& s : scenarios->scenarios()) {
+      w.beginObject().field("index", s.entry.index).field("name", s.entry.name).field("manifest", s.entry.manifest);
+      w.field("current", &s == current).field("state", qv::scenarioStateName(s.state));
+      // SCENARIO or ACTUAL once its manifest has been read; null before, or when it does not say.
+      if (s.state == qv::ScenarioState::Ready && !s.eventType.empty())
+        w.field("eventType", s.eventType);
+      else
+        w.key("eventType").null();
+      w.field("earthquake", s.earthquake).field("sameResultsAsOpen", s.sameResultsAsOpen);
+      if (!s.problem.empty()) w.field("problem", s.problem);
+      w.endObject();
+    }
+  }
+  w.endArray();
+  const qv::ScenarioSwitch& sw = viewer.scenarioSwitch();
+  w.key("switch").beginObject().field("serial", sw.serial).field("index", sw.index);
+  w.field("state", switchStateName(sw.state)).field("problem", sw.problem).endObject();
+  w.endObject();
+  return hand(w.take());
+}
+
+/// The address of the manifest shown (the page's ?data= follows it).
+EMSCRIPTEN_KEEPALIVE const char* qv_manifest_url() {
+  if (gApp == nullptr) return hand("");
+  return hand(gApp->viewer().manifestUrl());
+}
+
+/// Starts showing scenario `index` (qv::Viewer::selectScenario): {"serial": n} to follow in
+/// qv_scenarios_json's "switch", or {"problem": "..."} when the catalogue has no such scenario.
+EMSCRIPTEN_KEEPALIVE const char* qv_select_scenario(double index) {
+  if (gApp == nullptr) return hand("{\"problem\":\"the viewer has not started\"}");
+  std::string problem;
+  const bool valid =
+      std::isfinite(index) && index >= 1.0 && index <= qv::kMaxScenarioIndex && std::floor(index) == index;
+  const std::uint64_t serial = valid ? gApp->viewer().selectScenario(static_cast<std::uint32_t>(index), &problem) : 0;
+  if (!valid) problem = "a scenario's index is a whole number from 1";
+  qv::JsonWriter w;
+  w.beginObject();
+  if (serial > 0)
+    w.field("serial", serial);
+  else
+    w.field("problem", problem);
+  w.endObject();
+  return hand(w.take());
+}
+
 EMSCRIPTEN_KEEPALIVE int qv_select(const char* id) {
   return gApp != nullptr && id != nullptr && gApp->viewer().select(id) ? 1 : 0;
 }

@@ -69,12 +69,127 @@ void Viewer::setViewport(int widthPixels, int heightPixels, double widthCss, dou
 }
 
 void Viewer::openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options) {
-  city_ = std::make_unique<CityScene>(device_, fetcher, manifestUrl, options,
-                                      [this](const LoadError& e) { reportError(e.message, e.key); });
+  fetcher_ = &fetcher;
+  scenarios_.reset();  // another city folder: its catalogue comes with its manifest
+  switch_ = ScenarioSwitch{switch_.serial, 0, ScenarioSwitch::State::None, {}};
+  pendingSelection_.clear();
+  previousManifestUrl_.clear();
+  keepEndAfterSwitch_ = false;
+  framingKept_ = false;
+  createCity(manifestUrl, options);
+  dataSource_ = dataOriginProblem(options.origin).empty() ? dataOriginDescription(options.origin) : std::string();
+}
+
+void Viewer::createCity(const std::string& url, const CitySceneOptions& options) {
+  manifestUrl_ = url;
+  // The city shown gives back its meshes and table rows before the next one takes their place.
+  city_.reset();
+  city_ = std::make_unique<CityScene>(device_, *fetcher_, url, options,
+                                      [this](const LoadError& e) { addError(e.message, e.key, true); });
   city_->setResolvedSink([this](const std::string& key) { withdrawErrors(key); });
   cityFramed_ = false;
   settled_ = false;
-  dataSource_ = dataOriginProblem(options.origin).empty() ? dataOriginDescription(options.origin) : std::string();
+}
+
+void Viewer::switchCity(const std::string& url) {
+  // What the person set up stays: the camera, the time (Viewer members), the filters, the levels
+  // of detail shown, the detail settings and the selection (applied once the new city knows it).
+  const CitySceneOptions options = city_->options();
+  const BuildingFilters filters = city_->filters();
+  const bool lod1 = city_->showLod1();
+  const bool lod2 = city_->showLod2();
+  if (!city_->selected().empty()) pendingSelection_ = city_->selected();
+  keepEndAfterSwitch_ = ended();
+  // The old city's messages (its files' failures) go with it; the catalogue's and the link's stay.
+  for (std::size_t i = errors_.size(); i-- > 0;) {
+    if (!errorOfCity_[i]) continue;
+    errors_.erase(errors_.begin() + static_cast<std::ptrdiff_t>(i));
+    errorKeys_.erase(errorKeys_.begin() + static_cast<std::ptrdiff_t>(i));
+    errorOfCity_.erase(errorOfCity_.begin() + static_cast<std::ptrdiff_t>(i));
+  }
+  createCity(url, options);
+  city_->setFilters(filters);
+  city_->setLodVisibility(lod1, lod2);
+  cameraSetByUser_ = true;  // the first frame of the new manifest keeps the camera
+  framingKept_ = true;      // and the view's place beside the panel
+  openingTimeSet_ = true;   // and the time
+  if (scenarios_) scenarios_->setOpen(url, nullptr);
+}
+
+std::uint64_t Viewer::selectScenario(std::uint32_t index, std::string* problem) {
+  const auto refuse = [problem](std::string why) -> std::uint64_t {
+    if (problem != nullptr) *problem = std::move(why);
+    return 0;
+  };
+  if (!scenarios_ || scenarios_->state() == CityScenarios::CatalogueState::Loading) {
+    return refuse("the city's scenario list has not loaded yet");
+  }
+  if (!scenarios_->available()) return refuse("this city has no scenario list (scenarios.json beside its manifest)");
+  const ScenarioStatus* s = scenarios_->find(index);
+  if (s == nullptr) return refuse("the city's scenario list has no scenario " + std::to_string(index));
+  switch_ = ScenarioSwitch{switch_.serial + 1, index, ScenarioSwitch::State::Checking, {}};
+  if (s->entry.manifest == urlFileName(manifestUrl_)) {
+    switch_.state = ScenarioSwitch::State::Loading;  // shown already: only wait for it to load
+  } else if (s->state != ScenarioState::Ready) {
+    scenarios_->check(index);  // written since it was looked at, perhaps
+  }
+  // The city is replaced in the next frame (advanceScenarios), never in the middle of one: the
+  // panel calling this holds the current city.
+  return switch_.serial;
+}
+
+void Viewer::advanceScenarios() {
+  if (!city_) return;
+  // A selection kept over a switch: once the new city knows the building (a loaded tile or its
+  // index); given up when it never will.
+  if (!pendingSelection_.empty() && city_->manifestLoaded()) {
+    if (!city_->selected().empty() || city_->select(pendingSelection_) || (settled_ && city_->searchIndexSettled())) {
+      pendingSelection_.clear();  // selected meanwhile (the person chose another), applied, or unknown
+    }
+  }
+  const auto fail = [this](std::string problem) {
+    switch_.state = ScenarioSwitch::State::Failed;
+    switch_.problem = std::move(problem);
+  };
+  const ScenarioStatus* s = scenarios_ ? scenarios_->find(switch_.index) : nullptr;
+  if (switch_.state == ScenarioSwitch::State::Checking) {
+    if (s == nullptr) {
+      fail("scenario " + std::to_string(switch_.index) + " is no longer listed");
+    } else if (s->state == ScenarioState::Ready) {
+      const std::string url = scenarios_->manifestUrl(s->entry);
+      withdrawErrors(url);
+      previousManifestUrl_ = manifestUrl_;
+      switchCity(url);
+      switch_.state = ScenarioSwitch::State::Loading;
+    } else if (s->state == ScenarioState::NotReady || s->state == ScenarioState::Broken) {
+      fail("Scenario " + std::to_string(s->entry.index) + " \"" + s->entry.name + "\" cannot be shown" +
+           (s->state == ScenarioState::NotReady ? " yet" : "") + ": " + s->problem + ".");
+      reportError(switch_.problem, scenarios_->manifestUrl(s->entry));
+    }
+  } else if (switch_.state == ScenarioSwitch::State::Loading) {
+    const Tileset* tileset = city_->tileset();
+    if (city_->manifestFailed()) {
+      // Checked a moment ago, gone or broken since: said so, and the scenario shown before comes back.
+      std::string why = "its manifest could not be loaded";
+      for (std::size_t i = errors_.size(); i-- > 0;) {
+        if (errorOfCity_[i]) {
+          why = errors_[i];
+          break;
+        }
+      }
+      const std::string name = s != nullptr ? " \"" + s->entry.name + "\"" : std::string();
+      fail("Scenario " + std::to_string(switch_.index) + name + " could not be opened: " + why);
+      reportError(switch_.problem, manifestUrl_);
+      if (!previousManifestUrl_.empty() && previousManifestUrl_ != manifestUrl_) switchCity(previousManifestUrl_);
+    } else if (tileset != nullptr && cityFramed_ && settled_) {
+      // Its totals too: consequences() reports the scenario shown, not nothing.
+      const bool totals = !tileset->response || !tileset->response->consequences || city_->consequences() != nullptr ||
+                          city_->consequencesFailed();
+      if (totals) switch_.state = ScenarioSwitch::State::Loaded;
+    }
+  }
+  // The other scenarios' manifests, one at a time, once the view has what it needs.
+  if (scenarios_ && settled_ && switch_.state != ScenarioSwitch::State::Loading) scenarios_->checkNext();
 }
 
 void Viewer::startBench(double seconds) {
@@ -122,7 +237,7 @@ void Viewer::setFramingInsetCss(double left, double widestLeft) {
   // The panel's width follows its content (the consequences arriving, a section opened): once the
   // city is framed the view keeps its place unless the inset changes by more than
   // kFramingInsetStepCss (another layout), so the city does not slide sideways under the user.
-  if (cityFramed_ && std::abs(inset - framingInsetCss_) <= kFramingInsetStepCss) return;
+  if ((cityFramed_ || framingKept_) && std::abs(inset - framingInsetCss_) <= kFramingInsetStepCss) return;
   framingInsetCss_ = inset;
   controller_.setLensShift(lensShift());
 }
@@ -139,17 +254,24 @@ void Viewer::withdrawErrors(const std::string& key) {
     if (errorKeys_[i] != key) continue;
     errors_.erase(errors_.begin() + static_cast<std::ptrdiff_t>(i));
     errorKeys_.erase(errorKeys_.begin() + static_cast<std::ptrdiff_t>(i));
+    errorOfCity_.erase(errorOfCity_.begin() + static_cast<std::ptrdiff_t>(i));
   }
 }
 
 void Viewer::reportError(std::string message, std::string key) {
+  addError(std::move(message), std::move(key), false);
+}
+
+void Viewer::addError(std::string message, std::string key, bool ofCity) {
   // Keep the list bounded: a broken server must not grow memory without end.
   if (errors_.size() >= 200) {
     errors_.erase(errors_.begin());
     errorKeys_.erase(errorKeys_.begin());
+    errorOfCity_.erase(errorOfCity_.begin());
   }
   errors_.push_back(std::move(message));
   errorKeys_.push_back(std::move(key));
+  errorOfCity_.push_back(ofCity);
 }
 
 void Viewer::frameCityOnce() {
@@ -157,6 +279,10 @@ void Viewer::frameCityOnce() {
   // The first frame with the manifest: the duration, and a camera that frames the whole city.
   cityFramed_ = true;
   duration_ = city_->duration();
+  // Another scenario's record may be shorter: the time stays within it, and at its end when the
+  // last one had ended (the city then shows its damage, as before the switch).
+  time_ = keepEndAfterSwitch_ ? duration_ : std::min(time_, duration_);
+  keepEndAfterSwitch_ = false;
   CameraState overview = city_->overviewCamera(camera_.fovDeg);
   // The panels cover the left of the canvas: the lens shift (lensShift) puts the city's centre in
   // the middle of the rest; seen from a little farther, it still fits there, also beside the
@@ -167,6 +293,15 @@ void Viewer::frameCityOnce() {
   controller_.setHome(overview);
   if (!cameraSetByUser_) camera_ = overview;
   if (const Tileset* tileset = city_->tileset()) geo_ = GeoFrame(tileset->originLon, tileset->originLat);
+  // The city folder's scenarios, once its manifest is there (the catalogue is kept while switching
+  // between them).
+  if (!scenarios_ && fetcher_ != nullptr) {
+    scenarios_ = std::make_unique<CityScenarios>(
+        *fetcher_, manifestUrl_,
+        [this](const std::string& message, const std::string& key) { reportError(message, key); },
+        city_->options().requestTimeoutMs);
+  }
+  if (scenarios_) scenarios_->setOpen(manifestUrl_, city_->tileset());
 }
 
 void Viewer::advanceBench(double dtSeconds) {
@@ -304,6 +439,7 @@ void Viewer::frame(double dtSeconds) {
     if (benchElapsed_ >= bench_->seconds()) benchResult_ = bench_->resultJson();
   }
   settled_ = city_ ? (city_->manifestFailed() || (cityFramed_ && city_->settled())) : true;
+  advanceScenarios();
 }
 
 std::string Viewer::statsJson(const MemoryInfo& memory) const {

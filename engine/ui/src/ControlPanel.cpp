@@ -468,6 +468,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       w.textColored(0.6f, 0.35f, 0.0f, "No earthquake results for this city (quakeview-prep response).");
     }
   }
+  drawScenarios(viewer, w);
 
   // On a software renderer, one line says why the picture is coarser (details under Performance).
   if (qualityState_ != nullptr && qualityState_->weakStart && !qualityState_->presetChosen) {

@@ -235,6 +235,7 @@ bool Widgets::selectable(const char* label, bool selected) {
   mirror_.line(format("> %.*s", static_cast<int>(v.size()), v.data()));
   const std::string text = shown.str();
   const bool clicked = ImGui::Selectable(text.c_str(), selected);
+  recordItem(text.c_str());
   tabStop(text.c_str(), "list item", TabStopKind::Press, selected ? "selected" : "");
   return clicked;
 }

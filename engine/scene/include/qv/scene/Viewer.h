@@ -12,6 +12,7 @@
 #include "qv/geometry/GeoFrame.h"
 #include "qv/scene/Bench.h"
 #include "qv/scene/CameraController.h"
+#include "qv/scene/CityScenarios.h"
 #include "qv/scene/CityScene.h"
 #include "qv/scene/FrameStats.h"
 #include "qv/scene/RenderDevice.h"
@@ -19,6 +20,21 @@
 #include "qv/scene/ViewConsequences.h"
 
 namespace qv {
+
+/// Where a switch to another scenario of the city stands (Viewer::selectScenario).
+struct ScenarioSwitch {
+  enum class State : std::uint8_t {
+    None,      ///< no switch asked for
+    Checking,  ///< fetching the scenario's manifest to see that it is there and valid
+    Loading,   ///< its city is loading: until the view has loaded and the city's totals with it
+    Loaded,    ///< done: the scenario is shown, its consequences loaded (or failed, or none)
+    Failed,    ///< the scenario is not ready or broken, or its city failed to load: `problem` says why
+  };
+  std::uint64_t serial = 0;  ///< grows with every selectScenario call that starts a switch
+  std::uint32_t index = 0;   ///< the scenario asked for
+  State state = State::None;
+  std::string problem;
+};
 
 /// Memory figures only the platform knows (the WASM heap).
 struct MemoryInfo {
@@ -38,6 +54,25 @@ class Viewer {
   /// Streams the city whose tileset.json is at `manifestUrl`; the camera frames the whole city
   /// once the manifest arrives unless setCamera() was called before.
   void openCity(const std::string& manifestUrl, Fetcher& fetcher, const CitySceneOptions& options = {});
+  /// The address of the manifest shown: openCity's, or the scenario's selectScenario switched to
+  /// (resolved beside the first, so a link made from it opens the same scenario); empty without a city.
+  [[nodiscard]] const std::string& manifestUrl() const { return manifestUrl_; }
+  /// The city folder's scenario catalogue (scenarios.json beside the manifest openCity opened,
+  /// requested once that manifest has loaded, kept while switching between its scenarios); nullptr
+  /// before, and for the test scene. CityScenarios::available() says whether there is one to show.
+  [[nodiscard]] const CityScenarios* scenarios() const { return scenarios_.get(); }
+  /// Shows scenario `index` of the catalogue in place of the city's current manifest, keeping the
+  /// camera, the time (at the end of the record when it was there, else clamped to the new record),
+  /// playing or paused, the colour mode, the filters, the levels of detail shown and the selection.
+  /// A scenario not known to be Ready is fetched first (its manifest), and the switch fails with
+  /// its problem when it is not there yet or not valid; the city shown stays until then (and comes
+  /// back when the scenario's manifest fails to load after all, gone since it was checked). Selecting
+  /// the scenario shown only waits for it to load. Returns the switch's serial (see
+  /// scenarioSwitch()), or 0 with `problem` set when the catalogue has no such scenario (or has
+  /// not loaded). A newer call supersedes a switch not finished yet.
+  std::uint64_t selectScenario(std::uint32_t index, std::string* problem = nullptr);
+  /// The last switch asked for.
+  [[nodiscard]] const ScenarioSwitch& scenarioSwitch() const { return switch_; }
   /// Where the city's files come from under the data origin policy of openCity's options ("this
   /// site (https://…)", or an origin the site's configuration allows; empty without a policy). The
   /// panel shows it beside the manifest's own name.
@@ -162,6 +197,12 @@ class Viewer {
   void advanceFlight(double dtSeconds);  ///< Fly to's eased camera move
   void frameTestScene(const CameraView& view, FrameTimesMs& times, FrameCounts& counts, std::vector<DrawItem>& items,
                       FrameUniforms& uniforms);
+  void advanceScenarios();  ///< a scenario switch's steps, the catalogue's checks, a kept selection
+  void addError(std::string message, std::string key, bool ofCity);
+  /// Replaces the city by the manifest at `url`, keeping the view's state (selectScenario).
+  void switchCity(const std::string& url);
+  /// The city scene for `url`; its errors are the city's (dropped when it is replaced).
+  void createCity(const std::string& url, const CitySceneOptions& options);
 
   RenderDevice& device_;
   CameraState camera_;
@@ -184,12 +225,21 @@ class Viewer {
   bool settled_ = false;
   std::vector<std::string> errors_;
   std::vector<std::string> errorKeys_;  // of errors_, same order (errors() hands out the messages)
+  std::vector<bool> errorOfCity_;       // of errors_: reported by the city scene (gone with it)
   std::string dataSource_;
   FrameStats stats_;
 
   struct TestContent;
   std::unique_ptr<TestContent> test_;
   std::unique_ptr<CityScene> city_;
+  Fetcher* fetcher_ = nullptr;  // openCity's, for the scenarios' manifests
+  std::string manifestUrl_;
+  std::string previousManifestUrl_;  // shown before the last switch: back to it when the switch fails
+  std::unique_ptr<CityScenarios> scenarios_;
+  ScenarioSwitch switch_;
+  bool keepEndAfterSwitch_ = false;  // the record had ended when the scenario was switched
+  bool framingKept_ = false;         // a switch keeps the lens shift as the first view set it
+  std::string pendingSelection_;     // the selection kept over a switch, applied once the new city knows it
   bool cameraSetByUser_ = false;
   GeoFrame geo_{0.0, 1000.0};  // invalid until a city's manifest arrives
   bool showFeet_ = false;

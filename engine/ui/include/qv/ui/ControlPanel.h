@@ -120,6 +120,9 @@ class ControlPanel {
   bool section(ui::Widgets& w, const char* label, bool defaultOpen);
   /// The name of the map marker under the pointer, and of the selected building, beside its marker.
   void drawMarkerLabels(Viewer& viewer, ui::Widgets& w);
+  /// The city's scenarios (ControlPanelScenarios.cpp): the one shown, and a section listing them
+  /// all with their event types, a click showing another; nothing without a catalogue.
+  void drawScenarios(Viewer& viewer, ui::Widgets& w);
   /// SCENARIO or ACTUAL (prominent), the ShakeMap, the earthquake, the record(s) and their scaling.
   static void drawShakingProvenance(const ResponseInfo& response, ui::Widgets& w);
   /// The building's Sa(T1) scaling and its spread across the record suite.

@@ -45,7 +45,8 @@ class Widgets {
   /// the keyboard in it (editing starts next frame); `entered`, when given, is set to whether the
   /// edit ended with Enter in this frame.
   bool inputText(const char* label, std::string& buffer, bool focus = false, bool* entered = nullptr);
-  /// A clickable row; returns true when clicked. Mirrored as "> text".
+  /// A clickable row; returns true when clicked. Mirrored as "> text"; in the layout (uiLayout) by
+  /// its visible text.
   bool selectable(const char* label, bool selected = false);
   /// A line plot of `values` over [0, duration] with a vertical cursor at `cursorFraction` (0..1),
   /// mirrored as `summary` (a plot is pixels: the text says what it shows). Returns where along
