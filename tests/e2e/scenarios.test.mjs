@@ -17,6 +17,8 @@ const DATA = process.env.QUAKEVIEW_E2E_DATA || path.join(REPO, 'build/e2e-data')
 const CITY = path.join(DATA, 'scenarios');
 const FIRST = 'M6.6 scenario, Lower Manhattan';
 const SECOND = 'M5.0 scenario, Lower East Side';
+// Listed in the catalogue, never run: its manifest is not there (HTTP 404).
+const THIRD = 'M7.2 scenario, not yet run';
 let server;
 let scratch;
 
@@ -77,11 +79,14 @@ test('the panel lists the scenarios; choosing another shows its results in the s
       // The list, once both manifests have been read: their event types too.
       const list = await page.evaluate(() => window.quakeview.scenarios());
       assert.deepEqual(list.map((s) => [s.index, s.name, s.manifest]),
-        [[1, FIRST, 'scenario-1.json'], [2, SECOND, 'scenario-2.json']]);
+        [[1, FIRST, 'scenario-1.json'], [2, SECOND, 'scenario-2.json'], [3, THIRD, 'scenario-3.json']]);
       // Opened as tileset.json, which the catalogue does not name: none is current by file name.
-      assert.deepEqual(list.map((s) => s.current), [false, false]);
-      await waitForFunction(page, async () => (await window.quakeview.scenarios()).every((s) => s.eventType === 'SCENARIO'),
-        null, { timeout: 30000, polling: 250 });
+      assert.deepEqual(list.map((s) => s.current), [false, false, false]);
+      await waitForFunction(page, async () => {
+        const l = await window.quakeview.scenarios();
+        return l[0].eventType === 'SCENARIO' && l[1].eventType === 'SCENARIO' && l[2].state === 'not ready';
+      }, null, { timeout: 30000, polling: 250 });
+      assert.equal((await page.evaluate(() => window.quakeview.scenarios()))[2].eventType, null);
       assert.equal((await page.evaluate(() => window.quakeview.scenarios()))[0].sameResultsAsOpen, true);
       await waitForFunction(page, cityTotals, null, { timeout: 30000 });
       const before = await page.evaluate(cityTotals);
@@ -94,6 +99,7 @@ test('the panel lists the scenarios; choosing another shows its results in the s
       text = await page.evaluate(() => window.quakeview.uiText());
       assert.match(text, /> M6\.6 scenario, Lower Manhattan: SCENARIO \(the same results as shown\)/);
       assert.match(text, /> M5\.0 scenario, Lower East Side: SCENARIO/);
+      assert.match(text, /> M7\.2 scenario, not yet run: not ready/);
 
       // The end of the record: the city in its probability of moderate damage or worse.
       await page.evaluate(() => { window.quakeview.pause(); window.quakeview.setTime(window.quakeview.duration()); });
@@ -108,7 +114,7 @@ test('the panel lists the scenarios; choosing another shows its results in the s
       const row = await scenarioRow(page, SECOND);
       await page.mouse.click(row.x + 30, row.y + row.height / 2);
       await waitForFunction(page, () => {
-        const m = window.quakeview.uiText().match(/Scenario 2 of 2: M5\.0 scenario, Lower East Side/);
+        const m = window.quakeview.uiText().match(/Scenario 2 of 3: M5\.0 scenario, Lower East Side/);
         return m && window.quakeview.consequences()?.city != null;
       }, null, { timeout: 60000, polling: 200 });
       await settle(page);
@@ -122,7 +128,7 @@ test('the panel lists the scenarios; choosing another shows its results in the s
       assert.doesNotMatch(text, /Earthquake: M6\.6/);
       assert.match(text, /> M5\.0 scenario, Lower East Side: SCENARIO \(shown\)/);
       const now = await page.evaluate(() => window.quakeview.scenarios());
-      assert.deepEqual(now.map((s) => s.current), [false, true]);
+      assert.deepEqual(now.map((s) => s.current), [false, true, false]);
       // The view stays: the camera, and the time at the end of the (new) record.
       const cameraAfter = await page.evaluate(() => window.quakeview.getCamera());
       for (const k of ['x', 'y', 'distance', 'headingDeg', 'pitchDeg']) {
@@ -154,11 +160,11 @@ test('the panel lists the scenarios; choosing another shows its results in the s
       await page.goto(link, { waitUntil: 'load' });
       assert.deepEqual(await waitReady(page), { ok: true });
       const reloaded = await page.evaluate(() => window.quakeview.scenarios());
-      assert.deepEqual(reloaded.map((s) => s.current), [false, true]);
+      assert.deepEqual(reloaded.map((s) => s.current), [false, true, false]);
       await waitForFunction(page, cityTotals, null, { timeout: 30000 });
       const again = await page.evaluate(cityTotals);
       assert.ok(Math.abs(again.moderateOrWorse - afterTotals.moderateOrWorse) < 1e-6);
-      assert.match(await page.evaluate(() => window.quakeview.uiText()), /Scenario 2 of 2: M5\.0 scenario, Lower East Side/);
+      assert.match(await page.evaluate(() => window.quakeview.uiText()), /Scenario 2 of 3: M5\.0 scenario, Lower East Side/);
       assert.deepEqual(problems, []);
     } finally {
       await close();
@@ -172,7 +178,7 @@ test('quakeview.selectScenario resolves once the scenario has loaded, and refuse
       const { page, problems } = await openPage(context, `${server.url}/?data=/scen/scenario-2.json`);
       assert.deepEqual(await waitReady(page), { ok: true });
       const list = await page.evaluate(() => window.quakeview.scenarios());
-      assert.deepEqual(list.map((s) => s.current), [false, true]);
+      assert.deepEqual(list.map((s) => s.current), [false, true, false]);
       await waitForFunction(page, cityTotals, null, { timeout: 30000 });
       const second = await page.evaluate(cityTotals);
       const chosen = await page.evaluate(() => window.quakeview.selectScenario(1));
@@ -186,7 +192,7 @@ test('quakeview.selectScenario resolves once the scenario has loaded, and refuse
       // What is not in the list, or no index, is refused with the reason.
       const refusals = await page.evaluate(async () => {
         const reasons = [];
-        for (const index of [7, 1.5, '2', 0]) {
+        for (const index of [7, 3, 1.5, '2', 0]) {
           try {
             await window.quakeview.selectScenario(index);
             reasons.push(null);
@@ -197,7 +203,12 @@ test('quakeview.selectScenario resolves once the scenario has loaded, and refuse
         return reasons;
       });
       assert.equal(refusals[0], "the city's scenario list has no scenario 7");
-      for (const r of refusals.slice(1)) assert.match(r, /a scenario's index is a whole number from 1/);
+      // Listed but not run yet: refused with why, and the scenario shown stays.
+      assert.match(refusals[1], /^Scenario 3 "M7\.2 scenario, not yet run" cannot be shown yet: scenario-3\.json is not there yet \(HTTP 404\)/);
+      for (const r of refusals.slice(2)) assert.match(r, /a scenario's index is a whole number from 1/);
+      assert.equal(await page.evaluate(() => new URLSearchParams(window.location.search).get('data')), '/scen/scenario-1.json');
+      const stillFirst = await page.evaluate(cityTotals);
+      assert.ok(Math.abs(stillFirst.moderateOrWorse - first.moderateOrWorse) < 1e-6);
       // Every existing name of the API is still there.
       const names = await page.evaluate(() => Object.keys(window.quakeview));
       for (const name of ['ready', 'stats', 'consequences', 'report', 'screenshot', 'scenarios', 'selectScenario']) {
@@ -240,11 +251,13 @@ test('the 2D city offers the scenarios as a list, and choosing one shows it', as
     assert.deepEqual(await waitReady(page), { ok: true });
     await waitForFunction(page, () => {
       const select = document.getElementById('qv-map2d-scenario');
-      return select && !document.getElementById('qv-map2d-scenarios').hidden && select.options.length === 2 &&
+      return select && !document.getElementById('qv-map2d-scenarios').hidden && select.options.length === 3 &&
         select.value === '1';
     }, null, { timeout: 30000 });
     const options = await page.evaluate(() => [...document.getElementById('qv-map2d-scenario').options].map((o) => o.text));
     assert.ok(options[0].startsWith(FIRST) && options[1].startsWith(SECOND), JSON.stringify(options));
+    await waitForFunction(page, () => document.getElementById('qv-map2d-scenario').options[2].text.endsWith('(not ready)'),
+      null, { timeout: 30000 });
     await waitForFunction(page, cityTotals, null, { timeout: 30000 });
     const first = await page.evaluate(cityTotals);
     await page.evaluate(() => {
@@ -258,7 +271,7 @@ test('the 2D city offers the scenarios as a list, and choosing one shows it', as
     assert.ok(second.moderateOrWorse < 0.5 * first.moderateOrWorse);
     await waitForFunction(page, () => new URLSearchParams(window.location.search).get('data') === '/scen/scenario-2.json' &&
       new URLSearchParams(window.location.search).get('view') === '2d', null, { timeout: 5000 });
-    assert.match(await page.evaluate(() => document.getElementById('qv-panel').innerText), /Scenario 2 of 2: M5\.0 scenario/);
+    assert.match(await page.evaluate(() => document.getElementById('qv-panel').innerText), /Scenario 2 of 3: M5\.0 scenario/);
     await page.screenshot({ path: path.join(ARTIFACTS, 'scenarios-map2d.png') });
     assert.deepEqual(problems, []);
   } finally {

@@ -303,9 +303,10 @@ export async function openPage(context, url, { timeoutMs = 60000 } = {}) {
   page.on('console', (msg) => {
     if (msg.type() !== 'error') return;
     // A city without a scenario catalogue answers its scenarios.json with HTTP 404, which is how
-    // the viewer learns it has none (docs/formats.md); the browser still logs the failed request.
+    // the viewer learns it has none, and a scenario not run yet has no scenario-N.json
+    // (docs/formats.md); the browser still logs the failed request.
     const from = typeof msg.location === 'function' ? msg.location()?.url || '' : '';
-    if (/\/scenarios\.json$/.test(from) && /Failed to load resource.*404/.test(msg.text())) return;
+    if (/\/(scenarios|scenario-[0-9]+)\.json$/.test(from) && /Failed to load resource.*404/.test(msg.text())) return;
     problems.push(`console.error: ${msg.text()}`);
   });
   page.on('pageerror', (err) => problems.push(`page error: ${err.message}`));
