@@ -6,8 +6,38 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <numeric>
 
 namespace qv {
+namespace {
+
+// What malloc holds for a request of `n` bytes: the request and one size word, rounded up to two
+// words, at least four (dlmalloc's chunks, which Emscripten's malloc and glibc's share).
+std::uint64_t heapBlockBytes(std::uint64_t n) {
+  constexpr std::uint64_t kWord = sizeof(void*);
+  return std::max<std::uint64_t>(4 * kWord, (n + kWord + 2 * kWord - 1) / (2 * kWord) * (2 * kWord));
+}
+
+// What a string holds outside its object: nothing while its text lives in the object (the small
+// string buffer: up to 10 characters in WASM's libc++, 22 in native libc++, 15 in libstdc++), else
+// its capacity and the terminating zero as malloc holds them.
+std::uint64_t stringHeapBytes(const std::string& s) {
+  const auto text = reinterpret_cast<std::uintptr_t>(s.data());
+  const auto object = reinterpret_cast<std::uintptr_t>(&s);
+  if (text >= object && text < object + sizeof(std::string)) return 0;
+  return heapBlockBytes(s.capacity() + 1);
+}
+
+}  // namespace
+
+std::uint64_t searchIndexHeapBytes(const std::vector<SearchEntry>& entries) {
+  std::uint64_t total = heapBlockBytes(entries.capacity() * sizeof(SearchEntry));
+  for (const SearchEntry& e : entries) {
+    for (const std::string* text : {&e.id, &e.name, &e.address, &e.use, &e.facilityKind})
+      total += stringHeapBytes(*text);
+  }
+  return total;
+}
 
 bool BuildingFilters::usePasses(std::string_view buildingUse) const {
   if (use.empty()) return true;
@@ -115,9 +145,11 @@ const SearchEntry* CityIndex::entry(std::string_view id) const {
 
 std::optional<std::uint32_t> CityIndex::position(std::string_view id) const {
   if (search_.state != TileState::Loaded) return std::nullopt;
-  const auto it = positions_.find(id);
-  if (it == positions_.end()) return std::nullopt;
-  return it->second;
+  // The first position with this id (byId_ is ordered by id, then position).
+  const auto it = std::lower_bound(byId_.begin(), byId_.end(), id,
+                                   [&](std::uint32_t p, std::string_view key) { return entries_[p].id < key; });
+  if (it == byId_.end() || entries_[*it].id != id) return std::nullopt;
+  return *it;
 }
 
 const ResponseSummaryTile* CityIndex::summary() const {
@@ -177,15 +209,11 @@ void CityIndex::request() {
             }
           }
           entries_ = std::move(decoded).value();
-          positions_.clear();
-          positions_.reserve(entries_.size());
-          for (std::uint32_t i = 0; i < entries_.size(); ++i) positions_.emplace(entries_[i].id, i);
-          bytes_ = entries_.size() * (sizeof(SearchEntry) + 2 * sizeof(void*) + sizeof(std::string_view) + 4);
-          for (const SearchEntry& e : entries_) {
-            for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
-              if (text->size() >= sizeof(std::string)) bytes_ += text->size() + 1;
-            }
-          }
+          byId_.resize(entries_.size());
+          std::iota(byId_.begin(), byId_.end(), 0u);
+          std::stable_sort(byId_.begin(), byId_.end(),
+                           [&](std::uint32_t a, std::uint32_t b) { return entries_[a].id < entries_[b].id; });
+          bytes_ = searchIndexHeapBytes(entries_) + heapBlockBytes(byId_.capacity() * sizeof(std::uint32_t));
           return {};
         });
 }
