@@ -176,6 +176,78 @@ TEST_CASE("The index counts its heap as malloc holds it: the table, long texts, 
   CHECK(rig.index.bytes() <= searchIndexHeapBytes(*served) + served->size() * sizeof(std::uint32_t) + 64);
 }
 
+TEST_CASE("City-wide files that would not fit the memory allowance are left out, saying why, and load once it grows",
+          "[scene][index][memory]") {
+  constexpr std::uint64_t kBuildings = MiniCity::kSide * MiniCity::kSide;
+  SECTION("the search index, before it is fetched") {
+    IndexRig rig;
+    rig.index.setMemoryAllowance(1000);  // under its table alone
+    rig.load();
+    CHECK_FALSE(rig.index.loaded());
+    CHECK(rig.index.settled());  // nothing to wait for: the list and the report go without it
+    CHECK(rig.fetcher.count("city/search.qvi") == 0);
+    CHECK(rig.fetcher.count("city/response/index.qvs") == 0);
+    CHECK(rig.index.bytes() == 0);
+    CHECK(rig.index.search("Building", 10).empty());
+    CHECK(rig.errors.empty());  // not an error of the server's
+    const std::string& notice = rig.index.memoryNotice();
+    CHECK(notice.find("search index of 64 buildings") != std::string::npos);
+    CHECK(notice.find("MB") != std::string::npos);
+    rig.index.setMemoryAllowance(1ull << 30);
+    rig.load();
+    CHECK(rig.index.loaded());
+    CHECK(rig.index.summary() != nullptr);
+    CHECK(rig.index.memoryNotice().empty());
+  }
+  SECTION("the search index, let go after decoding when it holds more than its table") {
+    IndexRig rig;
+    // Exactly the estimate before the fetch: the malloc headers of the table and the id order
+    // make the decoded index larger.
+    rig.index.setMemoryAllowance(kBuildings * (sizeof(SearchEntry) + sizeof(std::uint32_t)));
+    rig.load();
+    CHECK(rig.fetcher.count("city/search.qvi") == 1);
+    CHECK_FALSE(rig.index.loaded());
+    CHECK(rig.index.settled());
+    CHECK(rig.index.bytes() == 0);
+    CHECK_FALSE(rig.index.position(MiniCity::idOf(1, 1)));
+    CHECK(rig.errors.empty());
+    CHECK_FALSE(rig.index.memoryNotice().empty());
+    rig.index.setMemoryAllowance(1ull << 30);
+    rig.load();
+    CHECK(rig.index.loaded());
+    CHECK(rig.fetcher.count("city/search.qvi") == 2);
+    CHECK(rig.index.position(MiniCity::idOf(1, 1)));
+  }
+  SECTION("the response in the index's order, beside the index") {
+    std::uint64_t indexBytes = 0;
+    {
+      IndexRig alone;
+      alone.city.tileset.response.reset();
+      alone.load();
+      REQUIRE(alone.index.loaded());
+      indexBytes = alone.index.bytes();
+    }
+    IndexRig rig;
+    rig.index.setMemoryAllowance(indexBytes);  // the index fits, nothing beside it
+    rig.load();
+    REQUIRE(rig.index.loaded());
+    CHECK(rig.index.bytes() == indexBytes);
+    CHECK(rig.index.summary() == nullptr);
+    CHECK(rig.fetcher.count("city/response/index.qvs") == 0);
+    CHECK(rig.index.settled());
+    CHECK(rig.errors.empty());
+    CHECK(rig.index.memoryNotice().find("response") != std::string::npos);
+    // Search and the list still work, without damage.
+    CHECK(rig.index.search("Building 3-4", 10).size() == 1);
+    CHECK(rig.index.search("Building 3-4", 10)[0].damage == DamageState::NoResult);
+    rig.index.setMemoryAllowance(1ull << 30);
+    rig.load();
+    CHECK(rig.index.summary() != nullptr);
+    CHECK(rig.index.search("Building 3-4", 10)[0].damage == MiniCity::responseOf(3, 4).damage);
+    CHECK(rig.index.memoryNotice().empty());
+  }
+}
+
 TEST_CASE("The list filters by several uses and facility categories at once", "[scene][index][filters]") {
   IndexRig rig;
   // Plant uses and categories in the served index: (0, j) hospitals, (1, j) schools, (2, j) fire

@@ -127,14 +127,30 @@ class CityIndex {
   /// index's order follows the index.
   void retry();
 
-  [[nodiscard]] bool loaded() const { return search_.state == TileState::Loaded; }
+  /// The most the city-wide files may hold on the heap, in bytes (CityScene gives them three
+  /// quarters of its memory budget; the tiles keep the rest). The search index and the response
+  /// summary in its order are fetched only when what they will hold fits beside what is loaded:
+  /// estimated before the fetch (the index: its table and id order for the manifest's building
+  /// count; the summary: what `quakeview-prep response` writes per building and storey, the
+  /// storeys counted in the index), measured after decoding, when a file that does not fit after
+  /// all is let go. So a city of millions of buildings stays within the budget, without what
+  /// does not fit (memoryNotice says what), instead of exhausting the page's memory. A file left
+  /// out is fetched once the allowance grows enough for it. Unlimited until set.
+  void setMemoryAllowance(std::uint64_t bytes);
+  /// Why a city-wide file is not loaded ("" while none is left out): what it serves, about how
+  /// many MB it needs and how many the allowance gives.
+  [[nodiscard]] const std::string& memoryNotice() const { return memoryNotice_; }
+
+  /// The search index has loaded (and is kept: not left out for memory).
+  [[nodiscard]] bool loaded() const { return search_.state == TileState::Loaded && searchNeedsBytes_ == 0; }
   /// The response's consequence totals (consequences.json) once loaded, else nullptr.
   [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return consequences_.get(); }
   [[nodiscard]] bool consequencesFailed() const { return consequencesLoad_.state == TileState::Failed; }
   /// Across a record suite: the median over the city's buildings of their peak drift's log standard
   /// deviation (from the summary in the index's order); nullopt for one record or until loaded.
   [[nodiscard]] std::optional<float> medianDriftBeta() const { return medianDriftBeta_; }
-  /// The index (and the summary in its order) has loaded or failed, or the city has none.
+  /// The index (and the summary in its order) has loaded, failed or been left out for memory, or
+  /// the city has none.
   [[nodiscard]] bool settled() const;
   /// Files on their way (0 .. 2).
   [[nodiscard]] std::uint32_t pendingFiles() const;
@@ -202,6 +218,12 @@ class CityIndex {
   std::optional<float> medianDriftBeta_;
   std::unique_ptr<seismic::ConsequenceTotals> consequences_;  // the response's totals
   std::uint64_t bytes_ = 0;
+  std::uint64_t allowanceBytes_ = UINT64_MAX;
+  // What a file left out for memory needs (0: not left out).
+  std::uint64_t searchNeedsBytes_ = 0;
+  std::uint64_t summaryNeedsBytes_ = 0;
+  std::string memoryNotice_;
+  void updateMemoryNotice();
 };
 
 }  // namespace qv
