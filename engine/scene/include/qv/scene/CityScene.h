@@ -272,7 +272,7 @@ class CityScene {
   void refreshBlockRows(std::uint32_t node);  // block rows from the tile's building rows
   /// The block level a far-view tile's part in `box` is drawn at from `view` (made now if
   /// needed), or -1: building by building.
-  int blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view);
+  int blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view, int maxLevel);
   void cullRegions(std::uint32_t node, const CameraView& view, std::vector<DrawItem>& items);
   /// Whether the leaf's plain-prism mesh is there to draw (made now when `mayBuild` and worth it).
   bool preparePrisms(std::uint32_t node, bool mayBuild);
