@@ -1,5 +1,6 @@
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <set>
 #include <utility>
 
@@ -117,6 +118,134 @@ TEST_CASE("A search index that does not match the manifest is refused with why",
   CHECK(rig.errors[0].key == "city/search.qvi");
   CHECK(rig.errors[0].message.find("64 entries, but the manifest says the city has 65 buildings") != std::string::npos);
   CHECK(rig.index.search("Building", 10).empty());
+}
+
+TEST_CASE("Every building is found by its id, a repeated id by its first entry", "[scene][index]") {
+  IndexRig rig;
+  // The served index in reverse id order, with the last entry repeating the first one's id: the
+  // lookup must not depend on the index's order, and a repeated id names its first position.
+  auto& bytes = rig.fetcher.files.at("city/search.qvi");
+  auto entries = decodeSearchIndex(bytes, "served");
+  REQUIRE(entries.ok());
+  std::reverse(entries->begin(), entries->end());
+  const std::string repeated = entries->front().id;
+  entries->back().id = repeated;
+  const std::string dropped = MiniCity::idOf(0, 0);  // the reversed index's last entry, replaced
+  REQUIRE(std::none_of(entries->begin(), entries->end(), [&](const SearchEntry& e) { return e.id == dropped; }));
+  bytes = encodeSearchIndex(*entries);
+  rig.city.tileset.search->bytes = bytes.size();
+  rig.city.tileset.search->crc32 = crc32(bytes);
+  rig.city.tileset.response.reset();  // the summary in the old order would not match
+  rig.load();
+  REQUIRE(rig.index.loaded());
+  for (std::uint32_t i = 0; i + 1 < entries->size(); ++i) {
+    const auto at = rig.index.position((*entries)[i].id);
+    REQUIRE(at);
+    CHECK(*at == i);
+  }
+  CHECK(rig.index.position(repeated) == std::optional<std::uint32_t>(0));
+  CHECK_FALSE(rig.index.position(dropped));
+  CHECK_FALSE(rig.index.position(""));
+  CHECK_FALSE(rig.index.position("s"));
+  CHECK_FALSE(rig.index.position("zzz"));
+}
+
+TEST_CASE("The index counts its heap as malloc holds it: the table, long texts, the id order",
+          "[scene][index][memory]") {
+  std::vector<SearchEntry> entries(3);
+  for (std::size_t i = 0; i < entries.size(); ++i) entries[i].id = "s" + std::to_string(i);
+  entries.shrink_to_fit();
+  const std::uint64_t shortTexts = searchIndexHeapBytes(entries);
+  // The table alone: short texts live inside the string objects.
+  CHECK(shortTexts >= entries.size() * sizeof(SearchEntry));
+  CHECK(shortTexts <= entries.size() * sizeof(SearchEntry) + 4 * sizeof(void*));
+  // A text too long for the string object costs its capacity, a size word and malloc's rounding.
+  entries[1].address = std::string(100, 'a');
+  const std::uint64_t withAddress = searchIndexHeapBytes(entries);
+  CHECK(withAddress - shortTexts >= entries[1].address.capacity() + 1);
+  CHECK(withAddress - shortTexts <= entries[1].address.capacity() + 1 + 3 * sizeof(void*));
+
+  IndexRig rig;
+  rig.city.tileset.response.reset();
+  rig.load();
+  REQUIRE(rig.index.loaded());
+  const auto served = decodeSearchIndex(rig.fetcher.files.at("city/search.qvi"), "served");
+  REQUIRE(served.ok());
+  // The entries and the id order (four bytes a building).
+  CHECK(rig.index.bytes() >= searchIndexHeapBytes(*served) + served->size() * sizeof(std::uint32_t));
+  CHECK(rig.index.bytes() <= searchIndexHeapBytes(*served) + served->size() * sizeof(std::uint32_t) + 64);
+}
+
+TEST_CASE("City-wide files that would not fit the memory allowance are left out, saying why, and load once it grows",
+          "[scene][index][memory]") {
+  constexpr std::uint64_t kBuildings = MiniCity::kSide * MiniCity::kSide;
+  SECTION("the search index, before it is fetched") {
+    IndexRig rig;
+    rig.index.setMemoryAllowance(1000);  // under its table alone
+    rig.load();
+    CHECK_FALSE(rig.index.loaded());
+    CHECK(rig.index.settled());  // nothing to wait for: the list and the report go without it
+    CHECK(rig.fetcher.count("city/search.qvi") == 0);
+    CHECK(rig.fetcher.count("city/response/index.qvs") == 0);
+    CHECK(rig.index.bytes() == 0);
+    CHECK(rig.index.search("Building", 10).empty());
+    CHECK(rig.errors.empty());  // not an error of the server's
+    const std::string& notice = rig.index.memoryNotice();
+    CHECK(notice.find("search index of 64 buildings") != std::string::npos);
+    CHECK(notice.find("MB") != std::string::npos);
+    rig.index.setMemoryAllowance(1ull << 30);
+    rig.load();
+    CHECK(rig.index.loaded());
+    CHECK(rig.index.summary() != nullptr);
+    CHECK(rig.index.memoryNotice().empty());
+  }
+  SECTION("the search index, let go after decoding when it holds more than its table") {
+    IndexRig rig;
+    // Exactly the estimate before the fetch: the malloc headers of the table and the id order
+    // make the decoded index larger.
+    rig.index.setMemoryAllowance(kBuildings * (sizeof(SearchEntry) + sizeof(std::uint32_t)));
+    rig.load();
+    CHECK(rig.fetcher.count("city/search.qvi") == 1);
+    CHECK_FALSE(rig.index.loaded());
+    CHECK(rig.index.settled());
+    CHECK(rig.index.bytes() == 0);
+    CHECK_FALSE(rig.index.position(MiniCity::idOf(1, 1)));
+    CHECK(rig.errors.empty());
+    CHECK_FALSE(rig.index.memoryNotice().empty());
+    rig.index.setMemoryAllowance(1ull << 30);
+    rig.load();
+    CHECK(rig.index.loaded());
+    CHECK(rig.fetcher.count("city/search.qvi") == 2);
+    CHECK(rig.index.position(MiniCity::idOf(1, 1)));
+  }
+  SECTION("the response in the index's order, beside the index") {
+    std::uint64_t indexBytes = 0;
+    {
+      IndexRig alone;
+      alone.city.tileset.response.reset();
+      alone.load();
+      REQUIRE(alone.index.loaded());
+      indexBytes = alone.index.bytes();
+    }
+    IndexRig rig;
+    rig.index.setMemoryAllowance(indexBytes);  // the index fits, nothing beside it
+    rig.load();
+    REQUIRE(rig.index.loaded());
+    CHECK(rig.index.bytes() == indexBytes);
+    CHECK(rig.index.summary() == nullptr);
+    CHECK(rig.fetcher.count("city/response/index.qvs") == 0);
+    CHECK(rig.index.settled());
+    CHECK(rig.errors.empty());
+    CHECK(rig.index.memoryNotice().find("response") != std::string::npos);
+    // Search and the list still work, without damage.
+    CHECK(rig.index.search("Building 3-4", 10).size() == 1);
+    CHECK(rig.index.search("Building 3-4", 10)[0].damage == DamageState::NoResult);
+    rig.index.setMemoryAllowance(1ull << 30);
+    rig.load();
+    CHECK(rig.index.summary() != nullptr);
+    CHECK(rig.index.search("Building 3-4", 10)[0].damage == MiniCity::responseOf(3, 4).damage);
+    CHECK(rig.index.memoryNotice().empty());
+  }
 }
 
 TEST_CASE("The list filters by several uses and facility categories at once", "[scene][index][filters]") {

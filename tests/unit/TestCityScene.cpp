@@ -504,6 +504,25 @@ TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed",
   CHECK(viewer.city()->memoryBytes() <= budget);
 }
 
+TEST_CASE("The city-wide files get three quarters of the memory budget; what does not fit is left out with a notice",
+          "[scene][city][memory]") {
+  SceneRig rig;
+  CitySceneOptions options;
+  options.memoryBudgetBytes = 4096;  // three quarters of it are under the table of the index of 64 buildings
+  rig.open(0.0f, options);
+  Viewer& viewer = rig.viewer;
+  for (int i = 0; i < 40 && !viewer.city()->searchIndexSettled(); ++i) runFrames(viewer, 1);
+  REQUIRE(viewer.city()->searchIndexSettled());
+  CHECK_FALSE(viewer.city()->searchIndexLoaded());
+  CHECK(rig.fetcher.count("city/search.qvi") == 0);
+  CHECK(viewer.city()->cityIndexNotice().find("search index of 64 buildings") != std::string::npos);
+  // A budget that holds it: fetched, and the notice gone.
+  viewer.city()->mutableOptions().memoryBudgetBytes = 512ull << 20;
+  runFramesUntil(viewer, rig.clock, 10.0, [&] { return viewer.city()->searchIndexLoaded(); });
+  CHECK(viewer.city()->searchIndexLoaded());
+  CHECK(viewer.city()->cityIndexNotice().empty());
+}
+
 TEST_CASE("A view larger than the memory budget is drawn coarser, within the budget, without reloading",
           "[scene][city][memory]") {
   SceneRig rig;

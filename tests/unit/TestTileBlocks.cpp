@@ -251,7 +251,8 @@ TEST_CASE("A far-view tile's regions: every building in one, blocks of each leve
   CHECK(seen.size() == tile.buildingCount());  // a permutation of the positions
   for (std::uint32_t r = 0; r < regions.boxes.size(); ++r) {
     const Box& box = regions.boxes[r];
-    CHECK(box.maxX - box.minX == Approx(blockCellM(kBlockRegionLevel)));
+    CHECK(regions.level == kBlockRegionLevel);  // 3 km: six regions across
+    CHECK(box.maxX - box.minX == Approx(blockCellM(regions.level)));
     CHECK(box.maxX - box.minX == Approx(512.0f));
     for (std::uint32_t k = regions.positionStart[r]; k < regions.positionStart[r + 1]; ++k) {
       const std::uint32_t p = regions.appendOrder[k];
@@ -273,6 +274,54 @@ TEST_CASE("A far-view tile's regions: every building in one, blocks of each leve
         CHECK(inside(regions.boxes[r], b.minX, b.minY, regions.boxes[r].minZ));
         CHECK(inside(regions.boxes[r], b.maxX, b.maxY, regions.boxes[r].minZ));
       }
+    }
+  }
+}
+
+TEST_CASE("A tile wider than 32 regions of 512 m gets a far grid, on which its far view draws screen-sized blocks",
+          "[scene][blocks]") {
+  // The finest level from 512 m on with at most 32 regions along the longer side.
+  CHECK(regionLevelFor(0.0f, 0.0f) == kBlockRegionLevel);
+  CHECK(regionLevelFor(16384.0f, 100.0f) == kBlockRegionLevel);  // 32 regions of 512 m exactly
+  CHECK(regionLevelFor(16385.0f, 100.0f) == kBlockRegionLevel + 1);
+  CHECK(regionLevelFor(100.0f, 59000.0f) == kBlockRegionLevel + 2);  // a 59 km region: 2,048 m regions
+  CHECK(regionLevelFor(1e9f, 1e9f) == kBlockLevels - 1);
+  CHECK(regionLevelFor(NAN, 0.0f) == kBlockLevels - 1);
+
+  // 40 km × 20 km of buildings, one a kilometre.
+  TileBuilder t(-20000.0, -10000.0);
+  t.tile.extent = 50000.0f;
+  for (int i = 0; i < 40; ++i) {
+    for (int j = 0; j < 20; ++j) {
+      const float x = 1000.0f * static_cast<float>(i) + 100.0f, y = 1000.0f * static_cast<float>(j) + 100.0f;
+      t.rect(x, y, x + 60.0f, y + 40.0f, 10.0f + static_cast<float>(i % 7));
+    }
+  }
+  const TileContent tile = t.build();
+  CHECK(buildTileRegions(tile).level == kBlockRegionLevel);  // the 512 m grid: 79 regions across
+  const Box& all = tile.tree.bounds();
+  const TileRegions regions = buildTileRegions(tile, regionLevelFor(all.maxX - all.minX, all.maxY - all.minY));
+  REQUIRE(regions.level == kBlockRegionLevel + 2);  // the far grid, 2,048 m: 20 across
+  REQUIRE(regions.boxes.size() <= 21u * 11u);
+  REQUIRE(regions.positionStart.back() == tile.buildingCount());
+  for (std::uint32_t r = 0; r < regions.boxes.size(); ++r) {
+    const Box& box = regions.boxes[r];
+    CHECK(box.maxX - box.minX == Approx(2048.0f));
+    for (std::uint32_t k = regions.positionStart[r]; k < regions.positionStart[r + 1]; ++k) {
+      const Box b = buildingBox(tile, tile.tree.order()[regions.appendOrder[k]]);
+      CHECK(regions.regionOf(0.5f * (b.minX + b.maxX), 0.5f * (b.minY + b.maxY)) == r);
+    }
+  }
+  // Blocks as wide as a region: one a region at most, each inside its region, every building a member.
+  const TileBlockLevel level = buildBlockLevel(tile, blockCellM(regions.level), regions);
+  REQUIRE(level.regionStart.back() == level.boxes.size());
+  CHECK(level.boxes.size() <= regions.boxes.size());
+  std::set<std::uint32_t> members(level.members.begin(), level.members.end());
+  CHECK(members.size() == tile.buildingCount());
+  for (std::uint32_t r = 0; r < regions.boxes.size(); ++r) {
+    for (std::uint32_t k = level.regionStart[r]; k < level.regionStart[r + 1]; ++k) {
+      CHECK(inside(regions.boxes[r], level.boxes[k].minX, level.boxes[k].minY, regions.boxes[r].minZ));
+      CHECK(inside(regions.boxes[r], level.boxes[k].maxX, level.boxes[k].maxY, regions.boxes[r].minZ));
     }
   }
 }

@@ -6,8 +6,52 @@
 #include <cstdio>
 #include <functional>
 #include <map>
+#include <numeric>
 
 namespace qv {
+namespace {
+
+// What malloc holds for a request of `n` bytes: the request and one size word, rounded up to two
+// words, at least four (dlmalloc's chunks, which Emscripten's malloc and glibc's share).
+std::uint64_t heapBlockBytes(std::uint64_t n) {
+  constexpr std::uint64_t kWord = sizeof(void*);
+  return std::max<std::uint64_t>(4 * kWord, (n + kWord + 2 * kWord - 1) / (2 * kWord) * (2 * kWord));
+}
+
+// What a string holds outside its object: nothing while its text lives in the object (the small
+// string buffer: up to 10 characters in WASM's libc++, 22 in native libc++, 15 in libstdc++), else
+// its capacity and the terminating zero as malloc holds them.
+std::uint64_t stringHeapBytes(const std::string& s) {
+  const auto text = reinterpret_cast<std::uintptr_t>(s.data());
+  const auto object = reinterpret_cast<std::uintptr_t>(&s);
+  if (text >= object && text < object + sizeof(std::string)) return 0;
+  return heapBlockBytes(s.capacity() + 1);
+}
+
+// What a summary in the index's order holds, before it is fetched: the sections `quakeview-prep
+// response` writes for every building (its result, scaling, spread over the suite, HAZUS losses
+// and drawing odds) and for every storey (peak drift and its spread). The site (SITE, with a
+// ShakeMap or a scenario) is not counted: the check after decoding has it.
+std::uint64_t citySummaryEstimateBytes(std::uint64_t buildings, std::uint64_t storeys) {
+  return buildings * (sizeof(BuildingResponse) + sizeof(BuildingScaling) + sizeof(BuildingSpread) +
+                      sizeof(BuildingLoss) + sizeof(BuildingDamageOdds)) +
+         storeys * (sizeof(float) + sizeof(StoreySpread));
+}
+
+std::string megabytesText(std::uint64_t bytes) {
+  return std::to_string((bytes + (1u << 19)) >> 20) + " MB";
+}
+
+}  // namespace
+
+std::uint64_t searchIndexHeapBytes(const std::vector<SearchEntry>& entries) {
+  std::uint64_t total = heapBlockBytes(entries.capacity() * sizeof(SearchEntry));
+  for (const SearchEntry& e : entries) {
+    for (const std::string* text : {&e.id, &e.name, &e.address, &e.use, &e.facilityKind})
+      total += stringHeapBytes(*text);
+  }
+  return total;
+}
 
 bool BuildingFilters::usePasses(std::string_view buildingUse) const {
   if (use.empty()) return true;
@@ -114,10 +158,12 @@ const SearchEntry* CityIndex::entry(std::string_view id) const {
 }
 
 std::optional<std::uint32_t> CityIndex::position(std::string_view id) const {
-  if (search_.state != TileState::Loaded) return std::nullopt;
-  const auto it = positions_.find(id);
-  if (it == positions_.end()) return std::nullopt;
-  return it->second;
+  if (!loaded()) return std::nullopt;
+  // The first position with this id (byId_ is ordered by id, then position).
+  const auto it = std::lower_bound(byId_.begin(), byId_.end(), id,
+                                   [&](std::uint32_t p, std::string_view key) { return entries_[p].id < key; });
+  if (it == byId_.end() || entries_[*it].id != id) return std::nullopt;
+  return *it;
 }
 
 const ResponseSummaryTile* CityIndex::summary() const {
@@ -158,9 +204,52 @@ void CityIndex::requestConsequences() {
         });
 }
 
+void CityIndex::setMemoryAllowance(std::uint64_t bytes) {
+  if (bytes == allowanceBytes_) return;
+  allowanceBytes_ = bytes;
+  // A file left out that fits now is fetched again (by the next request or retry).
+  if (searchNeedsBytes_ > 0 && searchNeedsBytes_ <= bytes) {
+    loader_.cancel(search_);
+    search_ = FileLoad{};
+    searchNeedsBytes_ = 0;
+  }
+  if (summaryNeedsBytes_ > 0 && bytes_ + summaryNeedsBytes_ <= bytes) {
+    loader_.cancel(summaryLoad_);
+    summaryLoad_ = FileLoad{};
+    summaryNeedsBytes_ = 0;
+  }
+  updateMemoryNotice();
+}
+
+void CityIndex::updateMemoryNotice() {
+  memoryNotice_.clear();
+  if (searchNeedsBytes_ > 0) {
+    memoryNotice_ = "Search, the city-wide list and the report are off: the search index of " +
+                    std::to_string(tileset_ != nullptr ? tileset_->buildings : 0) + " buildings needs about " +
+                    megabytesText(searchNeedsBytes_) + ", more than the " + megabytesText(allowanceBytes_) +
+                    " the memory budget leaves the city-wide files.";
+  } else if (summaryNeedsBytes_ > 0) {
+    memoryNotice_ =
+        "Damage in the city-wide list, the search results and the report's building tables is off: every "
+        "building's response in one file needs about " +
+        megabytesText(summaryNeedsBytes_) + " beside the search index's " + megabytesText(bytes_) + ", more than the " +
+        megabytesText(allowanceBytes_) +
+        " the memory budget leaves the city-wide files. The buildings drawn still show theirs.";
+  }
+}
+
 void CityIndex::request() {
   requestConsequences();
-  if (!tileset_ || !tileset_->search) return;
+  if (!tileset_ || !tileset_->search || searchNeedsBytes_ > 0) return;
+  if (search_.state != TileState::Loaded && search_.state != TileState::Loading) {
+    // At least its table and its id order; the texts too long for a string object come on top.
+    const std::uint64_t least = tileset_->buildings * (sizeof(SearchEntry) + sizeof(std::uint32_t));
+    if (least > allowanceBytes_) {
+      searchNeedsBytes_ = least;
+      updateMemoryNotice();
+      return;
+    }
+  }
   fetch(search_, FileKind::SearchIndex, *tileset_->search,
         [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
           auto decoded = decodeSearchIndex(bytes, url);
@@ -177,14 +266,18 @@ void CityIndex::request() {
             }
           }
           entries_ = std::move(decoded).value();
-          positions_.clear();
-          positions_.reserve(entries_.size());
-          for (std::uint32_t i = 0; i < entries_.size(); ++i) positions_.emplace(entries_[i].id, i);
-          bytes_ = entries_.size() * (sizeof(SearchEntry) + 2 * sizeof(void*) + sizeof(std::string_view) + 4);
-          for (const SearchEntry& e : entries_) {
-            for (const std::string* text : {&e.id, &e.name, &e.address, &e.use}) {
-              if (text->size() >= sizeof(std::string)) bytes_ += text->size() + 1;
-            }
+          byId_.resize(entries_.size());
+          std::iota(byId_.begin(), byId_.end(), 0u);
+          std::stable_sort(byId_.begin(), byId_.end(),
+                           [&](std::uint32_t a, std::uint32_t b) { return entries_[a].id < entries_[b].id; });
+          bytes_ = searchIndexHeapBytes(entries_) + heapBlockBytes(byId_.capacity() * sizeof(std::uint32_t));
+          if (bytes_ > allowanceBytes_) {
+            // More than the estimate allowed for (long names and addresses): let go.
+            searchNeedsBytes_ = bytes_;
+            bytes_ = 0;
+            std::vector<SearchEntry>().swap(entries_);
+            std::vector<std::uint32_t>().swap(byId_);
+            updateMemoryNotice();
           }
           return {};
         });
@@ -192,8 +285,18 @@ void CityIndex::request() {
 
 void CityIndex::requestSummary() {
   if (!tileset_ || !tileset_->response || !tileset_->response->summaryIndex || tileset_->responseOutOfDate() ||
-      search_.state != TileState::Loaded) {
+      !loaded() || summaryNeedsBytes_ > 0) {
     return;
+  }
+  if (summaryLoad_.state != TileState::Loaded && summaryLoad_.state != TileState::Loading) {
+    std::uint64_t storeys = 0;
+    for (const SearchEntry& e : entries_) storeys += e.storeys;
+    const std::uint64_t estimate = citySummaryEstimateBytes(entries_.size(), storeys);
+    if (bytes_ + estimate > allowanceBytes_) {
+      summaryNeedsBytes_ = estimate;
+      updateMemoryNotice();
+      return;
+    }
   }
   fetch(summaryLoad_, FileKind::CitySummary, *tileset_->response->summaryIndex,
         [this](std::vector<std::uint8_t>& bytes, const std::string& url) -> std::string {
@@ -202,6 +305,17 @@ void CityIndex::requestSummary() {
           if (decoded->buildings.size() != entries_.size()) {
             return url + ": " + std::to_string(decoded->buildings.size()) + " buildings, the search index has " +
                    std::to_string(entries_.size());
+          }
+          const ResponseSummaryTile& d = *decoded;
+          const std::uint64_t summaryBytes =
+              d.buildings.size() * sizeof(BuildingResponse) + d.storeyPeakDrift.size() * sizeof(float) +
+              d.scaling.size() * sizeof(BuildingScaling) + d.sites.size() * sizeof(BuildingSite) +
+              d.spread.size() * sizeof(BuildingSpread) + d.storeySpread.size() * sizeof(StoreySpread) +
+              d.losses.size() * sizeof(BuildingLoss) + d.odds.size() * sizeof(BuildingDamageOdds);
+          if (bytes_ + summaryBytes > allowanceBytes_) {
+            summaryNeedsBytes_ = summaryBytes;  // more than estimated (e.g. with sites): let go
+            updateMemoryNotice();
+            return {};
           }
           summary_ = std::move(decoded).value();
           // The suite's spread over the city: the median of the buildings' drift log standard deviations.
@@ -213,11 +327,7 @@ void CityIndex::requestSummary() {
             std::nth_element(betas.begin(), betas.begin() + static_cast<std::ptrdiff_t>(betas.size() / 2), betas.end());
             medianDriftBeta_ = betas[betas.size() / 2];
           }
-          bytes_ +=
-              summary_->buildings.size() * sizeof(BuildingResponse) + summary_->storeyPeakDrift.size() * sizeof(float) +
-              summary_->scaling.size() * sizeof(BuildingScaling) + summary_->sites.size() * sizeof(BuildingSite) +
-              summary_->spread.size() * sizeof(BuildingSpread) + summary_->storeySpread.size() * sizeof(StoreySpread) +
-              summary_->losses.size() * sizeof(BuildingLoss) + summary_->odds.size() * sizeof(BuildingDamageOdds);
+          bytes_ += summaryBytes;
           return {};
         });
 }
@@ -230,10 +340,11 @@ bool CityIndex::settled() const {
       consequencesLoad_.state != TileState::Failed) {
     return false;
   }
-  if (!tileset_->search || search_.state == TileState::Failed) return true;
+  if (!tileset_->search || search_.state == TileState::Failed || searchNeedsBytes_ > 0) return true;
   if (search_.state != TileState::Loaded) return false;
   const bool summaryExpected = tileset_->response && tileset_->response->summaryIndex && !tileset_->responseOutOfDate();
-  return !summaryExpected || summaryLoad_.state == TileState::Loaded || summaryLoad_.state == TileState::Failed;
+  return !summaryExpected || summaryLoad_.state == TileState::Loaded || summaryLoad_.state == TileState::Failed ||
+         summaryNeedsBytes_ > 0;
 }
 
 const BuildingResponse* CityIndex::response(std::uint32_t index) const {
@@ -280,7 +391,7 @@ BuildingListEntry CityIndex::listEntry(std::uint32_t index) const {
 
 std::vector<BuildingListEntry> CityIndex::search(std::string_view query, std::size_t limit) const {
   std::vector<BuildingListEntry> out;
-  if (search_.state != TileState::Loaded) return out;
+  if (!loaded()) return out;
   if (query != searchedQuery_ || searchedEntries_ != entries_.data()) {
     searchedQuery_ = std::string(query);
     searchedEntries_ = entries_.data();
@@ -317,7 +428,7 @@ std::vector<BuildingListEntry> CityIndex::search(std::string_view query, std::si
 
 std::vector<std::pair<std::string, std::size_t>> CityIndex::useCounts() const {
   std::vector<std::pair<std::string, std::size_t>> out;
-  if (search_.state != TileState::Loaded) return out;
+  if (!loaded()) return out;
   std::map<std::string_view, std::size_t> counts;
   for (const SearchEntry& e : entries_) ++counts[e.use];
   out.reserve(counts.size());
@@ -330,7 +441,7 @@ std::vector<BuildingListEntry> CityIndex::filteredList(const BuildingFilters& fi
                                                        std::size_t* total) const {
   std::vector<BuildingListEntry> out;
   if (total != nullptr) *total = 0;
-  if (search_.state != TileState::Loaded) return out;
+  if (!loaded()) return out;
   // Most likely damaged first: with probabilities by P(>= the list's state), then the expected
   // state; without (e.g. imported results) after them, by the deterministic state.
   struct Key {

@@ -186,11 +186,23 @@ void CityScene::finishTile(std::uint32_t node) {
   tile->slotBase = *slotBase;
   initialBuildingRows(*tile, tileset_->nodes[node].response.has_value(), table_.edit(tile->slotBase, count));
   // Far-view tiles are drawn region by region: their buildings' mesh in region order.
-  if (tile->data.coarse) tile->regions = buildTileRegions(*tile);
+  if (tile->data.coarse) {
+    tile->regions = buildTileRegions(*tile);
+    if (const Box& all = tile->tree.bounds(); !all.empty()) {
+      if (const int level = regionLevelFor(all.maxX - all.minX, all.maxY - all.minY); level > kBlockRegionLevel)
+        tile->farRegions = std::make_unique<TileRegions>(buildTileRegions(*tile, level));
+    }
+  }
   const MeshData mesh = buildTileMesh(*tile, tile->slotBase, &tile->runs, tile->regions.appendOrder);
   tile->mesh = device_.createMesh(mesh);
   tile->gpuBytes = meshGpuBytes(mesh);
   tile->cpuBytes = tileCpuBytes(*tile) + tile->runs.firstIndex.size() * 3 * sizeof(std::uint32_t);
+  if (tile->farRegions) {
+    const TileRegions& r = *tile->farRegions;
+    tile->cpuBytes +=
+        r.boxes.size() * sizeof(Box) + r.codes.size() * sizeof(std::uint64_t) +
+        (r.appendOrder.size() + r.positionStart.size() + r.regionOfPosition.size()) * sizeof(std::uint32_t);
+  }
   {
     const int kind = tileset_->nodes[node].children.empty() ? 0 : 1;
     residentOfFile_[kind] += tile->cpuBytes + tile->gpuBytes;
@@ -302,7 +314,10 @@ void CityScene::selectAndRequest(const CameraView& view) {
                                      }),
                       detailWanted_.end());
   // Once the view has everything it asked for, the search index comes in the background (names
-  // and addresses for search, the inspection window and exports).
+  // and addresses for search, the inspection window and exports), with the response summary in
+  // its order, within three quarters of the budget: the tiles keep a quarter, enough for the
+  // root of a 2,000,000-building region and the leaves around the camera.
+  index_.setMemoryAllowance(budget - budget / 4);
   if (loader_.inFlight() == 0 && decodeQueue_.empty()) index_.request();
   index_.retry();
   // Failed tiles (and their response summaries) the view still uses are retried with backoff
@@ -348,6 +363,7 @@ std::uint32_t CityScene::cull(const CameraView& view, std::vector<DrawItem>& ite
     t.visible.clear();
     t.spans.clear();
     t.regionForm.clear();
+    t.farGrid = false;
     for (auto& spans : t.blockSpans) spans.clear();
     if (!t.loaded) continue;
     const auto n = static_cast<std::uint32_t>(t.loaded->positionOf.size());

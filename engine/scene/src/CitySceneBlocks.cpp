@@ -13,9 +13,11 @@ void CityScene::cullRegions(std::uint32_t node, const CameraView& view, std::vec
   // distance allows; neighbours in the same form are one run of one mesh.
   TileRuntime& t = *tiles_[node];
   LoadedTile& tile = *t.loaded;
-  const TileRegions& regions = tile.regions;
   const Frustum& frustum = view.frustum();
-  t.regionForm.assign(regions.boxes.size(), kRegionHidden);
+  // The far grid while the whole tile is far enough for blocks coarser than the 512 m regions (its
+  // nearest point asks for them, so every region does); else the 512 m grid.
+  t.farGrid =
+      tile.farRegions && blockLevelFor(node, tile.tree.bounds(), view, tile.farRegions->level) > kBlockRegionLevel;
   auto extend = [](std::vector<IndexSpan>& spans, std::uint32_t first, std::uint32_t end) {
     if (end <= first) return;
     if (!spans.empty() && spans.back().firstIndex + spans.back().indexCount == first) {
@@ -24,19 +26,32 @@ void CityScene::cullRegions(std::uint32_t node, const CameraView& view, std::vec
       spans.push_back(IndexSpan{first, end - first, 0, 0});
     }
   };
-  for (std::uint32_t r = 0; r < regions.boxes.size(); ++r) {
-    const Box& box = regions.boxes[r];
-    if (frustum.classify(box) == Containment::Outside) continue;
-    const int level = blockLevelFor(node, box, view);
-    t.regionForm[r] = static_cast<std::int8_t>(level);
-    if (level < 0) {
-      extend(t.spans, tile.runs.firstIndex[regions.positionStart[r]],
-             tile.runs.firstIndex[regions.positionStart[r + 1]]);
-    } else {
-      const BlockLevelRuntime& blocks = *tile.blocks[level];
-      extend(t.blockSpans[level], blocks.runs.firstIndex[blocks.level.regionStart[r]],
-             blocks.runs.firstIndex[blocks.level.regionStart[r + 1]]);
+  auto form = [&](const TileRegions& regions) {
+    t.regionForm.assign(regions.boxes.size(), kRegionHidden);
+    t.spans.clear();
+    for (auto& spans : t.blockSpans) spans.clear();
+    for (std::uint32_t r = 0; r < regions.boxes.size(); ++r) {
+      const Box& box = regions.boxes[r];
+      if (frustum.classify(box) == Containment::Outside) continue;
+      const int level = blockLevelFor(node, box, view, regions.level);
+      // On the far grid only blocks of its own levels can be drawn (the buildings' mesh and the
+      // finer levels follow the 512 m regions): else the 512 m grid after all.
+      if (t.farGrid && level <= kBlockRegionLevel) return false;
+      t.regionForm[r] = static_cast<std::int8_t>(level);
+      if (level < 0) {
+        extend(t.spans, tile.runs.firstIndex[regions.positionStart[r]],
+               tile.runs.firstIndex[regions.positionStart[r + 1]]);
+      } else {
+        const BlockLevelRuntime& blocks = *tile.blocks[level];
+        extend(t.blockSpans[level], blocks.runs.firstIndex[blocks.level.regionStart[r]],
+               blocks.runs.firstIndex[blocks.level.regionStart[r + 1]]);
+      }
     }
+    return true;
+  };
+  if (!form(t.farGrid ? *tile.farRegions : tile.regions)) {
+    t.farGrid = false;
+    form(tile.regions);
   }
   if (!t.spans.empty()) items.push_back(DrawItem{tile.mesh, tile.origin, t.spans});
   for (int level = 0; level < kBlockLevels; ++level) {
@@ -45,7 +60,7 @@ void CityScene::cullRegions(std::uint32_t node, const CameraView& view, std::vec
   }
 }
 
-int CityScene::blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view) {
+int CityScene::blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view, int maxLevel) {
   LoadedTile& tile = *tiles_[node]->loaded;
   if (!tile.data.coarse || options_.blockPixels <= 0.0f || tile.buildingCount() == 0) return -1;
   // Cells of about blockPixels where the box is nearest the eye.
@@ -57,7 +72,7 @@ int CityScene::blockLevelFor(std::uint32_t node, const Box& box, const CameraVie
   const float cellM = options_.blockPixels * distance / std::max(view.pixelsPerMeterAt(1.0f), 1e-6f);
   if (!(cellM >= kBlockCellM * 0.75f)) return -1;
   // The level whose cells are nearest that size (between 0.71 and 1.41 times it).
-  const int level = std::min(static_cast<int>(std::lround(std::log2(cellM / kBlockCellM))), kBlockRegionLevel);
+  const int level = std::min(static_cast<int>(std::lround(std::log2(cellM / kBlockCellM))), maxLevel);
   if (level < tile.minBlockLevel) return -1;
   if (tile.blocks[level]) return level;
   // Cells smaller than the buildings' mean spacing merge next to nothing: not worth making.
@@ -69,7 +84,8 @@ int CityScene::blockLevelFor(std::uint32_t node, const Box& box, const CameraVie
     return -1;
   }
   auto blocks = std::make_unique<BlockLevelRuntime>();
-  blocks->level = buildBlockLevel(tile, blockCellM(level), tile.regions);
+  // Levels above the 512 m regions are only drawn on the far grid: made on its regions.
+  blocks->level = buildBlockLevel(tile, blockCellM(level), level > kBlockRegionLevel ? *tile.farRegions : tile.regions);
   const auto count = static_cast<std::uint32_t>(blocks->level.boxes.size());
   // Worth it only where the blocks' boxes take well under the buildings' triangles.
   const std::uint64_t buildingTriangles = tile.runs.firstIndex.empty() ? 0 : tile.runs.firstIndex.back() / 3;

@@ -312,8 +312,9 @@ std::optional<BuildingRef> CityScene::pick(const glm::vec3& origin, const glm::v
       const TileBuilding& tb = tile.data.buildings[b];
       if (hiddenByLod(tb.attributes.lod)) continue;  // hidden: not pickable
       // A far-view tile's building is picked on its prisms only where they are drawn.
-      if (!t.regionForm.empty() && (position >= tile.regions.regionOfPosition.size() ||
-                                    t.regionForm[tile.regions.regionOfPosition[position]] != -1))
+      const TileRegions& grid = t.farGrid ? *tile.farRegions : tile.regions;
+      if (!t.regionForm.empty() &&
+          (position >= grid.regionOfPosition.size() || t.regionForm[grid.regionOfPosition[position]] != -1))
         continue;
       if (const TileMesh* m = showLod2_ ? tile.drawnModelOf(b) : nullptr) {
         // A LOD2 model is picked on its own triangles (in coarse tiles it is drawn, and picked, as

@@ -46,6 +46,9 @@ struct CityScene::LoadedTile : TileContent {
   std::unique_ptr<BlockLevelRuntime> blocks[kBlockLevels];
   int minBlockLevel = 0;
   TileRegions regions;  // far-view tiles: their regions; runs then follow regions.appendOrder
+  // Far-view tiles wider than kMaxRegionsAcross regions: coarser regions for when the whole tile
+  // is far (TileBlocks.h); block levels above kBlockRegionLevel are made on them.
+  std::unique_ptr<TileRegions> farRegions;
   // Leaves: the same buildings with plain-prism walls (TileWalls::Prisms), drawn while none of the
   // tile's buildings is animated; made when first wanted, not at all where it saves little.
   MeshHandle prismMesh;
@@ -72,6 +75,7 @@ struct CityScene::TileRuntime {
   // Far-view tiles: each region's form this frame (kRegionHidden, -1 building by building, else
   // the block level) and the runs drawn of each block level's mesh.
   std::vector<std::int8_t> regionForm;
+  bool farGrid = false;  // regionForm is of the far regions (LoadedTile::farRegions) this frame
   std::vector<IndexSpan> blockSpans[kBlockLevels];
 
   FileLoad summaryLoad;

@@ -66,19 +66,27 @@ std::int32_t cellIndex(float v, float inverseSide) {
 
 }  // namespace
 
+int regionLevelFor(float widthM, float heightM) {
+  const float side = std::max(widthM, heightM);
+  int level = kBlockRegionLevel;
+  while (level + 1 < kBlockLevels && !(side <= kMaxRegionsAcross * blockCellM(level))) ++level;
+  return level;
+}
+
 std::uint32_t TileRegions::regionOf(float x, float y) const {
-  const float inverse = 1.0f / blockCellM(kBlockRegionLevel);
+  const float inverse = 1.0f / blockCellM(level);
   const std::uint64_t code = mortonOf(cellIndex(x, inverse), cellIndex(y, inverse));
   const auto it = std::lower_bound(codes.begin(), codes.end(), code);
   return it != codes.end() && *it == code ? static_cast<std::uint32_t>(it - codes.begin()) : UINT32_MAX;
 }
 
-TileRegions buildTileRegions(const TileContent& tile) {
+TileRegions buildTileRegions(const TileContent& tile, int level) {
   TileRegions regions;
-  const float side = blockCellM(kBlockRegionLevel);
-  const float inverse = 1.0f / side;
   const auto& order = tile.tree.order();
   const Box& all = tile.tree.bounds();
+  regions.level = std::clamp(level, kBlockRegionLevel, kBlockLevels - 1);
+  const float side = blockCellM(regions.level);
+  const float inverse = 1.0f / side;
   // Every region a building's box reaches into (a block of its parts may lie there), with its
   // grid cell; each building's home region (its box's centre).
   std::vector<std::pair<std::uint64_t, glm::ivec2>> cells;

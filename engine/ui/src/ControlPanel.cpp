@@ -544,10 +544,13 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
         if (!viewer.select(first.id) || !viewer.flyToSelection())
           viewer.flyTo(first.x, first.y, std::max(200.0, static_cast<double>(first.heightM) * 3.0));
       }
-      if (!city->searchIndexLoaded())
-        w.text(city->searchIndexSettled() ? "The search index could not be loaded." : "Loading the search index...");
-      else if (hits.empty())
+      if (!city->searchIndexLoaded()) {
+        // Left out for memory: the notice under the filters says why.
+        if (city->cityIndexNotice().empty())
+          w.text(city->searchIndexSettled() ? "The search index could not be loaded." : "Loading the search index...");
+      } else if (hits.empty()) {
         w.text("No building matches.");
+      }
       for (const BuildingListEntry& hit : hits) {
         const std::string label = (hit.name.empty() ? hit.id : hit.name + " (" + hit.id + ")") +
                                   (hit.address.empty() ? "" : ", " + hit.address) + "##search" + hit.id;
@@ -630,6 +633,9 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     std::size_t total = 0;
     const auto list = city->filteredList(12, &total);
     if (!city->searchIndexLoaded() && !city->searchIndexSettled()) w.text("Loading the city's building list...");
+    if (const std::string& notice = city->cityIndexNotice(); !notice.empty()) {
+      w.textWrapped(notice + " A larger budget (?memory=MB in the address) loads it where the device has the memory.");
+    }
     w.text(ui::format("Filtered: %zu of %llu buildings%s", total,
                       static_cast<unsigned long long>(tileset != nullptr ? tileset->buildings : 0),
                       f.active() ? " (the rest is dimmed)" : ""));

@@ -12,7 +12,6 @@
 #include <span>
 #include <string>
 #include <string_view>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -106,6 +105,11 @@ std::string_view listName(const BuildingListEntry& entry);
 /// metres, else km with one decimal.
 std::string listRowText(const BuildingListEntry& entry, double fromX, double fromY, int probabilityState = 1);
 
+/// The heap a decoded search index holds: the vector's block and every string's text that does not
+/// fit in the string object, each as malloc holds it (a request of n bytes takes n plus a size
+/// word, rounded up to two words). About 145 bytes a building of the synthetic city in WASM.
+[[nodiscard]] std::uint64_t searchIndexHeapBytes(const std::vector<SearchEntry>& entries);
+
 class CityIndex {
  public:
   /// Files are resolved against `manifestUrl`; nothing loads before open().
@@ -123,18 +127,35 @@ class CityIndex {
   /// index's order follows the index.
   void retry();
 
-  [[nodiscard]] bool loaded() const { return search_.state == TileState::Loaded; }
+  /// The most the city-wide files may hold on the heap, in bytes (CityScene gives them three
+  /// quarters of its memory budget; the tiles keep the rest). The search index and the response
+  /// summary in its order are fetched only when what they will hold fits beside what is loaded:
+  /// estimated before the fetch (the index: its table and id order for the manifest's building
+  /// count; the summary: what `quakeview-prep response` writes per building and storey, the
+  /// storeys counted in the index), measured after decoding, when a file that does not fit after
+  /// all is let go. So a city of millions of buildings stays within the budget, without what
+  /// does not fit (memoryNotice says what), instead of exhausting the page's memory. A file left
+  /// out is fetched once the allowance grows enough for it. Unlimited until set.
+  void setMemoryAllowance(std::uint64_t bytes);
+  /// Why a city-wide file is not loaded ("" while none is left out): what it serves, about how
+  /// many MB it needs and how many the allowance gives.
+  [[nodiscard]] const std::string& memoryNotice() const { return memoryNotice_; }
+
+  /// The search index has loaded (and is kept: not left out for memory).
+  [[nodiscard]] bool loaded() const { return search_.state == TileState::Loaded && searchNeedsBytes_ == 0; }
   /// The response's consequence totals (consequences.json) once loaded, else nullptr.
   [[nodiscard]] const seismic::ConsequenceTotals* consequences() const { return consequences_.get(); }
   [[nodiscard]] bool consequencesFailed() const { return consequencesLoad_.state == TileState::Failed; }
   /// Across a record suite: the median over the city's buildings of their peak drift's log standard
   /// deviation (from the summary in the index's order); nullopt for one record or until loaded.
   [[nodiscard]] std::optional<float> medianDriftBeta() const { return medianDriftBeta_; }
-  /// The index (and the summary in its order) has loaded or failed, or the city has none.
+  /// The index (and the summary in its order) has loaded, failed or been left out for memory, or
+  /// the city has none.
   [[nodiscard]] bool settled() const;
   /// Files on their way (0 .. 2).
   [[nodiscard]] std::uint32_t pendingFiles() const;
-  /// Heap held by the index and its summary (estimate).
+  /// Heap held by the index and its summary: every allocation counted as the allocator holds it
+  /// (the memory budget is enforced on this; a 2,000,000-building index is about 300 MB in WASM).
   [[nodiscard]] std::uint64_t bytes() const { return bytes_; }
 
   /// Every building's entry in the index's order (empty while the index is not loaded).
@@ -183,7 +204,9 @@ class CityIndex {
   void requestConsequences();
   FileLoad search_;
   std::vector<SearchEntry> entries_;
-  std::unordered_map<std::string_view, std::uint32_t> positions_;  // id (into entries_) -> position
+  // Positions of entries_ ordered by id (then position): lookup by id is a binary search. Four
+  // bytes a building, where a hash map of ids took 28 in WASM (56 MB of a 2,000,000-building city).
+  std::vector<std::uint32_t> byId_;
   // The last search's query and its matches in order (indices into entries_), for entries_ at
   // searchedEntries_.
   mutable std::string searchedQuery_;
@@ -195,6 +218,12 @@ class CityIndex {
   std::optional<float> medianDriftBeta_;
   std::unique_ptr<seismic::ConsequenceTotals> consequences_;  // the response's totals
   std::uint64_t bytes_ = 0;
+  std::uint64_t allowanceBytes_ = UINT64_MAX;
+  // What a file left out for memory needs (0: not left out).
+  std::uint64_t searchNeedsBytes_ = 0;
+  std::uint64_t summaryNeedsBytes_ = 0;
+  std::string memoryNotice_;
+  void updateMemoryNotice();
 };
 
 }  // namespace qv

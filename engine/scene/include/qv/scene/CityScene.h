@@ -198,7 +198,11 @@ class CityScene {
   /// How many buildings of each use the city has, most first (CityIndex::useCounts).
   [[nodiscard]] std::vector<std::pair<std::string, std::size_t>> useCounts() const { return index_.useCounts(); }
   [[nodiscard]] bool searchIndexLoaded() const { return index_.loaded(); }
-  /// The search index (and the response summary in its order) has loaded or failed, or the city has none.
+  /// Why the search index or the city-wide response is not loaded for memory ("" when both fit
+  /// the budget; CityIndex::memoryNotice).
+  [[nodiscard]] const std::string& cityIndexNotice() const { return index_.memoryNotice(); }
+  /// The search index (and the response summary in its order) has loaded, failed or been left out
+  /// for memory, or the city has none.
   [[nodiscard]] bool searchIndexSettled() const;
   /// Damage states (none .. complete, no result) of the buildings in view, from the last frame.
   [[nodiscard]] const std::array<std::uint64_t, 6>& damageInView() const { return damageInView_; }
@@ -268,7 +272,7 @@ class CityScene {
   void refreshBlockRows(std::uint32_t node);  // block rows from the tile's building rows
   /// The block level a far-view tile's part in `box` is drawn at from `view` (made now if
   /// needed), or -1: building by building.
-  int blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view);
+  int blockLevelFor(std::uint32_t node, const Box& box, const CameraView& view, int maxLevel);
   void cullRegions(std::uint32_t node, const CameraView& view, std::vector<DrawItem>& items);
   /// Whether the leaf's plain-prism mesh is there to draw (made now when `mayBuild` and worth it).
   bool preparePrisms(std::uint32_t node, bool mayBuild);

@@ -37,13 +37,28 @@ inline constexpr int kBlockLevels = 16;
 /// A far-view tile chooses its form region by region: each square region of this level's grid
 /// (512 m) is drawn building by building or as the blocks of one level, after its own distance
 /// from the eye, so the far side of a large tile gets coarser blocks than its near side. Cells of
-/// every block level up to this one nest in exactly one region, so regions never overlap.
+/// every block level up to a grid's region level nest in exactly one of its regions, so regions
+/// never overlap.
 inline constexpr int kBlockRegionLevel = 6;
+/// Blocks are at most a region wide, so a tile much wider than its regions draws at least one
+/// block per region however far away it is: the root of a 59 km × 37 km synth-city of 2,000,000
+/// buildings, 8,400 regions of 512 m, drew 79,000 triangles from afar where the preset's
+/// screen-sized blocks need a fifth of that. A tile wider than this many regions of 512 m also
+/// gets a far grid (regionLevelFor: at most this many regions across), which CityScene uses while
+/// the whole tile is far enough for blocks coarser than 512 m; nearer, the 512 m grid follows the
+/// distance more closely.
+inline constexpr float kMaxRegionsAcross = 32.0f;
+
+/// The region level of the far grid of a far-view tile whose buildings span `widthM` × `heightM`:
+/// the finest level from kBlockRegionLevel on with at most kMaxRegionsAcross regions along the
+/// longer side (kBlockRegionLevel: no far grid needed).
+[[nodiscard]] int regionLevelFor(float widthM, float heightM);
 
 /// The regions of a far-view tile: those its buildings' boxes reach into, in Morton order of the
 /// grid, and its buildings in region order (each building in the region of its box's centre).
 struct TileRegions {
-  std::vector<Box> boxes;  ///< each region's square, from the tile's lowest base to its highest top
+  int level = kBlockRegionLevel;  ///< regions are the cells of this block level (regionLevelFor)
+  std::vector<Box> boxes;         ///< each region's square, from the tile's lowest base to its highest top
   /// Positions (the tile's BoxTree order) region by region: region r's buildings are
   /// appendOrder[positionStart[r] .. positionStart[r + 1]). Their mesh is built in this order.
   std::vector<std::uint32_t> appendOrder;
@@ -54,7 +69,8 @@ struct TileRegions {
   [[nodiscard]] std::uint32_t regionOf(float x, float y) const;
 };
 
-TileRegions buildTileRegions(const TileContent& tile);
+/// The regions of `tile` on the grid of block level `level` (kBlockRegionLevel .. kBlockLevels - 1).
+TileRegions buildTileRegions(const TileContent& tile, int level = kBlockRegionLevel);
 
 /// One level's blocks, region by region (region r's blocks are [regionStart[r], regionStart[r + 1])),
 /// in Morton order within a region. The tree is built over `boxes` in this order: its order()
@@ -71,8 +87,8 @@ struct TileBlockLevel {
   std::vector<std::uint32_t> members;
 };
 
-/// The blocks of `tile` on cells of side `cellM` (> 0, at most the region side), ordered by the
-/// tile's `regions`. Buildings without parts are left out.
+/// The blocks of `tile` on cells of side `cellM` (> 0, at most the region side, blockCellM(regions.level)), ordered by
+/// the tile's `regions`. Buildings without parts are left out.
 TileBlockLevel buildBlockLevel(const TileContent& tile, float cellM, const TileRegions& regions);
 
 /// The boxes of `level` as one mesh (tile-local positions: the city frame less tile.origin),
