@@ -504,7 +504,7 @@ TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed",
   CHECK(viewer.city()->memoryBytes() <= budget);
 }
 
-TEST_CASE("The city-wide files get three quarters of the memory budget; what does not fit is left out with a notice",
+TEST_CASE("The city-wide files get three quarters of the memory budget, and what does not fit is left out with a notice",
           "[scene][city][memory]") {
   SceneRig rig;
   CitySceneOptions options;
