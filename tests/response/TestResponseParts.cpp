@@ -162,9 +162,12 @@ TEST_CASE("a catalogue's scenarios are response options, shared ones overridden,
   CHECK(c->scenarios[1].args == std::vector<std::string>{"--districts", "/abs/d.geojson", "--epicentre",
                                                          "-74.01,40.70,10", "--magnitude", "6.5", "--scale-by", "pga",
                                                          "--synthetic", "1", "2", "--time-of-day", "night"});
-  CHECK(qv::prep::scenariosToJson({"A \"quoted\" name", "B"}) ==
-        "{\"format\":\"quakeview-scenarios\",\"version\":1,\"scenarios\":[{\"index\":1,\"name\":\"A \\\"quoted\\\" "
-        "name\",\"manifest\":\"scenario-1.json\"},{\"index\":2,\"name\":\"B\",\"manifest\":\"scenario-2.json\"}]}\n");
+  // scenarios.json as the viewer reads it (the one codec of qv/format/ScenarioCatalogue.h).
+  const auto listed = qv::parseScenarioCatalogue(qv::prep::scenariosToJson({"A \"quoted\" name", "B"}), "s.json");
+  REQUIRE(listed.ok());
+  CHECK(listed->warnings.empty());
+  CHECK(listed->scenarios ==
+        std::vector<qv::ScenarioEntry>{{1, "A \"quoted\" name", "scenario-1.json"}, {2, "B", "scenario-2.json"}});
 }
 
 TEST_CASE("a catalogue that cannot be run is refused with its name and the scenario", "[response][catalogue]") {
@@ -174,6 +177,7 @@ TEST_CASE("a catalogue that cannot be run is refused with its name and the scena
       {R"({"scenarios": [{"shakemap": "x.xml"}]})", "scenario 1: needs a \"name\""},
       {R"({"scenarios": [{"name": "a"}, {"name": "a"}]})", "scenario 2: another scenario is also named \"a\""},
       {R"({"scenarios": [{"name": "bell\u0007"}]})", "control character"},
+      {R"({"scenarios": [{"name": "evil\u202Eexe"}]})", "bidirectional control"},
       {R"({"scenarios": [{"name": "a", "threads": 4}]})", "\"threads\" cannot be set in a catalogue"},
       {R"({"scenarios": [{"name": "a", "--shakemap": "x"}]})", "is not an option name"},
       {R"({"options": {"city": "/x"}, "scenarios": [{"name": "a"}]})", "\"options\": \"city\" cannot be set"},

@@ -6,6 +6,8 @@
 #include <set>
 
 #include "qv/core/JsonWriter.h"
+#include "qv/core/Text.h"
+#include "qv/format/ScenarioCatalogue.h"
 #include "qv/prep/Files.h"
 
 namespace qv::prep {
@@ -117,12 +119,12 @@ Result<Catalogue> parseCatalogue(std::string_view json, const std::string& folde
     simdjson::dom::object o;
     if (e.get(o) != simdjson::SUCCESS) return Error{where + ": not an object"};
     std::string_view text;
-    if (o["name"].get(text) != simdjson::SUCCESS || text.empty() || text.size() > 200) {
-      return Error{where + ": needs a \"name\" of 1 to 200 characters"};
+    if (o["name"].get(text) != simdjson::SUCCESS || text.empty() || text.size() > kMaxScenarioNameBytes) {
+      return Error{where + ": needs a \"name\" of 1 to " + std::to_string(kMaxScenarioNameBytes) + " bytes"};
     }
-    for (const char c : text) {
-      if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
-        return Error{where + ": its name holds a control character"};
+    // The viewer leaves out a name it could not show as written (qv/format/ScenarioCatalogue.h).
+    if (needsDisplayCleaning(text)) {
+      return Error{where + ": its name holds a control character, a line break or a bidirectional control"};
     }
     CatalogueScenario s;
     s.name = std::string(text);
@@ -152,34 +154,21 @@ std::string scenarioManifestName(std::size_t index) {
 }
 
 std::string scenariosToJson(const std::vector<std::string>& names) {
-  JsonWriter w;
-  w.beginObject().field("format", std::string("quakeview-scenarios")).field("version", std::uint64_t{1});
-  w.key("scenarios").beginArray();
+  ScenarioCatalogue catalogue;
   for (std::size_t i = 0; i < names.size(); ++i) {
-    w.beginObject().field("index", std::uint64_t{i + 1}).field("name", names[i]);
-    w.field("manifest", scenarioManifestName(i + 1)).endObject();
+    catalogue.scenarios.push_back({static_cast<std::uint32_t>(i + 1), names[i], scenarioManifestName(i + 1)});
   }
-  w.endArray().endObject();
-  return w.str() + "\n";
+  return scenarioCatalogueToJson(catalogue);
 }
 
 std::vector<std::string> scenarioManifestsOf(const std::string& cityDir) {
   std::vector<std::string> out;
-  auto text = readTextFile(cityDir + "/scenarios.json", 16ull << 20);
+  const std::string path = cityDir + "/" + std::string(kScenarioCatalogueFile);
+  auto text = readTextFile(path, kMaxScenarioCatalogueBytes);
   if (!text.ok()) return out;
-  simdjson::dom::parser parser;
-  simdjson::dom::object root;
-  simdjson::dom::array list;
-  if (parser.parse(*text).get(root) != simdjson::SUCCESS || root["scenarios"].get(list) != simdjson::SUCCESS)
-    return out;
-  for (simdjson::dom::element e : list) {
-    std::string_view manifest;
-    if (e["manifest"].get(manifest) != simdjson::SUCCESS) continue;
-    if (manifest.empty() || manifest.find('/') != std::string_view::npos ||
-        manifest.find("..") != std::string_view::npos)
-      continue;
-    out.emplace_back(manifest);
-  }
+  auto catalogue = parseScenarioCatalogue(*text, path);
+  if (!catalogue.ok()) return out;
+  for (const ScenarioEntry& s : catalogue->scenarios) out.push_back(s.manifest);
   return out;
 }
 
