@@ -504,8 +504,9 @@ TEST_CASE("Tiles are evicted beyond the memory budget and reloaded when needed",
   CHECK(viewer.city()->memoryBytes() <= budget);
 }
 
-TEST_CASE("The city-wide files get three quarters of the memory budget, and what does not fit is left out with a notice",
-          "[scene][city][memory]") {
+TEST_CASE(
+    "The city-wide files get three quarters of the memory budget, and what does not fit is left out with a notice",
+    "[scene][city][memory]") {
   SceneRig rig;
   CitySceneOptions options;
   options.memoryBudgetBytes = 4096;  // three quarters of it are under the table of the index of 64 buildings
