@@ -311,6 +311,15 @@ TEST_CASE("A catalogue that cannot be read is reported once, and the city opens 
           "The city's scenario list city/scenarios.json could not be loaded (HTTP 500); only the scenario "
           "opened is shown.");
   }
+  SECTION("no response at all (another origin's 404 without a CORS header): no catalogue, no message") {
+    ScenarioRig rig;
+    rig.fetcher.statusOverride["city/scenarios.json"] = 0;
+    rig.open();
+    REQUIRE(rig.settle());
+    CHECK(rig.viewer.scenarios()->state() == CityScenarios::CatalogueState::Absent);
+    CHECK(rig.viewer.errors().empty());
+    CHECK(rig.viewer.city()->manifestLoaded());
+  }
 }
 
 TEST_CASE("A hostile entry is left out with a message, the others are listed, nothing outside the folder is fetched",

@@ -58,8 +58,12 @@ CityScenarios::~CityScenarios() {
 
 void CityScenarios::onCatalogue(FetchResponse response) {
   catalogueRequest_ = 0;
-  if (response.status == 404) {
-    state_ = CatalogueState::Absent;  // a city without scenarios: nothing to say
+  // A city without scenarios: nothing to say. A request that got no response at all counts the
+  // same: a city on another origin is often served so that a missing file's 404 carries no CORS
+  // header, which the browser reports as a network error; a real outage shows in the city's own
+  // files, which are reported.
+  if (response.status == 404 || response.status == 0) {
+    state_ = CatalogueState::Absent;
     return;
   }
   if (!response.ok()) {

@@ -3,8 +3,9 @@
 // there yet, and its event type once read. The Viewer owns one per city folder (kept while it
 // switches between the folder's scenarios) and switches by opening another manifest.
 //
-// Loading never throws and never stops the city: a missing catalogue (HTTP 404) means the city has
-// none, without a message; any other failure, or a file that is no catalogue, is reported once
+// Loading never throws and never stops the city: a missing catalogue (HTTP 404, or no response at
+// all: another origin may answer a 404 without a CORS header) means the city has none, without a
+// message; any other failure, or a file that is no catalogue, is reported once
 // (keyed by the catalogue's address) and the city goes on without scenarios. Bad entries are left
 // out, each reported (ScenarioCatalogue::warnings).
 //
