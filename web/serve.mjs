@@ -127,7 +127,9 @@ export function handleStatic(req, res, root, mounts = {}) {
       }
     }
     if (err || !stat.isFile()) {
-      res.writeHead(404, { ...security, 'Content-Type': 'text/plain; charset=utf-8' });
+      // With CORS too: a page on another origin then learns that an optional file (a city's
+      // scenarios.json) is missing, where a bare 404 reads as a network error in the browser.
+      res.writeHead(404, { ...security, 'Content-Type': 'text/plain; charset=utf-8', 'Access-Control-Allow-Origin': '*' });
       res.end('not found');
       return;
     }
