@@ -97,6 +97,29 @@ struct ResponseInfo {
   std::optional<CityFile> consequences;
 };
 
+/// One cell of the ground pyramid that has a file (docs/formats.md "Ground tile").
+struct GroundNode {
+  std::uint8_t level = 0;      ///< 0 = the one cell over the whole ground
+  std::uint32_t x = 0, y = 0;  ///< the cell at that level, from the pyramid's south-west corner
+  float geometricErrorM = 0;   ///< how far its shapes may stray from full detail (0 for leaves)
+  std::string file;            ///< relative to the manifest: "ground/<level>-<x>-<y>.qvg"
+  std::uint64_t bytes = 0;
+  std::uint32_t crc32 = 0;
+};
+
+/// The map under the city (streets, water, parks, names), made from the city's own input.
+struct GroundLayer {
+  double minX = 0.0, minY = 0.0;  ///< the level-0 cell's south-west corner, metres
+  double size = 0.0;              ///< the level-0 cell's side, metres (a level-L cell: size / 2^L)
+  std::uint8_t levels = 0;        ///< levels of the pyramid (leaves at levels - 1)
+  std::vector<GroundNode> nodes;  ///< the cells with a file; empty when the input had no ground features
+  /// Features read from the input by class name (groundClassName, plus "labels"); features
+  /// skipped as broken by reason ("unclosed-coastline" -> 2); written only when not empty.
+  std::map<std::string, std::uint64_t> features;
+  std::map<std::string, std::uint64_t> skipped;
+  std::uint64_t bytes = 0;  ///< all ground files
+};
+
 struct Tileset {
   int version = kTilesetVersion;
   std::string generator;
@@ -117,6 +140,9 @@ struct Tileset {
   std::optional<CityFile> search;  ///< the search index (search.qvi): the city-wide building table
   std::vector<TileNode> nodes;     ///< nodes[0] is the root
   std::optional<ResponseInfo> response;
+  /// The ground layer; absent when the city was made with --no-ground or before ground existed.
+  /// Present with no nodes when the input had no streets, water or open land.
+  std::optional<GroundLayer> ground;
 
   /// True when a response exists but was computed for an older revision of the buildings.
   [[nodiscard]] bool responseOutOfDate() const { return response && response->buildingsRevision != buildingsRevision; }

@@ -13,6 +13,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "qv/prep/GroundFeatures.h"
 #include "qv/format/BuildingAttributes.h"
 #include "qv/format/CityTile.h"
 
@@ -82,6 +83,9 @@ struct CityModel {
   /// Buildings read but neither drawn nor analysed, by reason ("underground" -> 1); they are not in
   /// `buildings`. Written to the manifest (Tileset::excluded) and shown by `info`.
   std::map<std::string, std::uint64_t> excluded;
+  /// The map under the buildings (streets, water, parks, names) as read from the input; the
+  /// tiler writes it as the ground pyramid (qv/prep/GroundTiler.h) unless told not to.
+  GroundFeatures ground;
 };
 
 }  // namespace qv::prep
