@@ -13,9 +13,9 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
-#include "qv/prep/GroundFeatures.h"
 #include "qv/format/BuildingAttributes.h"
 #include "qv/format/CityTile.h"
+#include "qv/prep/GroundFeatures.h"
 
 namespace qv::prep {
 
