@@ -73,6 +73,12 @@ GlRenderDevice::GlRenderDevice() {
   glGenVertexArrays(1, &markerVao_);
   glGenBuffers(1, &markerBuffer_);
 
+  groundMapProgram_ = shaders::linkProgram(shaders::kGroundMapVertex, shaders::kGroundMapFragment, error_);
+  if (!ok()) return;
+  groundMapViewProjection_ = glGetUniformLocation(groundMapProgram_, "u_viewProjection");
+  groundMapOrigin_ = glGetUniformLocation(groundMapProgram_, "u_origin");
+  groundMapEye_ = glGetUniformLocation(groundMapProgram_, "u_eye");
+
   g_.viewProjection = glGetUniformLocation(groundProgram_, "u_viewProjection");
   g_.rect = glGetUniformLocation(groundProgram_, "u_rect");
   g_.eye = glGetUniformLocation(groundProgram_, "u_eye");
@@ -115,6 +121,7 @@ GlRenderDevice::~GlRenderDevice() {
   glDeleteVertexArrays(1, &markerVao_);
   glDeleteBuffers(1, &markerBuffer_);
   if (markerProgram_ != 0) glDeleteProgram(markerProgram_);
+  if (groundMapProgram_ != 0) glDeleteProgram(groundMapProgram_);
   for (const BuildingProgram& b : building_) {
     if (b.program != 0) glDeleteProgram(b.program);
   }
@@ -157,6 +164,63 @@ MeshHandle GlRenderDevice::createMesh(const MeshData& data) {
   const std::uint32_t id = nextId_++;
   meshes_.emplace(id, mesh);
   return MeshHandle{id};
+}
+
+MeshHandle GlRenderDevice::createGroundMesh(const GroundMeshData& data) {
+  if (!ok() || data.indices.empty() || data.vertices.empty()) return {};
+  Mesh mesh;
+  glGenVertexArrays(1, &mesh.vao);
+  glBindVertexArray(mesh.vao);
+  glGenBuffers(1, &mesh.vertexBuffer);
+  glBindBuffer(GL_ARRAY_BUFFER, mesh.vertexBuffer);
+  const auto vertexBytes = static_cast<GLsizeiptr>(data.vertices.size_bytes());
+  glBufferData(GL_ARRAY_BUFFER, vertexBytes, data.vertices.data(), GL_STATIC_DRAW);
+  constexpr auto stride = static_cast<GLsizei>(sizeof(GroundVertex));
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, byteOffset(offsetof(GroundVertex, x)));
+  glEnableVertexAttribArray(1);
+  glVertexAttribIPointer(1, 1, GL_UNSIGNED_BYTE, stride, byteOffset(offsetof(GroundVertex, groundClass)));
+  glGenBuffers(1, &mesh.indexBuffer);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indexBuffer);
+  const auto indexBytes = static_cast<GLsizeiptr>(data.indices.size_bytes());
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, indexBytes, data.indices.data(), GL_STATIC_DRAW);
+  glBindVertexArray(0);
+  if (glGetError() == GL_OUT_OF_MEMORY) {
+    glDeleteVertexArrays(1, &mesh.vao);
+    glDeleteBuffers(1, &mesh.vertexBuffer);
+    glDeleteBuffers(1, &mesh.indexBuffer);
+    return {};
+  }
+  mesh.indexCount = static_cast<int>(data.indices.size());
+  mesh.bytes = static_cast<std::size_t>(vertexBytes + indexBytes);
+  meshBytes_ += mesh.bytes;
+  pendingUpload_ += mesh.bytes;
+  const std::uint32_t id = nextId_++;
+  meshes_.emplace(id, mesh);
+  return MeshHandle{id};
+}
+
+void GlRenderDevice::drawGroundItems(const FrameUniforms& f, DeviceFrameStats& stats) {
+  if (!ok() || f.groundItems.empty()) return;
+  // Painter's order: each mesh's triangles are in drawing order and meshes do not overlap, so
+  // neither the depth test nor depth writes are needed; the buildings then draw over the map.
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_FALSE);
+  glUseProgram(groundMapProgram_);
+  glUniformMatrix4fv(groundMapViewProjection_, 1, GL_FALSE, &f.viewProjection[0][0]);
+  glUniform3f(groundMapEye_, f.eye.x, f.eye.y, f.eye.z);
+  for (const GroundDrawItem& item : f.groundItems) {
+    const auto it = meshes_.find(item.mesh.id);
+    if (it == meshes_.end()) continue;
+    glUniform3f(groundMapOrigin_, item.origin.x, item.origin.y, item.origin.z);
+    glBindVertexArray(it->second.vao);
+    glDrawElements(GL_TRIANGLES, it->second.indexCount, GL_UNSIGNED_INT, nullptr);
+    stats.drawCalls += 1;
+    stats.triangles += static_cast<std::uint64_t>(it->second.indexCount / 3);
+  }
+  glBindVertexArray(0);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_DEPTH_TEST);
 }
 
 void GlRenderDevice::destroyMesh(MeshHandle handle) {
@@ -287,6 +351,7 @@ void GlRenderDevice::render(const FrameUniforms& f, std::span<const DrawItem> it
     stats.drawCalls += 1;
     stats.triangles += 2;
   }
+  drawGroundItems(f, stats);
 
   const BuildingProgram* program = ok() && !items.empty() ? buildingProgram(f.colorMode) : nullptr;
   if (program != nullptr && buildings_.rows > 0) {

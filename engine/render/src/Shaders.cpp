@@ -211,6 +211,50 @@ void main() {
 }
 )";
 
+// The map under the city (qv::GroundDrawItem): flat triangles coloured by their class
+// (qv::GroundClass order: land, green, forest, park, water, path, rail, street, major, motorway),
+// muted so that the buildings' damage colours stay what the eye finds first.
+const char* const kGroundMapVertex = R"(#version 300 es
+precision highp float;
+layout(location = 0) in vec2 a_position;
+layout(location = 1) in uint a_class;
+uniform mat4 u_viewProjection;
+uniform vec3 u_origin;
+out vec3 v_world;
+flat out uint v_class;
+void main() {
+  v_world = vec3(a_position + u_origin.xy, 0.0);
+  v_class = a_class;
+  gl_Position = u_viewProjection * vec4(v_world, 1.0);
+}
+)";
+
+const char* const kGroundMapFragment = R"(#version 300 es
+precision highp float;
+in vec3 v_world;
+flat in uint v_class;
+uniform vec3 u_eye;
+out vec4 o_color;
+const vec3 kClassColor[10] = vec3[10](
+  vec3(0.60, 0.63, 0.60),  // land
+  vec3(0.55, 0.66, 0.50),  // green
+  vec3(0.44, 0.57, 0.43),  // forest
+  vec3(0.51, 0.67, 0.47),  // park
+  vec3(0.47, 0.63, 0.78),  // water
+  vec3(0.70, 0.70, 0.66),  // path
+  vec3(0.47, 0.47, 0.50),  // rail
+  vec3(0.80, 0.80, 0.77),  // street
+  vec3(0.88, 0.85, 0.74),  // major
+  vec3(0.90, 0.80, 0.62)   // motorway
+);
+void main() {
+  vec3 color = kClassColor[min(v_class, 9u)];
+  float d = length(v_world - u_eye);
+  float fog = 1.0 - exp(-d * 0.000035);
+  o_color = vec4(mix(color, vec3(0.80, 0.85, 0.90), fog * 0.7), 1.0);
+}
+)";
+
 // Map markers (qv::MapMarker): each a quad of two triangles around its centre, a fixed number of
 // framebuffer pixels across whatever the distance; the fragment stage cuts a disc with a ring.
 const char* const kMarkerVertex = R"(#version 300 es

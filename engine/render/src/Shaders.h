@@ -9,6 +9,8 @@ extern const char* const kBuildingVertex;
 extern const char* const kBuildingFragment;
 extern const char* const kGroundVertex;
 extern const char* const kGroundFragment;
+extern const char* const kGroundMapVertex;
+extern const char* const kGroundMapFragment;
 extern const char* const kMarkerVertex;
 extern const char* const kMarkerFragment;
 extern const char* const kUiVertex;

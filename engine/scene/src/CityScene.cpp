@@ -93,6 +93,9 @@ void CityScene::onManifest(FetchResponse response) {
   states_.assign(tileset_->nodes.size(), TileState::Unloaded);
   nodeBytes_.assign(tileset_->nodes.size(), 0);
   wasLoaded_ = std::make_unique<bool[]>(tileset_->nodes.size());
+  if (tileset_->ground && !tileset_->ground->nodes.empty()) {
+    ground_ = std::make_unique<GroundScene>(device_, loader_, manifestUrl_, *tileset_->ground);
+  }
   if (tileset_->responseOutOfDate()) {
     reportCityError(
         "The response results are older than the buildings of this city (run quakeview-prep response "
@@ -237,6 +240,8 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
 
   t0 = clock_.nowSeconds();
   selectAndRequest(view);
+  // The map after the buildings' tiles: they come first in the limit of requests in flight.
+  if (ground_) ground_->update(view);
   times.lod += msSince(clock_, t0);
 
   t0 = clock_.nowSeconds();
@@ -257,7 +262,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   times.upload += msSince(clock_, t0) + streamingMs + evictMs;
 
   counts.buildingsLoaded += static_cast<std::uint32_t>(loadedBuildings());
-  settled_ = selection_.complete() && decodeQueue_.empty() && responsesReady();
+  settled_ = selection_.complete() && decodeQueue_.empty() && responsesReady() && (!ground_ || ground_->settled());
 }
 
 void CityScene::decodeArrived(double frameStart) {

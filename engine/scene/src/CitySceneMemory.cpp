@@ -26,7 +26,7 @@ std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
 }
 
 std::uint64_t CityScene::memoryBytes() const {
-  std::uint64_t total = index_.bytes();
+  std::uint64_t total = index_.bytes() + (ground_ ? ground_->memoryBytes() : 0);
   for (std::uint32_t i = 0; i < tiles_.size(); ++i) total += tileBytes(i);
   return total;
 }

@@ -31,6 +31,8 @@ std::string subject(const FileSpec& spec) {
       return "Search index " + spec.url;
     case FileKind::Consequences:
       return "Consequences " + spec.url;
+    case FileKind::Ground:
+      return "Ground tile " + spec.url;
   }
   return spec.url;
 }

@@ -13,6 +13,15 @@ MeshHandle NullRenderDevice::createMesh(const MeshData& mesh) {
   return MeshHandle{id};
 }
 
+MeshHandle NullRenderDevice::createGroundMesh(const GroundMeshData& mesh) {
+  if (mesh.indices.empty() || mesh.vertices.empty()) return {};
+  const std::size_t bytes = mesh.vertices.size_bytes() + mesh.indices.size_bytes();
+  const std::uint32_t id = nextId_++;
+  meshes_[id] = Mesh{mesh.indices.size() / 3, 0, 0, bytes};
+  pendingUpload_ += bytes;
+  return MeshHandle{id};
+}
+
 void NullRenderDevice::destroyMesh(MeshHandle mesh) {
   meshes_.erase(mesh.id);
 }
@@ -44,6 +53,12 @@ void NullRenderDevice::render(const FrameUniforms& uniforms, std::span<const Dra
   if (!uniforms.ground.empty()) {
     stats.drawCalls += 1;
     stats.triangles += 2;
+  }
+  for (const GroundDrawItem& item : uniforms.groundItems) {
+    const auto it = meshes_.find(item.mesh.id);
+    if (it == meshes_.end()) continue;
+    stats.drawCalls += 1;
+    stats.triangles += it->second.triangles;
   }
   for (const DrawItem& item : items) {
     const auto it = meshes_.find(item.mesh.id);

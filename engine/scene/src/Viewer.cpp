@@ -408,6 +408,7 @@ void Viewer::frame(double dtSeconds) {
     markers_.clear();
     city_->mapMarkers(widthCss_ > 0.0 ? static_cast<float>(widthPixels_ / widthCss_) : 1.0f, markers_);
     uniforms.markers = markers_;
+    uniforms.groundItems = city_->groundItems();
     if (const Tileset* t = city_->tileset()) {
       // Ground under the whole city with a margin.
       const float margin = std::max(t->bounds.width(), t->bounds.height()) * 0.5f + 2000.0f;
@@ -574,6 +575,10 @@ void Viewer::map2d(Map2dFrame& out) const {
   if (!city_) return;
   const CameraView view(camera_, widthPixels_, heightPixels_, lensShift());
   city_->map2d(view, widthPixels_ > 0 ? widthCss_ / widthPixels_ : 1.0, shownColorMode(), time(), out);
+}
+
+glm::mat4 Viewer::viewProjection() const {
+  return CameraView(camera_, widthPixels_, heightPixels_, lensShift()).viewProjection();
 }
 
 std::optional<glm::dvec2> Viewer::worldToScreen(double x, double y, double z) const {

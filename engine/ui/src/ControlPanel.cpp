@@ -165,6 +165,7 @@ std::string ControlPanel::exportList(Viewer& viewer, const std::string& format, 
 }
 
 void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
+  drawMapLabels(viewer, w);
   drawPanel(viewer, w, memory, host);
   drawInspection(viewer, w, host);
   drawOverlay(viewer, w);
@@ -459,6 +460,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
     // names only files beside it) came from, so a link to someone else's data cannot pass as ours.
     w.textWrapped("Data: " + (tileset->name.empty() ? std::string("(unnamed city)") : "\"" + tileset->name + "\"") +
                   " from " + (viewer.dataSource().empty() ? std::string("this site") : viewer.dataSource()));
+    drawMapLine(*tileset, w);
     if (tileset->response) {
       drawShakingProvenance(*tileset->response, w);
       if (tileset->responseOutOfDate()) {

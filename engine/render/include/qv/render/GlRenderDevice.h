@@ -29,6 +29,7 @@ class GlRenderDevice final : public RenderDevice {
   [[nodiscard]] const std::string& error() const { return error_; }
 
   MeshHandle createMesh(const MeshData& mesh) override;
+  MeshHandle createGroundMesh(const GroundMeshData& mesh) override;
   void destroyMesh(MeshHandle mesh) override;
   [[nodiscard]] std::size_t meshTriangles(MeshHandle mesh) const override;
   void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) override;
@@ -94,6 +95,10 @@ class GlRenderDevice final : public RenderDevice {
   struct GroundUniforms {
     int viewProjection = -1, rect = -1, eye = -1;
   } g_;
+  // The map under the city (FrameUniforms::groundItems): one program, one draw call a mesh.
+  void drawGroundItems(const FrameUniforms& uniforms, DeviceFrameStats& stats);
+  unsigned groundMapProgram_ = 0;
+  int groundMapViewProjection_ = -1, groundMapOrigin_ = -1, groundMapEye_ = -1;
   // Map markers: one program, one buffer rewritten each frame they are drawn.
   void drawMarkers(const FrameUniforms& uniforms, DeviceFrameStats& stats);
   unsigned markerProgram_ = 0, markerVao_ = 0, markerBuffer_ = 0;

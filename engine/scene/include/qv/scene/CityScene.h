@@ -31,6 +31,7 @@
 #include "qv/scene/Fetcher.h"
 #include "qv/scene/FileLoader.h"
 #include "qv/scene/FrameStats.h"
+#include "qv/scene/GroundScene.h"
 #include "qv/scene/Map2d.h"
 #include "qv/scene/RenderDevice.h"
 #include "qv/scene/SceneClock.h"
@@ -232,6 +233,14 @@ class CityScene {
   /// The record suite's spread over the city (CityIndex::medianDriftBeta).
   [[nodiscard]] std::optional<float> suiteDriftSpread() const { return index_.medianDriftBeta(); }
 
+  /// The map under the city (streets, water, parks, names): nullptr when the city has no ground
+  /// layer or its input had no such features (Tileset::ground says which).
+  [[nodiscard]] const GroundScene* ground() const { return ground_.get(); }
+  /// The last frame's ground meshes to draw (FrameUniforms::groundItems).
+  [[nodiscard]] std::span<const GroundDrawItem> groundItems() const {
+    return ground_ ? ground_->items() : std::span<const GroundDrawItem>{};
+  }
+
   [[nodiscard]] const CitySceneOptions& options() const { return options_; }
   CitySceneOptions& mutableOptions() { return options_; }
 
@@ -323,9 +332,10 @@ class CityScene {
   std::vector<std::uint32_t> decodeQueue_;
   std::uint64_t frame_ = 0;
   SceneClock& clock_;
-  FileLoader loader_;                 // every file after the manifest, and the in-flight limit
-  CityIndex index_;                   // the search index and the response summary in its order
-  std::optional<double> lastUpdate_;  // the previous frame's start, seconds
+  FileLoader loader_;                    // every file after the manifest, and the in-flight limit
+  CityIndex index_;                      // the search index and the response summary in its order
+  std::unique_ptr<GroundScene> ground_;  // after loader_: its loads are cancelled first
+  std::optional<double> lastUpdate_;     // the previous frame's start, seconds
   TileSelection selection_;
   /// Per node, the bytes it holds once loaded (tile data, mesh, summary): measured when it last
   /// loaded, else estimated from its file size at the ratio measured so far for its kind (coarse

@@ -30,6 +30,7 @@ enum class FileKind : std::uint8_t {
   SearchIndex,
   CitySummary,
   Consequences,
+  Ground,  ///< a ground tile (the map under the city)
 };
 
 /// A file that failed, as the viewer shows it until the file loads.

@@ -12,6 +12,7 @@ namespace qv {
 class NullRenderDevice final : public RenderDevice {
  public:
   MeshHandle createMesh(const MeshData& mesh) override;
+  MeshHandle createGroundMesh(const GroundMeshData& mesh) override;
   void destroyMesh(MeshHandle mesh) override;
   [[nodiscard]] std::size_t meshTriangles(MeshHandle mesh) const override;
   void writeBuildings(std::uint32_t first, std::span<const BuildingGpuRecord> records) override;

@@ -129,6 +129,27 @@ struct MapMarker {
   bool selected = false;
 };
 
+/// A ground mesh (the map under the city: qv/format/GroundTile.h): flat triangles at z = 0, each
+/// vertex with the class (GroundClass, 0 .. 9) that picks its colour. Positions are relative to
+/// the DrawItem's origin.
+struct GroundVertex {
+  float x = 0.0f, y = 0.0f;
+  std::uint8_t groundClass = 0;
+  std::uint8_t pad[3] = {0, 0, 0};
+};
+static_assert(sizeof(GroundVertex) == 12);
+
+struct GroundMeshData {
+  std::span<const GroundVertex> vertices;
+  std::span<const std::uint32_t> indices;  ///< 3 per triangle, drawn in this order (painter's order)
+};
+
+/// A ground mesh to draw at `origin` (its cell's corner in the city frame).
+struct GroundDrawItem {
+  MeshHandle mesh;
+  glm::vec3 origin{0.0f};
+};
+
 struct FrameUniforms {
   glm::mat4 viewProjection{1.0f};
   glm::vec3 eye{0.0f};
@@ -141,6 +162,9 @@ struct FrameUniforms {
   Rect ground;             ///< ground plane extent (empty: no ground)
   bool showModels = true;  ///< LOD2 models drawn (kKindModel vertices), else their LOD1 extrusions (kKindFallback)
   std::span<const MapMarker> markers;  ///< drawn last (two triangles and one draw call for all)
+  /// The map under the city, drawn over the plain ground and under everything else, in order and
+  /// without the depth test (each mesh is already in drawing order; meshes do not overlap).
+  std::span<const GroundDrawItem> groundItems;
 };
 
 /// A run of a mesh's indices, [firstIndex, firstIndex + indexCount), with how many of its
@@ -173,6 +197,12 @@ class RenderDevice {
 
   /// Uploads a mesh; invalid handle when it cannot (out of memory, empty mesh).
   virtual MeshHandle createMesh(const MeshData& mesh) = 0;
+  /// Uploads a ground mesh (drawn through FrameUniforms::groundItems); destroyed with destroyMesh.
+  /// Invalid handle when it cannot, or the device draws no ground.
+  virtual MeshHandle createGroundMesh(const GroundMeshData& mesh) {
+    (void)mesh;
+    return {};
+  }
   virtual void destroyMesh(MeshHandle mesh) = 0;
   [[nodiscard]] virtual std::size_t meshTriangles(MeshHandle mesh) const = 0;
 

@@ -189,6 +189,10 @@ class Viewer {
   /// Where a city-frame point (metres) appears on the canvas, in CSS pixels from its top-left
   /// corner; nullopt when behind the eye.
   [[nodiscard]] std::optional<glm::dvec2> worldToScreen(double x, double y, double z) const;
+  /// The current view's view-projection matrix, and the canvas in CSS pixels: with them a point
+  /// projects to the CSS pixels worldToScreen gives (the map's names are placed this way).
+  [[nodiscard]] glm::mat4 viewProjection() const;
+  [[nodiscard]] glm::dvec2 cssSize() const { return {widthCss_, heightCss_}; }
 
  private:
   // The steps of frame(), in order.

@@ -120,6 +120,11 @@ class ControlPanel {
   bool section(ui::Widgets& w, const char* label, bool defaultOpen);
   /// The name of the map marker under the pointer, and of the selected building, beside its marker.
   void drawMarkerLabels(Viewer& viewer, ui::Widgets& w);
+  /// The map's names (streets, water, parks, places) under the panels (ControlPanelMap.cpp),
+  /// placed by qv::placeMapLabels clear of every window, mirrored as "Map labels: ...".
+  void drawMapLabels(Viewer& viewer, ui::Widgets& w);
+  /// One line on the map under the city: what it shows, or why there is none.
+  void drawMapLine(const Tileset& tileset, ui::Widgets& w);
   /// The city's scenarios (ControlPanelScenarios.cpp): the one shown, and a section listing them
   /// all with their event types, a click showing another; nothing without a catalogue.
   void drawScenarios(Viewer& viewer, ui::Widgets& w);
@@ -135,6 +140,7 @@ class ControlPanel {
   void drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host);
   std::string lengthText(const Viewer& viewer, double metres) const;
 
+  bool showMapNames_ = true;
   std::optional<std::pair<double, double>> cursor_;
   bool focusSearch_ = false;
   std::string search_;

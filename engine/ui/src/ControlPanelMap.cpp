@@ -1,0 +1,129 @@
+// The map under the city in the panel: its names on the canvas and its one line of provenance.
+#include <imgui.h>
+#include <imgui_internal.h>  // ImGuiContext::Windows: the panels the names keep clear of
+
+#include <cfloat>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "qv/scene/MapLabels.h"
+#include "qv/scene/Viewer.h"
+#include "qv/ui/ControlPanel.h"
+#include "qv/ui/Widgets.h"
+
+namespace qv {
+namespace {
+
+float labelScale(GroundLabelKind kind) {
+  switch (kind) {
+    case GroundLabelKind::Settlement:
+      return 1.35f;
+    case GroundLabelKind::Neighbourhood:
+      return 1.15f;
+    case GroundLabelKind::Water:
+    case GroundLabelKind::Park:
+      return 1.0f;
+    case GroundLabelKind::Street:
+    case GroundLabelKind::Count:
+      break;
+  }
+  return 0.92f;
+}
+
+ImU32 labelColour(GroundLabelKind kind) {
+  switch (kind) {
+    case GroundLabelKind::Water:
+      return IM_COL32(24, 64, 140, 255);
+    case GroundLabelKind::Park:
+      return IM_COL32(30, 90, 30, 255);
+    case GroundLabelKind::Neighbourhood:
+      return IM_COL32(70, 40, 90, 255);
+    case GroundLabelKind::Settlement:
+      return IM_COL32(10, 10, 10, 255);
+    case GroundLabelKind::Street:
+    case GroundLabelKind::Count:
+      break;
+  }
+  return IM_COL32(40, 40, 40, 255);
+}
+
+// Turns the vertices [first, end) of the draw list by `angle` around `centre`.
+void rotateVertices(ImDrawList& list, int first, ImVec2 centre, float angle) {
+  const float c = std::cos(angle);
+  const float s = std::sin(angle);
+  for (int i = first; i < list.VtxBuffer.Size; ++i) {
+    ImVec2& p = list.VtxBuffer[i].pos;
+    const float x = p.x - centre.x;
+    const float y = p.y - centre.y;
+    p = ImVec2(centre.x + x * c - y * s, centre.y + x * s + y * c);
+  }
+}
+
+}  // namespace
+
+void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
+  CityScene* city = viewer.city();
+  if (city == nullptr || city->ground() == nullptr || !showMapNames_) return;
+  ImFont* font = ImGui::GetFont();
+  const float base = ImGui::GetFontSize();
+  const auto measure = [font, base](std::string_view text, GroundLabelKind kind) {
+    const ImVec2 size =
+        font->CalcTextSizeA(base * labelScale(kind), FLT_MAX, 0.0f, text.data(), text.data() + text.size());
+    return glm::vec2(size.x, size.y);
+  };
+  // The windows of the last frame (the panel, the inspection, errors, chips) are kept clear.
+  std::vector<Rect> windows;
+  for (const ImGuiWindow* window : ImGui::GetCurrentContext()->Windows) {
+    if (!window->WasActive || window->Hidden || (window->Flags & ImGuiWindowFlags_ChildWindow) != 0) continue;
+    windows.push_back(
+        Rect{window->Pos.x, window->Pos.y, window->Pos.x + window->Size.x, window->Pos.y + window->Size.y});
+  }
+  const glm::dvec2 css = viewer.cssSize();
+  const std::vector<PlacedLabel> placed =
+      placeMapLabels(city->ground()->labels(), viewer.viewProjection(), glm::vec2(css), measure, windows);
+  ImDrawList& list = *ImGui::GetBackgroundDrawList();
+  std::string mirrored;
+  for (const PlacedLabel& p : placed) {
+    const float size = base * labelScale(p.kind);
+    const ImVec2 topLeft(p.center.x - 0.5f * p.size.x, p.center.y - 0.5f * p.size.y);
+    const char* begin = p.text.data();
+    const char* end = begin + p.text.size();
+    const int first = list.VtxBuffer.Size;
+    // A light halo keeps the name readable over streets, water and buildings' shadows.
+    for (const ImVec2 d : {ImVec2(-1, 0), ImVec2(1, 0), ImVec2(0, -1), ImVec2(0, 1)}) {
+      list.AddText(font, size, ImVec2(topLeft.x + d.x, topLeft.y + d.y), IM_COL32(255, 255, 255, 200), begin, end);
+    }
+    list.AddText(font, size, topLeft, labelColour(p.kind), begin, end);
+    if (p.angleRad != 0.0f) rotateVertices(list, first, ImVec2(p.center.x, p.center.y), p.angleRad);
+    if (!mirrored.empty()) mirrored += "; ";
+    mirrored += p.text;
+  }
+  // What the canvas shows in text, for screen readers' mirror and the tests.
+  if (!placed.empty()) w.mirror().line("Map labels: " + mirrored);
+}
+
+void ControlPanel::drawMapLine(const Tileset& tileset, ui::Widgets& w) {
+  if (!tileset.ground) {
+    w.textWrapped("Map: none under this city (made with --no-ground, or by a quakeview-prep without the map).");
+    return;
+  }
+  const GroundLayer& g = *tileset.ground;
+  if (g.nodes.empty()) {
+    w.textWrapped("Map: the city's input had no streets, water or open land; the ground is plain.");
+    return;
+  }
+  auto count = [&g](const char* key) {
+    const auto it = g.features.find(key);
+    return it == g.features.end() ? 0ull : static_cast<unsigned long long>(it->second);
+  };
+  const unsigned long long streets = count("street") + count("major") + count("motorway") + count("path");
+  const unsigned long long water = count("water");
+  const unsigned long long open = count("park") + count("green") + count("forest");
+  w.textWrapped(ui::format("Map: %llu streets and paths, %llu water, %llu parks and open land from the city's input",
+                           streets, water, open));
+  bool names = showMapNames_;
+  if (w.checkbox("Names on the map", &names)) showMapNames_ = names;
+}
+
+}  // namespace qv
