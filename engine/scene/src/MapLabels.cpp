@@ -10,8 +10,9 @@
 namespace qv {
 namespace {
 
-std::optional<glm::vec2> toScreen(const glm::mat4& viewProjection, glm::vec2 viewport, double x, double y) {
-  const glm::vec4 clip = viewProjection * glm::vec4(static_cast<float>(x), static_cast<float>(y), 0.0f, 1.0f);
+std::optional<glm::vec2> toScreen(const glm::mat4& viewProjection, glm::vec2 viewport, double x, double y,
+                                  float z = 0.0f) {
+  const glm::vec4 clip = viewProjection * glm::vec4(static_cast<float>(x), static_cast<float>(y), z, 1.0f);
   if (clip.w <= 1e-4f) return std::nullopt;
   const float nx = clip.x / clip.w;
   const float ny = clip.y / clip.w;
@@ -43,9 +44,10 @@ std::vector<PlacedLabel> placeMapLabels(std::span<const MapLabel> labels, const 
   for (const MapLabel& label : labels) {
     if (placed.size() >= options.maxLabels) break;
     if (label.text == nullptr || label.text->empty()) continue;
-    const std::optional<glm::vec2> at = toScreen(viewProjection, viewport, label.position.x, label.position.y);
+    std::optional<glm::vec2> at = toScreen(viewProjection, viewport, label.position.x, label.position.y, label.z);
     if (!at) continue;
     const glm::vec2 size = measure(*label.text, label.kind);
+    at->y -= label.liftPx > 0.0f ? label.liftPx + 0.5f * size.y : 0.0f;
     if (!(size.x > 0.0f) || !(size.y > 0.0f)) continue;
     float angle = 0.0f;
     if (label.kind == GroundLabelKind::Street && label.lengthM > 0.0f) {
@@ -79,7 +81,7 @@ std::vector<PlacedLabel> placeMapLabels(std::span<const MapLabel> labels, const 
       if (d.x * d.x + d.y * d.y < options.repeatDistancePx * options.repeatDistancePx) repeated = true;
     }
     if (repeated) continue;
-    placed.push_back(PlacedLabel{*label.text, label.kind, *at, size, angle});
+    placed.push_back(PlacedLabel{*label.text, label.kind, *at, size, angle, label.facility});
     boxes.push_back(box);
   }
   return placed;

@@ -2,6 +2,7 @@
 #include <imgui.h>
 #include <imgui_internal.h>  // ImGuiContext::Windows: the panels the names keep clear of
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <string>
@@ -64,7 +65,34 @@ void rotateVertices(ImDrawList& list, int first, ImVec2 centre, float angle) {
 
 void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
   CityScene* city = viewer.city();
-  if (city == nullptr || city->ground() == nullptr || !showMapNames_) return;
+  if (city == nullptr || !showMapNames_) return;
+  // The highlighted facilities carry their names first (above their markers, at their roofs),
+  // then the map's names in their rank order.
+  std::vector<std::string> facilityNames;
+  const std::vector<BuildingListEntry>& marked = city->markedBuildings();
+  const std::size_t facilities = std::min<std::size_t>(marked.size(), 200);
+  facilityNames.reserve(facilities);
+  std::vector<MapLabel> labels;
+  for (std::size_t i = 0; i < facilities; ++i) {
+    const BuildingListEntry& e = marked[i];
+    facilityNames.push_back(!e.name.empty() ? e.name : !e.address.empty() ? e.address : e.id);
+  }
+  for (std::size_t i = 0; i < facilities; ++i) {
+    MapLabel l;
+    l.kind = GroundLabelKind::Park;  // not drawn as a park: `facility` picks the style
+    l.rank = 0;
+    l.position = {marked[i].x, marked[i].y};
+    l.z = marked[i].heightM;
+    l.text = &facilityNames[i];
+    l.facility = true;
+    l.liftPx = 8.0f;
+    labels.push_back(l);
+  }
+  if (city->ground() != nullptr) {
+    const std::vector<MapLabel>& map = city->ground()->labels();
+    labels.insert(labels.end(), map.begin(), map.end());
+  }
+  if (labels.empty()) return;
   ImFont* font = ImGui::GetFont();
   const float base = ImGui::GetFontSize();
   const auto measure = [font, base](std::string_view text, GroundLabelKind kind) {
@@ -81,11 +109,11 @@ void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
   }
   const glm::dvec2 css = viewer.cssSize();
   const std::vector<PlacedLabel> placed =
-      placeMapLabels(city->ground()->labels(), viewer.viewProjection(), glm::vec2(css), measure, windows);
+      placeMapLabels(labels, viewer.viewProjection(), glm::vec2(css), measure, windows);
   ImDrawList& list = *ImGui::GetBackgroundDrawList();
   std::string mirrored;
   for (const PlacedLabel& p : placed) {
-    const float size = base * labelScale(p.kind);
+    const float size = p.facility ? base : base * labelScale(p.kind);
     const ImVec2 topLeft(p.center.x - 0.5f * p.size.x, p.center.y - 0.5f * p.size.y);
     const char* begin = p.text.data();
     const char* end = begin + p.text.size();
@@ -94,7 +122,7 @@ void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
     for (const ImVec2 d : {ImVec2(-1, 0), ImVec2(1, 0), ImVec2(0, -1), ImVec2(0, 1)}) {
       list.AddText(font, size, ImVec2(topLeft.x + d.x, topLeft.y + d.y), IM_COL32(255, 255, 255, 200), begin, end);
     }
-    list.AddText(font, size, topLeft, labelColour(p.kind), begin, end);
+    list.AddText(font, size, topLeft, p.facility ? IM_COL32(120, 20, 10, 255) : labelColour(p.kind), begin, end);
     if (p.angleRad != 0.0f) rotateVertices(list, first, ImVec2(p.center.x, p.center.y), p.angleRad);
     if (!mirrored.empty()) mirrored += "; ";
     mirrored += p.text;

@@ -39,6 +39,9 @@ struct MapLabel {
   float angleRad = 0.0f;              ///< GroundLabel::angleRad
   float lengthM = 0.0f;               ///< GroundLabel::lengthM
   const std::string* text = nullptr;  ///< valid until the next update()
+  float z = 0.0f;                     ///< metres above the ground (a building's roof for its name)
+  bool facility = false;              ///< a highlighted building's name, not the map's
+  float liftPx = 0.0f;                ///< drawn this many pixels above its point (clear of a marker)
 };
 
 class GroundScene {

@@ -27,6 +27,7 @@ struct PlacedLabel {
   glm::vec2 center{0.0f};
   glm::vec2 size{0.0f};
   float angleRad = 0.0f;
+  bool facility = false;  ///< MapLabel::facility
 };
 
 struct LabelPlacementOptions {
