@@ -51,6 +51,12 @@
 //              selection kept); a Promise resolving with its entry once its view and totals have
 //              loaded, rejecting with the reason when it is not ready or not listed. The URL's
 //              data= follows the scenario shown.
+//   map()      extension: the map under the city: {layer ('none': made without one | 'empty': its
+//              input had no streets, water or open land | 'present'), cells, cellsDrawn, cellsLoaded,
+//              cellsFailed, triangles (the map's, last frame), bytes, features: {class: count},
+//              skipped: {reason: count}, labels: [{text, kind ('street' | 'water' | 'park' |
+//              'neighbourhood' | 'settlement'), x, y (CSS px, its centre), angleDeg, facility}] drawn
+//              last frame}; null before the city's manifest.
 //   screenshot()  the view as a PNG data URL with its caption (event, city, attribution); saveImage()
 //              downloads it (the panel's "Save image")
 //   benchResult  with ?bench=SECONDS: {seconds, frames, fps, frameMs: {cull, lod, animate, upload,
@@ -123,6 +129,10 @@
         devicePixelRatio: window.devicePixelRatio || 1,
       };
       return stats;
+    },
+    map() {
+      const text = callString('qv_map_json');
+      return text ? JSON.parse(text) : null;
     },
     errors() {
       const text = callString('qv_errors_json');

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <iterator>
+#include <vector>
 
 #include "qv/core/JsonWriter.h"
 #include "qv/quality/SoftwareRenderer.h"
@@ -373,7 +374,34 @@ std::string App::statsJson(const MemoryInfo& memory) const {
 }
 
 void App::drawPanels(double nowSeconds) {
-  const ImDrawData& data = *ImGui::GetDrawData();
+  const ImDrawData& all = *ImGui::GetDrawData();
+  // The map's names (ImGui's background list: ControlPanel::drawMapLabels) follow the camera every
+  // frame: they are drawn now, directly over the city, and kept out of the panels' picture, which
+  // is redrawn only when the panels change.
+  ImDrawList* background = ImGui::GetBackgroundDrawList();
+  std::vector<ImDrawList*> panelLists;
+  panelLists.reserve(static_cast<std::size_t>(std::max(all.CmdListsCount, 0)));
+  ImDrawData data = all;
+  data.TotalVtxCount = 0;
+  data.TotalIdxCount = 0;
+  for (int i = 0; i < all.CmdListsCount; ++i) {
+    ImDrawList* list = all.CmdLists[i];
+    if (list == background) {
+      if (list->IdxBuffer.Size == 0) continue;
+      ImDrawData names = all;
+      names.CmdLists = &background;
+      names.CmdListsCount = 1;
+      names.TotalVtxCount = list->VtxBuffer.Size;
+      names.TotalIdxCount = list->IdxBuffer.Size;
+      uiRenderer_->render(names);
+      continue;
+    }
+    panelLists.push_back(list);
+    data.TotalVtxCount += list->VtxBuffer.Size;
+    data.TotalIdxCount += list->IdxBuffer.Size;
+  }
+  data.CmdLists = panelLists.data();
+  data.CmdListsCount = static_cast<int>(panelLists.size());
   // Passive changes at 4 Hz where the panels' triangles are dear (the Low preset: software
   // renderers, weak devices); elsewhere every change is drawn at once.
   const bool weak = panel_.quality() == QualityPreset::Low;

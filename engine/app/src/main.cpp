@@ -221,6 +221,50 @@ const char* switchStateName(qv::ScenarioSwitch::State state) {
 }
 }  // namespace
 
+/// `quakeview.map()`: the map under the city: {"layer": "none" (no ground layer: --no-ground or an
+/// older tool) | "empty" (the input had no streets, water or open land) | "present", "cells": files
+/// in the pyramid, "cellsDrawn", "cellsLoaded", "cellsFailed", "triangles": the map's triangles in
+/// the last frame, "bytes": all ground files, "features": {class: count}, "skipped": {reason:
+/// count}, "labels": [{text, kind, x, y, angleDeg, facility}] the names drawn in the last frame
+/// (CSS pixels)}; null without a city manifest.
+EMSCRIPTEN_KEEPALIVE const char* qv_map_json() {
+  if (gApp == nullptr) return hand("null");
+  const qv::CityScene* city = gApp->viewer().city();
+  const qv::Tileset* tileset = city != nullptr ? city->tileset() : nullptr;
+  if (tileset == nullptr) return hand("null");
+  qv::JsonWriter w;
+  w.beginObject();
+  w.field("layer", !tileset->ground ? "none" : tileset->ground->nodes.empty() ? "empty" : "present");
+  const qv::GroundScene* ground = city->ground();
+  w.field("cells", static_cast<double>(tileset->ground ? tileset->ground->nodes.size() : 0));
+  w.field("cellsDrawn", static_cast<double>(ground != nullptr ? ground->cellsDrawn() : 0));
+  w.field("cellsLoaded", static_cast<double>(ground != nullptr ? ground->cellsLoaded() : 0));
+  w.field("cellsFailed", static_cast<double>(ground != nullptr ? ground->cellsFailed() : 0));
+  w.field("triangles", static_cast<double>(ground != nullptr ? ground->trianglesDrawn() : 0));
+  w.field("bytes", static_cast<double>(tileset->ground ? tileset->ground->bytes : 0));
+  w.key("features").beginObject();
+  if (tileset->ground) {
+    for (const auto& [name, n] : tileset->ground->features) w.field(name.c_str(), static_cast<double>(n));
+  }
+  w.endObject();
+  w.key("skipped").beginObject();
+  if (tileset->ground) {
+    for (const auto& [name, n] : tileset->ground->skipped) w.field(name.c_str(), static_cast<double>(n));
+  }
+  w.endObject();
+  w.key("labels").beginArray();
+  for (const qv::ControlPanel::ShownMapLabel& l : gApp->panel().shownMapLabels()) {
+    w.beginObject();
+    w.field("text", l.text).field("kind", std::string(qv::groundLabelKindName(l.kind)));
+    w.field("x", static_cast<double>(l.x)).field("y", static_cast<double>(l.y));
+    w.field("angleDeg", static_cast<double>(l.angleDeg)).field("facility", l.facility);
+    w.endObject();
+  }
+  w.endArray();
+  w.endObject();
+  return hand(w.take());
+}
+
 /// `quakeview.scenarios()`: the city folder's scenario catalogue as the viewer knows it
 /// (qv::CityScenarios): {"catalogue": "loading" | "none" (no catalogue, no city, or its manifest
 /// failed) | "loaded" | "failed", "manifestUrl": the manifest shown, "scenarios":

@@ -73,7 +73,8 @@ GlRenderDevice::GlRenderDevice() {
   glGenVertexArrays(1, &markerVao_);
   glGenBuffers(1, &markerBuffer_);
 
-  groundMapProgram_ = shaders::linkProgram(shaders::kGroundMapVertex, shaders::kGroundMapFragment, error_);
+  groundMapProgram_ =
+      shaders::linkProgram(shaders::kGroundMapVertex, withGeneratedGlsl(shaders::kGroundMapFragment).c_str(), error_);
   if (!ok()) return;
   groundMapViewProjection_ = glGetUniformLocation(groundMapProgram_, "u_viewProjection");
   groundMapOrigin_ = glGetUniformLocation(groundMapProgram_, "u_origin");

@@ -212,8 +212,8 @@ void main() {
 )";
 
 // The map under the city (qv::GroundDrawItem): flat triangles coloured by their class
-// (qv::GroundClass order: land, green, forest, park, water, path, rail, street, major, motorway),
-// muted so that the buildings' damage colours stay what the eye finds first.
+// (qv::kGroundPalette, generated into the shader at @PALETTE@), muted so that the buildings'
+// damage colours stay what the eye finds first.
 const char* const kGroundMapVertex = R"(#version 300 es
 precision highp float;
 layout(location = 0) in vec2 a_position;
@@ -235,20 +235,9 @@ in vec3 v_world;
 flat in uint v_class;
 uniform vec3 u_eye;
 out vec4 o_color;
-const vec3 kClassColor[10] = vec3[10](
-  vec3(0.60, 0.63, 0.60),  // land
-  vec3(0.55, 0.66, 0.50),  // green
-  vec3(0.44, 0.57, 0.43),  // forest
-  vec3(0.51, 0.67, 0.47),  // park
-  vec3(0.47, 0.63, 0.78),  // water
-  vec3(0.70, 0.70, 0.66),  // path
-  vec3(0.47, 0.47, 0.50),  // rail
-  vec3(0.80, 0.80, 0.77),  // street
-  vec3(0.88, 0.85, 0.74),  // major
-  vec3(0.90, 0.80, 0.62)   // motorway
-);
+@PALETTE@
 void main() {
-  vec3 color = kClassColor[min(v_class, 9u)];
+  vec3 color = kGroundClass[min(v_class, 9u)];
   float d = length(v_world - u_eye);
   float fog = 1.0 - exp(-d * 0.000035);
   o_color = vec4(mix(color, vec3(0.80, 0.85, 0.90), fog * 0.7), 1.0);

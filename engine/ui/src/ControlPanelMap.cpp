@@ -64,6 +64,7 @@ void rotateVertices(ImDrawList& list, int first, ImVec2 centre, float angle) {
 }  // namespace
 
 void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
+  shownMapLabels_.clear();
   CityScene* city = viewer.city();
   if (city == nullptr || !showMapNames_) return;
   // The highlighted facilities carry their names first (above their markers, at their roofs),
@@ -119,11 +120,13 @@ void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
     const char* end = begin + p.text.size();
     const int first = list.VtxBuffer.Size;
     // A light halo keeps the name readable over streets, water and buildings' shadows.
-    for (const ImVec2 d : {ImVec2(-1, 0), ImVec2(1, 0), ImVec2(0, -1), ImVec2(0, 1)}) {
+    for (const ImVec2 d : {ImVec2(-1, -1), ImVec2(1, 1)}) {
       list.AddText(font, size, ImVec2(topLeft.x + d.x, topLeft.y + d.y), IM_COL32(255, 255, 255, 200), begin, end);
     }
     list.AddText(font, size, topLeft, p.facility ? IM_COL32(120, 20, 10, 255) : labelColour(p.kind), begin, end);
     if (p.angleRad != 0.0f) rotateVertices(list, first, ImVec2(p.center.x, p.center.y), p.angleRad);
+    shownMapLabels_.push_back(
+        ShownMapLabel{std::string(p.text), p.kind, p.center.x, p.center.y, p.angleRad * 57.29578f, p.facility});
     if (!mirrored.empty()) mirrored += "; ";
     mirrored += p.text;
   }

@@ -9,16 +9,18 @@ import { REPO } from './server.mjs';
 
 // The palette as the engine has it (engine/scene/include/qv/scene/Palette.h): the thresholds
 // below are derived from these values, not written down a second time.
-export function paletteTable(name) {
+export function paletteTable(name, count = 5) {
   const header = fs.readFileSync(path.join(REPO, 'engine/scene/include/qv/scene/Palette.h'), 'utf8');
   const match = header.match(new RegExp(`${name}\\s*=\\s*\\{\\{([^;]*)\\}\\};`));
   assert.ok(match, `${name} in Palette.h`);
   const stops = [...match[1].matchAll(/\{\s*([0-9.]+)f,\s*([0-9.]+)f,\s*([0-9.]+)f\s*\}/g)].map((m) => m.slice(1, 4).map(Number));
-  assert.equal(stops.length, 5, name);
+  assert.equal(stops.length, count, name);
   return stops;
 }
 export const RAMP = paletteTable('kDamagePalette');
 export const GREYS = paletteTable('kNotAnimatedPalette');
+// The map under the city (streets, water, parks): never a warm colour, near or far.
+export const GROUND = paletteTable('kGroundPalette', 10);
 
 // How the building shader shades a colour (engine/render/src/Shaders.cpp): lighting from 0.42 to
 // 1.19 times the colour (roofs 1.08 times more), clamped, then fog towards the sky colour with
@@ -72,6 +74,9 @@ export function warmClassifier(farthest) {
     }
   }
   assert.ok(!isWarm([0.60, 0.63, 0.60]) && !isWarm(FOG_COLOUR), 'the ground and the sky are not warm');
+  for (const colour of GROUND) {
+    for (const fog of [0, fogAt(farthest)]) assert.ok(!isWarm(shaded(colour, 1, fog)), `the map's ${colour} is not warm`);
+  }
   return { isWarm, minHue, maxHue, minSat };
 }
 

@@ -48,6 +48,21 @@ inline constexpr std::array<Rgb, 5> kNotAnimatedPalette = {{{0.70f, 0.72f, 0.75f
                                                             {0.35f, 0.37f, 0.42f},
                                                             {0.23f, 0.25f, 0.30f}}};
 
+/// The map under the city (qv::GroundClass order: land, green, forest, park, water, path, rail,
+/// street, major, motorway): muted, light, and none in the hues of the warm ramp (streets and
+/// motorways are neutral or blue-grey, never the beige or orange of road maps), so a road or a
+/// park is never read as a building's drift or damage.
+inline constexpr std::array<Rgb, 10> kGroundPalette = {{{0.60f, 0.63f, 0.60f},
+                                                        {0.56f, 0.65f, 0.53f},
+                                                        {0.46f, 0.57f, 0.46f},
+                                                        {0.52f, 0.66f, 0.50f},
+                                                        {0.55f, 0.68f, 0.80f},
+                                                        {0.70f, 0.71f, 0.70f},
+                                                        {0.46f, 0.46f, 0.50f},
+                                                        {0.80f, 0.80f, 0.80f},
+                                                        {0.88f, 0.88f, 0.88f},
+                                                        {0.76f, 0.79f, 0.86f}}};
+
 /// The drift ratios at the ramp's five stops: 0, 0.1 %, 0.5 %, 1 % and 2 % (piecewise linear in
 /// between). The first coloured stop is low so that a moderate earthquake's shaking shows (0.1 %:
 /// felt and visible motion, below most building types' slight-damage drift in HAZUS, 0.2–0.5 %);
@@ -71,7 +86,8 @@ Rgb notAnimatedGrey(float t);
 /// building shader: `const vec3 kNoResult`, `kSelected`, `kDimmed`, `kTagGreen`, `kTagYellow`,
 /// `kTagRed`; `vec3 ramp(float t)` (paletteRamp) and `vec3 notAnimatedGrey(float t)`
 /// (notAnimatedGrey), each with t clamped to [0, 1]; `float driftPosition(float drift)`
-/// (driftRampPosition). Colours are written with 4 decimals.
+/// (driftRampPosition); `const vec3 kGroundClass[10]` (kGroundPalette). Colours are written with 4
+/// decimals.
 std::string paletteGlsl();
 
 }  // namespace qv

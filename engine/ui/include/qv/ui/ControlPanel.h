@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "qv/format/GroundTile.h"
 #include "qv/quality/FrameGovernor.h"
 #include "qv/quality/QualityPreset.h"
 #include "qv/scene/Viewer.h"
@@ -99,6 +100,16 @@ class ControlPanel {
   /// The app's quality state shown in the Performance panel (nullptr: none); not owned.
   void setQualityState(QualityState* state) { qualityState_ = state; }
 
+  /// A name drawn on the map in the last frame (CSS pixels), for `window.quakeview.map()`.
+  struct ShownMapLabel {
+    std::string text;
+    GroundLabelKind kind = GroundLabelKind::Street;
+    float x = 0.0f, y = 0.0f;  ///< its centre
+    float angleDeg = 0.0f;     ///< clockwise on screen
+    bool facility = false;     ///< a highlighted building's name
+  };
+  [[nodiscard]] const std::vector<ShownMapLabel>& shownMapLabels() const { return shownMapLabels_; }
+
  private:
   void drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host);
   /// The selected building's window (ControlPanelInspection.cpp); it starts at the top for each
@@ -141,6 +152,7 @@ class ControlPanel {
   std::string lengthText(const Viewer& viewer, double metres) const;
 
   bool showMapNames_ = true;
+  std::vector<ShownMapLabel> shownMapLabels_;
   std::optional<std::pair<double, double>> cursor_;
   bool focusSearch_ = false;
   std::string search_;
