@@ -1,6 +1,8 @@
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <map>
+#include <string>
 
 #include "qv/format/Tileset.h"
 
@@ -201,4 +203,165 @@ TEST_CASE("The manifest keeps the shaking's provenance: event type, ShakeMap, re
     REQUIRE_FALSE(refused.ok());
     CHECK_THAT(refused.error(), Catch::Contains("eventType"));
   }
+}
+
+namespace {
+
+GroundNode groundNode(std::uint8_t level, std::uint32_t x, std::uint32_t y, float geometricErrorM) {
+  GroundNode n;
+  n.level = level;
+  n.x = x;
+  n.y = y;
+  n.geometricErrorM = geometricErrorM;
+  n.file = "ground/" + std::to_string(level) + "-" + std::to_string(x) + "-" + std::to_string(y) + ".qvg";
+  n.bytes = 1000u + level;
+  n.crc32 = 0xabc00000u + x;
+  return n;
+}
+
+GroundLayer sampleGround() {
+  GroundLayer g;
+  g.minX = -1234.5;
+  g.minY = -987.25;
+  g.size = 2468.75;
+  g.levels = 3;
+  g.nodes = {groundNode(0, 0, 0, 9.6f), groundNode(1, 1, 0, 4.8f), groundNode(2, 3, 1, 0.0f)};
+  g.features = {{"street", 120}, {"water", 3}, {"labels", 45}};
+  g.skipped = {{"unclosed-coastline", 2}};
+  g.bytes = 3006;
+  return g;
+}
+
+std::string groundErrorOf(const GroundLayer& g) {
+  Tileset t = sample();
+  t.ground = g;
+  const auto r = parseTileset(tilesetToJson(t), "city/tileset.json");
+  REQUIRE_FALSE(r.ok());
+  CHECK(r.error().rfind("city/tileset.json: ", 0) == 0);
+  return r.error();
+}
+
+}  // namespace
+
+TEST_CASE("The manifest keeps the ground layer, one node per line", "[format][tileset][ground]") {
+  Tileset t = sample();
+  t.ground = sampleGround();
+  const std::string json = tilesetToJson(t);
+  CHECK(json.find("\"ground\":{\"minX\":-1234.5,\"minY\":-987.25,\"size\":2468.75,\"levels\":3,\"bytes\":3006,"
+                  "\"features\":{\"labels\":45,\"street\":120,\"water\":3},\"skipped\":{\"unclosed-coastline\":2},"
+                  "\"nodes\":[\n{\"level\":0,\"x\":0,\"y\":0,\"geometricError\":9.6,\"file\":\"ground/0-0-0.qvg\","
+                  "\"bytes\":1000,\"crc32\":\"abc00000\"},\n{\"level\":1,") != std::string::npos);
+  const auto parsed = parseTileset(json, "tileset.json");
+  INFO((parsed.ok() ? std::string() : parsed.error()));
+  REQUIRE(parsed.ok());
+  REQUIRE(parsed->ground.has_value());
+  const GroundLayer& g = *parsed->ground;
+  CHECK(g.minX == -1234.5);
+  CHECK(g.minY == -987.25);
+  CHECK(g.size == 2468.75);
+  CHECK(g.levels == 3);
+  CHECK(g.bytes == 3006);
+  CHECK(g.features == t.ground->features);
+  CHECK(g.skipped == t.ground->skipped);
+  REQUIRE(g.nodes.size() == 3);
+  CHECK(g.nodes[2].level == 2);
+  CHECK(g.nodes[2].x == 3);
+  CHECK(g.nodes[2].y == 1);
+  CHECK(g.nodes[1].geometricErrorM == 4.8f);
+  CHECK(g.nodes[2].file == "ground/2-3-1.qvg");
+  CHECK(g.nodes[2].bytes == 1002);
+  CHECK(g.nodes[1].crc32 == 0xabc00001u);
+  CHECK(tilesetToJson(*parsed) == json);
+
+  SECTION("a layer without features or cells writes neither counts") {
+    GroundLayer empty;
+    empty.size = 100.0;
+    empty.levels = 1;
+    t.ground = empty;
+    const std::string bare = tilesetToJson(t);
+    CHECK(bare.find("\"ground\":{\"minX\":0,\"minY\":0,\"size\":100,\"levels\":1,\"bytes\":0,\"nodes\":[]}") !=
+          std::string::npos);
+    const auto p = parseTileset(bare, "tileset.json");
+    REQUIRE(p.ok());
+    REQUIRE(p->ground.has_value());
+    CHECK(p->ground->nodes.empty());
+    CHECK(p->ground->features.empty());
+  }
+  SECTION("manifests without the key have no ground layer") {
+    const std::string old = tilesetToJson(sample());
+    CHECK(old.find("ground") == std::string::npos);
+    const auto p = parseTileset(old, "tileset.json");
+    REQUIRE(p.ok());
+    CHECK_FALSE(p->ground.has_value());
+  }
+}
+
+TEST_CASE("Ground layers outside their bounds are refused with a message naming the key", "[format][tileset][ground]") {
+  struct Case {
+    const char* what;
+    void (*change)(GroundLayer&);
+    const char* message;
+  };
+  const Case cases[] = {
+      {"size 0", [](GroundLayer& g) { g.size = 0.0; }, "ground: \"size\" must be a positive number of metres"},
+      {"size negative", [](GroundLayer& g) { g.size = -5.0; }, "ground: \"size\" must be a positive number"},
+      {"size NaN", [](GroundLayer& g) { g.size = std::nan(""); }, "ground: \"size\" is not a number"},
+      {"size beyond 1e8 m", [](GroundLayer& g) { g.size = 2.0e8; }, "ground: \"size\" must be a positive number"},
+      {"minX beyond 1e7 m", [](GroundLayer& g) { g.minX = -3.0e7; }, "ground: \"minX\" and \"minY\" must lie within"},
+      {"0 levels", [](GroundLayer& g) { g.levels = 0; }, "ground: \"levels\" must be 1 to 24, not 0"},
+      {"25 levels", [](GroundLayer& g) { g.levels = 25; }, "ground: \"levels\" must be 1 to 24, not 25"},
+      {"a node as deep as the levels", [](GroundLayer& g) { g.nodes.push_back(groundNode(3, 0, 0, 0.0f)); },
+       "ground node 3: \"level\" 3 is not below \"levels\" 3"},
+      {"x outside its level", [](GroundLayer& g) { g.nodes[1].x = 2; },
+       "ground node 1: \"x\" 2 and \"y\" 0 must be below 2^1 at level 1"},
+      {"y outside its level", [](GroundLayer& g) { g.nodes[2].y = 4; }, "ground node 2: \"x\" 3 and \"y\" 4 must be"},
+      {"a cell twice", [](GroundLayer& g) { g.nodes.push_back(groundNode(1, 1, 0, 1.0f)); },
+       "ground node 3: cell 1/1/0 is listed twice"},
+      {"a negative geometric error", [](GroundLayer& g) { g.nodes[0].geometricErrorM = -1.0f; },
+       "ground node 0: \"geometricError\" must be 0 to 1e7 m"},
+      {"a path out of the city", [](GroundLayer& g) { g.nodes[0].file = "../ground/0-0-0.qvg"; },
+       "ground node 0: file \"../ground/0-0-0.qvg\" is not a relative path inside the city directory"},
+      {"an absolute path", [](GroundLayer& g) { g.nodes[1].file = "/etc/ground.qvg"; },
+       "ground node 1: file \"/etc/ground.qvg\" is not a relative path"},
+      {"a backslash", [](GroundLayer& g) { g.nodes[2].file = "ground\\2-3-1.qvg"; }, "is not a relative path"},
+      {"a URL", [](GroundLayer& g) { g.nodes[2].file = "https://example.org/g.qvg"; }, "is not a relative path"},
+      {"an empty path", [](GroundLayer& g) { g.nodes[2].file.clear(); }, "ground node 2: file \"\" is not a relative"},
+      {"a count that is not one", [](GroundLayer& g) { g.features["street"] = 1ull << 60; },
+       "ground features: \"street\" is not a count"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    GroundLayer g = sampleGround();
+    c.change(g);
+    CHECK_THAT(groundErrorOf(g), Catch::Contains(c.message));
+  }
+
+  const std::string good = [] {
+    Tileset t = sample();
+    t.ground = sampleGround();
+    return tilesetToJson(t);
+  }();
+  auto errorOf = [](const std::string& json) {
+    const auto r = parseTileset(json, "city/tileset.json");
+    REQUIRE_FALSE(r.ok());
+    return r.error();
+  };
+  std::string notObject = good;
+  notObject.replace(notObject.find("\"ground\":{"), 10, "\"ground\":[1],\"x\":{");
+  CHECK_THAT(errorOf(notObject), Catch::Contains("city/tileset.json: \"ground\" must be an object"));
+  std::string noNodes = good;
+  noNodes.replace(noNodes.find("\"nodes\""), 7, "\"cells\"");
+  CHECK_THAT(errorOf(noNodes), Catch::Contains("ground: \"nodes\" missing or not an array"));
+  std::string noLevels = good;
+  noLevels.replace(noLevels.find("\"levels\""), 8, "\"depth\"");
+  CHECK_THAT(errorOf(noLevels), Catch::Contains("ground: missing \"levels\""));
+  std::string badCrc = good;
+  badCrc.replace(badCrc.find("\"abc00000\""), 10, "\"-1\"");
+  CHECK_THAT(errorOf(badCrc), Catch::Contains("ground node 0: \"crc32\" is not hex"));
+  std::string badSkipped = good;
+  badSkipped.replace(badSkipped.find("\"skipped\":{"), 11, "\"skipped\":7,\"x\":{");
+  CHECK_THAT(errorOf(badSkipped), Catch::Contains("ground: \"skipped\" must be an object of counts"));
+  std::string nodeNotObject = good;
+  nodeNotObject.replace(nodeNotObject.find("\"nodes\":[\n"), 10, "\"nodes\":[\n5,");
+  CHECK_THAT(errorOf(nodeNotObject), Catch::Contains("ground node 0: a ground node must be an object"));
 }

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Prepares the seed corpora of the fuzz targets in OUT/<target>/ (a build folder; nothing here is
 # committed): real data from ../shared/data, the repository's own test fixtures, small hand-written
-# seeds (tests/fuzz/seeds/), and files written by quakeview-prep (tiles, manifests, search
-# indexes, response tiles of a small synthetic city and of an OSM cut).
+# seeds (tests/fuzz/seeds/), a few ground tiles (make-ground-seeds.py), and files written by
+# quakeview-prep (tiles, ground tiles, manifests, search indexes, response tiles of a small
+# synthetic city and of an OSM cut).
 #   usage: make-seeds.sh OUT [QUAKEVIEW_PREP]
 # Missing tools (osmium, quakeview-prep) only mean fewer seeds, with a warning.
 set -uo pipefail
@@ -18,9 +19,9 @@ rm -rf "$out" && mkdir -p "$out" "$work"
 # Every target that gets seeds written below, and every target with hand-written seeds committed.
 committed=()
 for d in "$root"/tests/fuzz/seeds/*/; do committed+=("$(basename "$d")"); done
-for t in city_tile city_tile_roundtrip tileset consequences search_index search_index_roundtrip response_summary \
-         response_history response_roundtrip ground_motion osm geojson response_import cityjson obj shakemap \
-         "${committed[@]}"; do
+for t in city_tile city_tile_roundtrip ground_tile ground_tile_roundtrip tileset consequences search_index \
+         search_index_roundtrip response_summary response_history response_roundtrip ground_motion osm geojson \
+         response_import cityjson obj shakemap "${committed[@]}"; do
   mkdir -p "$out/$t"
   if [ -d "$root/tests/fuzz/seeds/$t" ]; then cp "$root/tests/fuzz/seeds/$t"/* "$out/$t/" 2>/dev/null; fi
 done
@@ -34,6 +35,19 @@ add_stored() {  # add_stored TARGET TAG FILE
     zstd -d -q -c "$3" >"$dest.raw" || warn "cannot expand $3"
   fi
 }
+
+# Ground tiles: a few valid ones written from docs/formats.md by an independent writer (python3), and
+# below what quakeview-prep writes.
+if command -v python3 >/dev/null 2>&1; then
+  python3 "$root/tests/fuzz/make-ground-seeds.py" "$out/ground_tile" || warn "make-ground-seeds.py failed"
+  # One of them in its stored form too (a Zstandard frame, as quakeview-prep may store it).
+  if command -v zstd >/dev/null 2>&1 && [ -f "$out/ground_tile/park-river-street.qvg" ]; then
+    zstd -q -6 -c "$out/ground_tile/park-river-street.qvg" >"$out/ground_tile/park-river-street.qvg.zst" ||
+      warn "cannot compress a ground tile seed"
+  fi
+else
+  warn "no python3: no hand-made ground tile seeds"
+fi
 
 # Ground motions: the first byte of an input chooses the caller's options (FuzzGroundMotion.cpp):
 # 0 = auto, units and step from the file; 36 = auto, units g, step 0.02 s.
@@ -106,6 +120,7 @@ if [ -n "$prep" ] && [ -x "$prep" ]; then
     # City files as written (Zstandard frames) and expanded (the decoder behind the frame).
     [ -f "$c/search.qvi" ] && add_stored search_index "$tag" "$c/search.qvi"
     for f in "$c"/tiles/*.qvt; do [ -f "$f" ] && add_stored city_tile "$tag" "$f"; done
+    for f in "$c"/ground/*.qvg; do [ -f "$f" ] && add_stored ground_tile "$tag" "$f"; done
     for f in "$c"/response-*/*.qvs; do [ -f "$f" ] && add_stored response_summary "$tag" "$f"; done
     for f in "$c"/response-*/*.qvh; do [ -f "$f" ] && add_stored response_history "$tag" "$f"; done
     for f in "$c"/response-*/consequences.json; do [ -f "$f" ] && cp "$f" "$out/consequences/$tag-consequences.json"; done

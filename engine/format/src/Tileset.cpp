@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <set>
+#include <tuple>
 
 #include "qv/core/JsonWriter.h"
 #include "qv/core/NumberFormat.h"
@@ -14,6 +16,13 @@ namespace {
 
 /// Heights beyond this are not buildings (and would not fit the float the tiles keep).
 constexpr double kMaxHeightM = 1.0e5;
+/// Positions and sizes in the city frame lie within this of its origin (as the tiles' origins).
+constexpr double kMaxCoordinateM = 1.0e7;
+/// The ground pyramid: a level-0 square of at most the ground tiles' largest extent, at most 24
+/// levels (a 40,000 km square still has 2.4 m leaves) and a million cells with a file.
+constexpr double kMaxGroundSizeM = 1.0e8;
+constexpr std::uint64_t kMaxGroundLevels = 24;
+constexpr std::size_t kMaxGroundNodes = 1000000;
 constexpr const char* kDamageKeys[6] = {"none", "slight", "moderate", "extensive", "complete", "no_result"};
 
 std::string hex32(std::uint32_t v) {
@@ -29,6 +38,31 @@ void writeRect(JsonWriter& w, const Rect& r) {
 void writeCityFile(JsonWriter& w, const char* key, const CityFile& f) {
   w.key(key).beginObject();
   w.field("file", f.file).field("bytes", f.bytes).field("crc32", hex32(f.crc32));
+  w.endObject();
+}
+
+void writeCounts(JsonWriter& w, const char* key, const std::map<std::string, std::uint64_t>& counts) {
+  w.key(key).beginObject();
+  for (const auto& [what, n] : counts) w.field(what, n);
+  w.endObject();
+}
+
+void writeGround(JsonWriter& w, const GroundLayer& g) {
+  w.key("ground").beginObject();
+  w.field("minX", g.minX).field("minY", g.minY).field("size", g.size);
+  w.field("levels", static_cast<unsigned>(g.levels)).field("bytes", g.bytes);
+  if (!g.features.empty()) writeCounts(w, "features", g.features);
+  if (!g.skipped.empty()) writeCounts(w, "skipped", g.skipped);
+  w.key("nodes").beginArray();
+  for (const GroundNode& n : g.nodes) {
+    w.breakLine();
+    w.beginObject();
+    w.field("level", static_cast<unsigned>(n.level)).field("x", n.x).field("y", n.y);
+    w.field("geometricError", n.geometricErrorM);
+    w.field("file", n.file).field("bytes", n.bytes).field("crc32", hex32(n.crc32));
+    w.endObject();
+  }
+  w.endArray();
   w.endObject();
 }
 
@@ -142,9 +176,85 @@ struct Parser {
     return true;
   }
 
+  /// An optional object of counts by name (a ground layer's "features" and "skipped").
+  bool counts(const object& o, const char* key, std::map<std::string, std::uint64_t>& out, const std::string& where) {
+    element e;
+    if (o[key].get(e) != simdjson::SUCCESS) return true;
+    object counts;
+    if (e.get(counts) != simdjson::SUCCESS) return fail(where + ": \"" + key + "\" must be an object of counts");
+    for (auto field : counts) {
+      std::uint64_t n = 0;
+      const std::string what(field.key);
+      if (!unsignedNumber(counts, what.c_str(), n, where + " " + key)) return false;
+      out[what] = n;
+    }
+    return true;
+  }
+
   bool cityFile(const object& o, CityFile& f, const std::string& where) {
     return text(o, "file", f.file, where) && fileSize(o, "bytes", f.bytes, where) && hex(o, "crc32", f.crc32, where) &&
            relativePath(f.file, where);
+  }
+
+  /// The ground layer (docs/formats.md "Ground tile"): the pyramid's square, its levels and the
+  /// cells that have a file, each inside the pyramid and listed once.
+  bool ground(const object& o, GroundLayer& g) {
+    const std::string where = "ground";
+    std::uint64_t levels = 0;
+    if (!number(o, "minX", g.minX, where) || !number(o, "minY", g.minY, where) || !number(o, "size", g.size, where) ||
+        !unsignedNumber(o, "levels", levels, where) || !unsignedNumber(o, "bytes", g.bytes, where)) {
+      return false;
+    }
+    if (std::abs(g.minX) > kMaxCoordinateM || std::abs(g.minY) > kMaxCoordinateM) {
+      return fail(where + ": \"minX\" and \"minY\" must lie within 1e7 m of the origin");
+    }
+    if (!(g.size > 0.0 && g.size <= kMaxGroundSizeM)) {
+      return fail(where + ": \"size\" must be a positive number of metres, at most 1e8");
+    }
+    if (levels < 1 || levels > kMaxGroundLevels) {
+      return fail(where + ": \"levels\" must be 1 to " + std::to_string(kMaxGroundLevels) + ", not " +
+                  std::to_string(levels));
+    }
+    g.levels = static_cast<std::uint8_t>(levels);
+    if (!counts(o, "features", g.features, where) || !counts(o, "skipped", g.skipped, where)) return false;
+    simdjson::dom::array nodes;
+    if (o["nodes"].get(nodes) != simdjson::SUCCESS) return fail(where + ": \"nodes\" missing or not an array");
+    if (nodes.size() > kMaxGroundNodes) return fail(where + ": more than a million \"nodes\"");
+    std::set<std::tuple<std::uint64_t, std::uint64_t, std::uint64_t>> cells;
+    for (element e : nodes) {
+      const std::string at = "ground node " + std::to_string(g.nodes.size());
+      object n;
+      if (e.get(n) != simdjson::SUCCESS) return fail(at + ": a ground node must be an object");
+      GroundNode node;
+      std::uint64_t level = 0, x = 0, y = 0;
+      double geometricError = 0;
+      if (!unsignedNumber(n, "level", level, at) || !unsignedNumber(n, "x", x, at) || !unsignedNumber(n, "y", y, at) ||
+          !number(n, "geometricError", geometricError, at) || !text(n, "file", node.file, at) ||
+          !fileSize(n, "bytes", node.bytes, at) || !hex(n, "crc32", node.crc32, at)) {
+        return false;
+      }
+      if (level >= levels) {
+        return fail(at + ": \"level\" " + std::to_string(level) + " is not below \"levels\" " + std::to_string(levels));
+      }
+      if (x >= (1ull << level) || y >= (1ull << level)) {
+        return fail(at + ": \"x\" " + std::to_string(x) + " and \"y\" " + std::to_string(y) + " must be below 2^" +
+                    std::to_string(level) + " at level " + std::to_string(level));
+      }
+      if (!(geometricError >= 0.0 && geometricError <= kMaxCoordinateM)) {
+        return fail(at + ": \"geometricError\" must be 0 to 1e7 m");
+      }
+      if (!relativePath(node.file, at)) return false;
+      if (!cells.emplace(level, x, y).second) {
+        return fail(at + ": cell " + std::to_string(level) + "/" + std::to_string(x) + "/" + std::to_string(y) +
+                    " is listed twice");
+      }
+      node.level = static_cast<std::uint8_t>(level);
+      node.x = static_cast<std::uint32_t>(x);
+      node.y = static_cast<std::uint32_t>(y);
+      node.geometricErrorM = static_cast<float>(geometricError);
+      g.nodes.push_back(std::move(node));
+    }
+    return true;
   }
 
   bool node(const element& e, Tileset& t, int depth, const std::string& where) {
@@ -284,6 +394,7 @@ std::string tilesetToJson(const Tileset& t) {
     w.endObject();
   }
   if (t.search) writeCityFile(w, "search", *t.search);
+  if (t.ground) writeGround(w, *t.ground);
   if (!t.nodes.empty()) {
     w.key("root");
     writeNode(w, t, 0, 0);
@@ -452,6 +563,15 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
     CityFile f;
     if (!p.cityFile(search, f, "search")) return Error{p.error};
     t.search = f;
+  }
+  // Absent in manifests written before the ground layer and in cities made with --no-ground.
+  element groundValue;
+  if (root["ground"].get(groundValue) == simdjson::SUCCESS) {
+    object groundObject;
+    if (groundValue.get(groundObject) != simdjson::SUCCESS) return Error{p.prefix + "\"ground\" must be an object"};
+    GroundLayer g;
+    if (!p.ground(groundObject, g)) return Error{p.error};
+    t.ground = std::move(g);
   }
   element rootTile;
   if (root["root"].get(rootTile) != simdjson::SUCCESS) return Error{p.prefix + "missing \"root\" tile"};

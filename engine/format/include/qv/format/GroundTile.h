@@ -47,11 +47,11 @@ std::string_view groundClassName(GroundClass c);  ///< "land", "green", ..., "mo
 
 /// What a label names. Stored as a number: only ever gains values.
 enum class GroundLabelKind : std::uint8_t {
-  Street = 0,        ///< placed along its street: `angleRad` is the street's direction there
-  Water = 1,         ///< a lake's or river's name
-  Park = 2,          ///< a park's name
-  Neighbourhood = 3, ///< place=neighbourhood, quarter, suburb, borough
-  Settlement = 4,    ///< place=city, town, village, hamlet
+  Street = 0,         ///< placed along its street: `angleRad` is the street's direction there
+  Water = 1,          ///< a lake's or river's name
+  Park = 2,           ///< a park's name
+  Neighbourhood = 3,  ///< place=neighbourhood, quarter, suburb, borough
+  Settlement = 4,     ///< place=city, town, village, hamlet
   Count = 5
 };
 std::string_view groundLabelKindName(GroundLabelKind k);  ///< "street", "water", ...
@@ -96,13 +96,17 @@ struct GroundTileLimits {
 
 /// Serializes a tile (version kGroundTileVersion). Vertices outside [0, extent] are clamped; the
 /// tile must satisfy the contract of GroundTile (indices in range, runs ordered and covering the
-/// triangles, label texts 1..255 bytes).
+/// triangles, label texts 1..255 bytes; a longer text is cut at a UTF-8 character boundary). Indices
+/// are written as u16 when there are at most 65535 vertices, else as u32.
 std::vector<std::uint8_t> encodeGroundTile(const GroundTile& tile);
 
 /// Parses and validates a tile. `name` (a file name or URL) prefixes every error message, which
 /// also names the section and byte offset. Never reads out of bounds, never throws. Refuses
 /// unknown classes and label kinds, out-of-range indices, unordered runs, label texts that are
-/// empty, longer than 255 bytes, not UTF-8 or hold control characters.
+/// empty, longer than 255 bytes, not UTF-8 or hold control characters. Takes the file or its stored
+/// form (a Zstandard frame, StoredFile.h). A ground tile has one encoding: anything the encoder
+/// would not write (unknown sections or flags, non-zero padding) is refused, so a tile that decodes
+/// encodes back to the same bytes.
 Result<GroundTile> decodeGroundTile(std::span<const std::uint8_t> bytes, std::string_view name,
                                     const GroundTileLimits& limits = {});
 
