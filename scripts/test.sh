@@ -82,6 +82,7 @@ if ! "$prep" synth-city --buildings 3000 --seed 3 --max-leaf-buildings 300 --out
    ! "$prep" info "$e2e_data/midtown" --building w34633854 --json >"$e2e_data/midtown-esb.json" ||
    ! "$prep" synth-city --buildings 50000 --seed 5 --max-leaf-buildings 500 --max-coarse-buildings 5000 \
        --out "$e2e_data/large" >/dev/null ||
+   ! "$prep" synth-city --buildings 300 --seed 12 --no-ground --out "$e2e_data/noground" >/dev/null ||
    ! "$prep" synth-city --buildings 1500 --seed 11 --out "$e2e_data/lod2" >/dev/null ||
    ! "$prep" lod2 --city "$e2e_data/lod2" --input ../shared/data/cityjson/DH_01_subs.city.json \
        --place -74.0,40.71 >/dev/null ||
@@ -143,7 +144,8 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
   # The same tests of what a user meets first (first light, the city with its broken tiles,
   # interaction on a real city, weak-device detection, taps and swipes on a phone and a tablet,
   # the city shaking at its opening view, the picture of the view, the situation report, the 2D
-  # city without WebGL2, with touch emulation, switching between a city's scenarios) in a second
+  # city without WebGL2, with touch emulation, switching between a city's scenarios, the map under
+  # the city with its names) in a second
   # engine: Debian's Firefox ESR, WebGL2 on llvmpipe,
   # driven by puppeteer-core over WebDriver BiDi (tests/e2e/lib/browser.mjs). A few minutes.
   stage "browser end-to-end tests (headless Firefox ESR)"
@@ -151,7 +153,7 @@ if cmake --preset wasm-release >/dev/null && cmake --build --preset wasm-release
   (cd tests/e2e && QUAKEVIEW_BROWSER=firefox QUAKEVIEW_SITE="$root/build/wasm-release/site" \
     QUAKEVIEW_E2E_DATA="$e2e_data" QUAKEVIEW_DEMO_DATA="$demo_data" \
     node --test --test-reporter=tap first-light.test.mjs city.test.mjs interaction.test.mjs weak-device.test.mjs touch.test.mjs \
-      shaking.test.mjs images.test.mjs report.test.mjs map2d.test.mjs scenarios.test.mjs) 2>&1 | tee "$log"
+      shaking.test.mjs images.test.mjs report.test.mjs map2d.test.mjs scenarios.test.mjs map.test.mjs) 2>&1 | tee "$log"
   e2e_pass=$(sed -nE 's/^# pass ([0-9]+)/\1/p' "$log" | tail -n 1)
   e2e_fail=$(sed -nE 's/^# fail ([0-9]+)/\1/p' "$log" | tail -n 1)
   counts[e2e_firefox]="${e2e_pass:-0}"

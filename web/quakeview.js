@@ -55,7 +55,8 @@
 //              input had no streets, water or open land | 'present'), cells, cellsDrawn, cellsLoaded,
 //              cellsFailed, triangles (the map's, last frame), bytes, features: {class: count},
 //              skipped: {reason: count}, labels: [{text, kind ('street' | 'water' | 'park' |
-//              'neighbourhood' | 'settlement'), x, y (CSS px, its centre), angleDeg, facility}] drawn
+//              'neighbourhood' | 'settlement'), x, y (CSS px, its centre), width, height (its text before
+//              turning), angleDeg, facility}] drawn
 //              last frame}; null before the city's manifest.
 //   screenshot()  the view as a PNG data URL with its caption (event, city, attribution); saveImage()
 //              downloads it (the panel's "Save image")

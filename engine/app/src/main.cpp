@@ -225,7 +225,7 @@ const char* switchStateName(qv::ScenarioSwitch::State state) {
 /// older tool) | "empty" (the input had no streets, water or open land) | "present", "cells": files
 /// in the pyramid, "cellsDrawn", "cellsLoaded", "cellsFailed", "triangles": the map's triangles in
 /// the last frame, "bytes": all ground files, "features": {class: count}, "skipped": {reason:
-/// count}, "labels": [{text, kind, x, y, angleDeg, facility}] the names drawn in the last frame
+/// count}, "labels": [{text, kind, x, y, width, height, angleDeg, facility}] the names drawn in the last frame
 /// (CSS pixels)}; null without a city manifest.
 EMSCRIPTEN_KEEPALIVE const char* qv_map_json() {
   if (gApp == nullptr) return hand("null");
@@ -257,6 +257,7 @@ EMSCRIPTEN_KEEPALIVE const char* qv_map_json() {
     w.beginObject();
     w.field("text", l.text).field("kind", std::string(qv::groundLabelKindName(l.kind)));
     w.field("x", static_cast<double>(l.x)).field("y", static_cast<double>(l.y));
+    w.field("width", static_cast<double>(l.width)).field("height", static_cast<double>(l.height));
     w.field("angleDeg", static_cast<double>(l.angleDeg)).field("facility", l.facility);
     w.endObject();
   }

@@ -135,6 +135,7 @@ TileCounts CityScene::tileCounts() const {
     if (t->historyLoad.state == TileState::Loading) ++c.pending;
   }
   c.pending += index_.pendingFiles();
+  if (ground_) c.pending += ground_->pending();  // the map's cells the view wants
   // Tiles the view wants but has not requested yet (the request limit) are pending as well.
   for (std::uint32_t i : selection_.wanted) {
     if (tiles_[i]->tile.state == TileState::Unloaded) ++c.pending;

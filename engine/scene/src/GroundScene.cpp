@@ -96,7 +96,7 @@ bool GroundScene::usable(const Cell& cell) const {
 void GroundScene::request(Cell& cell) {
   cell.lastUsed = frame_;
   if (cell.load.state == TileState::Loaded) return;
-  if (cell.load.state != TileState::Failed) wantedMissing_ = true;
+  if (cell.load.state != TileState::Failed) ++pending_;
   if (!loader_.hasRoom() || !loader_.due(cell.load)) return;
   Cell* c = &cell;
   loader_.start(cell.load, cell.spec, [this, c](std::vector<std::uint8_t>& bytes) {
@@ -170,7 +170,7 @@ void GroundScene::update(const CameraView& view) {
   items_.clear();
   labels_.clear();
   trianglesDrawn_ = 0;
-  wantedMissing_ = false;
+  pending_ = 0;
   std::vector<std::uint32_t> drawn;
   if (root_ != UINT32_MAX) visit(root_, view, drawn);
   for (std::uint32_t i : drawn) {
@@ -202,7 +202,6 @@ void GroundScene::update(const CameraView& view) {
       bytes -= std::min(bytes, held);
     }
   }
-  settled_ = !wantedMissing_;
 }
 
 std::uint32_t GroundScene::cellsLoaded() const {

@@ -62,7 +62,9 @@ class GroundScene {
   /// The labels of the drawn cells, most important (lowest rank) first.
   [[nodiscard]] const std::vector<MapLabel>& labels() const { return labels_; }
   /// Every cell the view wants has loaded or failed.
-  [[nodiscard]] bool settled() const { return settled_; }
+  [[nodiscard]] bool settled() const { return pending_ == 0; }
+  /// Cells the last frame wanted that have neither loaded nor failed yet.
+  [[nodiscard]] std::uint32_t pending() const { return pending_; }
   [[nodiscard]] std::uint32_t cellsDrawn() const { return static_cast<std::uint32_t>(items_.size()); }
   [[nodiscard]] std::uint32_t cellsLoaded() const;
   [[nodiscard]] std::uint32_t cellsFailed() const;
@@ -87,8 +89,7 @@ class GroundScene {
   std::vector<GroundDrawItem> items_;
   std::vector<MapLabel> labels_;
   std::uint64_t trianglesDrawn_ = 0;
-  bool settled_ = false;
-  bool wantedMissing_ = false;
+  std::uint32_t pending_ = 1;  // nothing is settled before the first update
 };
 
 /// The ground mesh of a decoded tile: its vertices with their run's class, its triangles in order.

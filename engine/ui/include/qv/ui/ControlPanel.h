@@ -104,9 +104,10 @@ class ControlPanel {
   struct ShownMapLabel {
     std::string text;
     GroundLabelKind kind = GroundLabelKind::Street;
-    float x = 0.0f, y = 0.0f;  ///< its centre
-    float angleDeg = 0.0f;     ///< clockwise on screen
-    bool facility = false;     ///< a highlighted building's name
+    float x = 0.0f, y = 0.0f;           ///< its centre
+    float width = 0.0f, height = 0.0f;  ///< its text's box before turning
+    float angleDeg = 0.0f;              ///< clockwise on screen
+    bool facility = false;              ///< a highlighted building's name
   };
   [[nodiscard]] const std::vector<ShownMapLabel>& shownMapLabels() const { return shownMapLabels_; }
 
