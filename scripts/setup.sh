@@ -6,6 +6,8 @@
 # - Dear ImGui 1.86 sources from Debian's source package (and simdjson's single-header sources and
 #   GeographicLib's and Zstandard's, used by the WebAssembly build), unpacked under .deps/ (git-ignored, never
 #   committed);
+# - test data: OpenStreetMap's Liechtenstein extract of 2013 (ODbL, (c) OpenStreetMap contributors),
+#   one file of Debian's osm2pgsql source package, in .deps/osm-data/ (the ground tests read it);
 # - npm packages pinned by tests/e2e/package-lock.json (playwright-core for Chromium, puppeteer-core
 #   for Firefox ESR; never a browser download).
 #
@@ -49,7 +51,8 @@ Install these by hand (names are Debian's; other systems have equivalents):
   ${packages[*]}
 plus Node.js >= 18 with npm, Dear ImGui 1.86 sources in $deps/imgui,
 simdjson 3.0.1 sources in $deps/simdjson, GeographicLib 2.1.2 sources in $deps/geographiclib,
-Zstandard 1.5.4 sources in $deps/zstd, then run:
+Zstandard 1.5.4 sources in $deps/zstd, osm2pgsql 1.8.0's tests/data/liechtenstein-2013-08-03.osm.pbf
+in $deps/osm-data/, then run:
   (cd $root/tests/e2e && npm ci)
 MSG
   exit 1
@@ -129,6 +132,38 @@ fetch_source imgui imgui imgui.cpp
 fetch_source simdjson simdjson singleheader/simdjson.cpp
 fetch_source geographiclib geographiclib src/TransverseMercator.cpp
 fetch_source libzstd zstd lib/zstd.h
+
+# Takes file $2 (a path inside the upstream tarball, below its top folder) out of Debian source
+# package $1 into $deps/$3 (once), checking its SHA-256 $4; the rest of the package is not kept.
+fetch_source_file() {
+  local pkg=$1 member=$2 dest=$deps/$3 sha=$4
+  if [ -f "$dest" ] && [ "$(sha256sum "$dest" | cut -d' ' -f1)" = "$sha" ]; then return; fi
+  ensure_deb_src
+  apt_update
+  local tmp
+  tmp=$(mktemp -d)
+  chmod 777 "$tmp"  # apt downloads as user _apt
+  log "fetching $(basename "$member") from Debian source package $pkg"
+  (cd "$tmp" && apt-get source -qq --download-only "$pkg" >/dev/null)
+  local orig
+  orig=$(find "$tmp" -maxdepth 1 -name "${pkg}_*.orig.tar.*" | head -n 1)
+  [ -n "$orig" ] || die "source package $pkg has no upstream tarball"
+  tar -xf "$orig" -C "$tmp" --wildcards --no-anchored "*/$member" ||
+    die "source package $pkg has no $member"
+  local got
+  got=$(find "$tmp" -path "*/$member" -type f | head -n 1)
+  [ -n "$got" ] || die "source package $pkg has no $member"
+  [ "$(sha256sum "$got" | cut -d' ' -f1)" = "$sha" ] ||
+    die "$member of source package $pkg is not the expected file (SHA-256 differs from $sha)"
+  mkdir -p "$(dirname "$dest")"
+  mv "$got" "$dest"
+  rm -rf "$tmp"
+}
+
+# OpenStreetMap's Liechtenstein (2013-08-03; streets, the Rhine, lakes, forests, place names), which
+# tests/ingest reads for the ground features; the build passes its path to the tests.
+fetch_source_file osm2pgsql tests/data/liechtenstein-2013-08-03.osm.pbf osm-data/liechtenstein-2013-08-03.osm.pbf \
+  edb2b075be057662691fc343abed4ed58f139dd7c501c243197640fcb3ea82d4
 
 # npm packages, pinned by the lockfile. A stamp of the lockfile's hash makes the re-run free.
 e2e="$root/tests/e2e"
