@@ -52,6 +52,7 @@ TEST_CASE("lod2 puts CityJSON models into a synthetic city and the response goes
   const std::string dir = "/tmp/qv-lod2-cli-" + std::to_string(getpid());
   REQUIRE(run("synth-city --buildings 12 --seed 5 --out '" + dir + "'").exitCode == 0);
   REQUIRE(run("response --city '" + dir + "' --synthetic 1").exitCode == 0);
+  const std::string groundBefore = std::string(run("info '" + dir + "' --json").output);
 
   // Den Haag, about 500 m east of the synthetic buildings: 4 Buildings (8 parts), all new.
   const Run first =
@@ -104,7 +105,15 @@ TEST_CASE("lod2 puts CityJSON models into a synthetic city and the response goes
 
   const Run verify = run("info '" + dir + "' --verify", true);
   INFO(verify.output);
-  CHECK(verify.exitCode == 0);
+  CHECK(verify.exitCode == 0);  // the ground files too: rewriting the city kept them
+  {
+    // The map under the city is not in the tiles the city is rewritten from: it is kept as it was.
+    Json before, after;
+    parse(before, groundBefore);
+    parse(after, run("info '" + dir + "' --json").output);
+    CHECK(before.doc["ground"]["files"].get_uint64().value() > 0);
+    CHECK(simdjson::to_string(after.doc["ground"]) == simdjson::to_string(before.doc["ground"]));
+  }
 
   // `response` brings the response up to date again.
   REQUIRE(run("response --city '" + dir + "' --synthetic 1").exitCode == 0);

@@ -1,4 +1,4 @@
-// quakeview-prep city --input FILE... --out DIR [GeoJSON property options] [--origin LON,LAT]
+// quakeview-prep city --input FILE... --out DIR [GeoJSON property options] [--origin LON,LAT] [--no-ground]
 #include <chrono>
 #include <cstdio>
 
@@ -18,9 +18,10 @@ const std::string kUsage =
         "usage: quakeview-prep city --input FILE... --out DIR [options]\n"
         "  Reads building footprints (OpenStreetMap .osm, .osm.bz2, .osm.pbf; GeoJSON FeatureCollections\n"
         "  .geojson/.json), cleans and projects them, infers storeys and seismic attributes, and writes\n"
-        "  the city's tiles to DIR (replacing a previous city there only when everything succeeded).\n"
+        "  the city's tiles to DIR (replacing a previous city there only when everything succeeded),\n"
+        "  with the map under it from the OSM inputs (streets, railways, water, parks, place names).\n"
         "  --origin LON,LAT            projection centre in degrees (default: the centre of the data)\n") +
-    kLeafOptionsUsage + kNameOptionUsage +
+    kLeafOptionsUsage + kNameOptionUsage + kNoGroundOptionUsage +
     std::string(
         "  --no-lod2                   keep OSM buildings with building:part members as LOD1 prisms (by\n"
         "                              default each becomes one LOD2 model, re-meshed and skinned per floor)\n"
@@ -56,6 +57,7 @@ int runCity(const CommandArgs& argv) {
                                  {"year-property"},
                                  {"use-property"},
                                  {"no-lod2", false},
+                                 {"no-ground", false},
                                  {"name"},
                                  {"help", false}},
                                 error);
@@ -97,8 +99,10 @@ int runCity(const CommandArgs& argv) {
     }
     options.originLonLat = std::array<double, 2>{(*lonLat)[0], (*lonLat)[1]};
   }
+  options.ground = !args->has("no-ground");
   TilerOptions tiler;
   tiler.generator = "quakeview-prep city";
+  tiler.ground = options.ground;
   if (std::string leafError; !readLeafOptions(*args, tiler, leafError)) return usage(leafError);
   if (std::string nameError; !readCityName(*args, *out, {}, tiler, nameError)) return usage(nameError);
 

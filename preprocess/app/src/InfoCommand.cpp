@@ -11,6 +11,7 @@
 #include "Summary.h"
 #include "qv/core/JsonWriter.h"
 #include "qv/format/FacilityCategory.h"
+#include "qv/format/GroundTile.h"
 #include "qv/format/ResponseTile.h"
 #include "qv/format/SearchIndex.h"
 #include "qv/prep/Cli.h"
@@ -33,7 +34,8 @@ const char* const kUsage =
     "  --building ID   print one building (w123, r45, s7, g:12, cj:abc), with its response: damage\n"
     "                  state, peak drift ratio per storey, peak roof displacement, PGA; without a\n"
     "                  result, why; an approximate result (solver steps accepted unconverged), how far\n"
-    "  --verify        decode and check every tile; exit 1 naming each bad one\n";
+    "  The ground (the map under the city): its files, bytes, bytes per km2 and features by class.\n"
+    "  --verify        decode and check every tile (and ground tile); exit 1 naming each bad one\n";
 
 // Upper bounds (exclusive) of the storey histogram's buckets: 1, 2, 3, 4-5, 6-9, 10-19, 20-39, 40+.
 constexpr std::array<int, 8> kStoreyBuckets = {2, 3, 4, 6, 10, 20, 40, 1 << 30};
@@ -109,6 +111,70 @@ void writeMeshJson(JsonWriter& w, const CityTile& tile, std::size_t buildingInde
     return;
   }
   w.key("lod2").null();
+}
+
+// The ground layer's figures: the area its leaf cells with a file cover and its bytes per km² of it.
+struct GroundFigures {
+  double areaKm2 = 0.0;
+  double bytesPerKm2 = 0.0;
+};
+
+GroundFigures groundFigures(const GroundLayer& g) {
+  GroundFigures f;
+  if (g.levels == 0 || g.size <= 0.0) return f;
+  const double leafSideM = g.size / std::ldexp(1.0, g.levels - 1);
+  std::uint64_t leaves = 0;
+  for (const GroundNode& n : g.nodes) leaves += n.level + 1 == g.levels ? 1 : 0;
+  f.areaKm2 = static_cast<double>(leaves) * leafSideM * leafSideM / 1e6;
+  if (f.areaKm2 > 0.0) f.bytesPerKm2 = static_cast<double>(g.bytes) / f.areaKm2;
+  return f;
+}
+
+// "ground": {...}, or null when the city has no ground layer (--no-ground, or made before it).
+void writeGroundJson(JsonWriter& w, const std::optional<GroundLayer>& ground) {
+  if (!ground) {
+    w.key("ground").null();
+    return;
+  }
+  const GroundLayer& g = *ground;
+  const GroundFigures f = groundFigures(g);
+  w.key("ground").beginObject();
+  w.field("files", static_cast<std::uint64_t>(g.nodes.size())).field("bytes", g.bytes);
+  w.field("levels", static_cast<unsigned>(g.levels)).field("size_m", g.size);
+  w.field("area_km2", f.areaKm2).field("bytes_per_km2", f.bytesPerKm2);
+  w.key("features").beginObject();  // by class name, and "labels"
+  for (const auto& [k, n] : g.features) w.field(k, n);
+  w.endObject();
+  w.key("skipped").beginObject();  // left out of the input, by reason
+  for (const auto& [k, n] : g.skipped) w.field(k, n);
+  w.endObject();
+  w.endObject();
+}
+
+void printGround(const std::optional<GroundLayer>& ground) {
+  if (!ground) {
+    std::printf("ground      none (made with --no-ground, or before cities had one)\n");
+    return;
+  }
+  const GroundLayer& g = *ground;
+  if (g.nodes.empty()) {
+    std::printf("ground      empty: the input has no streets, water or open land\n");
+  } else {
+    const GroundFigures f = groundFigures(g);
+    std::printf("ground      %zu files in %u levels, %s, %s per km2 (%.2f km2 of leaf cells)\n", g.nodes.size(),
+                static_cast<unsigned>(g.levels), humanBytes(g.bytes).c_str(),
+                humanBytes(static_cast<std::uint64_t>(std::llround(f.bytesPerKm2))).c_str(), f.areaKm2);
+  }
+  if (!g.features.empty()) {
+    std::printf("           ");
+    for (const auto& [k, n] : g.features) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(n));
+    std::printf("\n");
+  }
+  if (!g.skipped.empty()) {
+    std::printf("            left out:");
+    for (const auto& [k, n] : g.skipped) std::printf(" %s %llu;", k.c_str(), static_cast<unsigned long long>(n));
+    std::printf("\n");
+  }
 }
 
 constexpr const char* kDamageKeys[6] = {"none", "slight", "moderate", "extensive", "complete", "no_result"};
@@ -348,6 +414,22 @@ int runInfo(const CommandArgs& argv) {
         ++bad;
         std::fprintf(stderr, "BAD %s: %zu buildings, the manifest says %u\n", node.key().c_str(),
                      tile->buildings.size(), node.buildings);
+      }
+    }
+    if (t.ground) {
+      for (const GroundNode& node : t.ground->nodes) {
+        ++checked;
+        auto bytes = loadCityFile(dir, CityFile{node.file, node.bytes, node.crc32});
+        if (!bytes.ok()) {
+          ++bad;
+          std::fprintf(stderr, "BAD %s: %s\n", node.file.c_str(), bytes.error().c_str());
+          continue;
+        }
+        const auto tile = decodeGroundTile(*bytes, dir + "/" + node.file);
+        if (!tile.ok()) {
+          ++bad;
+          std::fprintf(stderr, "BAD %s: %s\n", node.file.c_str(), tile.error().c_str());
+        }
       }
     }
     if (bad > 0) {
@@ -604,6 +686,7 @@ int runInfo(const CommandArgs& argv) {
     w.key("sources").beginArray();
     for (const std::string& src : t.sources) w.value(src);
     w.endArray();
+    writeGroundJson(w, t.ground);
     w.key("damage_states").beginObject();
     for (std::size_t k = 0; k < 6; ++k) w.field(kDamageKeys[k], damage[k]);
     w.endObject();
@@ -714,6 +797,7 @@ int runInfo(const CommandArgs& argv) {
   for (const auto& [k, v] : s.eras) std::printf(" %s: %llu;", k.c_str(), static_cast<unsigned long long>(v));
   std::printf("\ntiles       %zu (%llu leaves, depth %d), %s\n", t.nodes.size(),
               static_cast<unsigned long long>(leaves), depth, humanBytes(bytes).c_str());
+  printGround(t.ground);
   if (t.response) {
     std::printf("response    %s\n", t.response->method.c_str());
     std::printf("motion      %s\n", t.response->motion.c_str());

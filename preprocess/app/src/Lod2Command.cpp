@@ -205,6 +205,11 @@ int runLod2(const CommandArgs& argv) {
   tiler.name = tileset->name;
   tiler.buildingsRevision = tileset->buildingsRevision + 1;
   tiler.response = tileset->response;  // kept, now older than the buildings: out of date
+  // The map under the city is not in the tiles the city is read back from: its files and layer go
+  // into the new city as they were (none when it was made with --no-ground).
+  tiler.ground = tileset->ground.has_value();
+  tiler.keptGround = tileset->ground;
+  tiler.keptGroundDir = *dir;
   const auto written = writeCityTiles(*city, *dir, tiler);
   if (!written.ok()) {
     std::fprintf(stderr, "lod2: %s\n", written.error().c_str());

@@ -20,6 +20,48 @@ std::string humanBytes(std::uint64_t bytes) {
   return buffer;
 }
 
+namespace {
+
+/// 1234567 -> "1,234,567".
+std::string withThousands(std::uint64_t n) {
+  std::string digits = std::to_string(n);
+  for (std::size_t i = digits.size(); i > 3; i -= 3) digits.insert(i - 3, ",");
+  return digits;
+}
+
+}  // namespace
+
+std::string groundSummaryLine(const Tileset& tileset) {
+  if (!tileset.ground) return "ground      none (--no-ground)";
+  const GroundLayer& g = *tileset.ground;
+  auto count = [&g](std::initializer_list<const char*> names) {
+    std::uint64_t n = 0;
+    for (const char* name : names) {
+      const auto it = g.features.find(name);
+      if (it != g.features.end()) n += it->second;
+    }
+    return n;
+  };
+  std::uint64_t skipped = 0;
+  std::string reasons;
+  for (const auto& [reason, n] : g.skipped) {
+    skipped += n;
+    reasons += (reasons.empty() ? "" : ", ") + reason + " " + withThousands(n);
+  }
+  const std::string skippedText =
+      skipped == 0 ? "" : " (" + withThousands(skipped) + " objects left out: " + reasons + ")";
+  if (g.nodes.empty()) return "ground      the input has no streets, water or open land" + skippedText;
+  std::string line = "ground      " + withThousands(count({"street", "major", "motorway"})) + " streets, ";
+  if (const std::uint64_t paths = count({"path"}); paths > 0) line += withThousands(paths) + " paths, ";
+  if (const std::uint64_t rail = count({"rail"}); rail > 0) line += withThousands(rail) + " railways, ";
+  line += withThousands(count({"water"})) + " water, " + withThousands(count({"park", "green", "forest"})) +
+          " parks and green land, ";
+  if (const std::uint64_t land = count({"land"}); land > 0) line += withThousands(land) + " land polygons, ";
+  line += withThousands(count({"labels"})) + " names in " + withThousands(g.nodes.size()) + " files, " +
+          humanBytes(g.bytes) + skippedText;
+  return line;
+}
+
 void printTilingSummary(std::FILE* out, const CityModel& model, const TilerReport& report, double seconds,
                         std::size_t maxWarnings) {
   std::fprintf(out, "buildings   %llu\n", static_cast<unsigned long long>(report.buildings));
@@ -63,6 +105,7 @@ void printTilingSummary(std::FILE* out, const CityModel& model, const TilerRepor
       std::fprintf(out, "  (%zu more warnings)\n", model.warnings.size() - maxWarnings);
     }
   }
+  std::fprintf(out, "%s\n", groundSummaryLine(report.tileset).c_str());
   std::fprintf(out, "time        %.2f s\n", seconds);
 }
 

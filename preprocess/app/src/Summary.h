@@ -37,8 +37,18 @@ bool readCityName(const Args& args, const std::string& out, const std::string& d
 /// "1.2 MB", "350 KB", "12 B".
 std::string humanBytes(std::uint64_t bytes);
 
-/// Prints what was written: buildings, tiles, bytes, bytes per building, drops by reason and
-/// warnings (at most `maxWarnings` listed, all counted).
+/// The usage line of --no-ground, which the commands that create a city take.
+inline constexpr const char* kNoGroundOptionUsage =
+    "  --no-ground                 no map under the city (streets, railways, water, parks, open land\n"
+    "                              and place names: read from OSM inputs; synth-city makes its own)\n";
+
+/// "ground      1,234 streets, 56 paths, 3 railways, 12 water, 30 parks and green land, 40 names
+/// in 85 files, 1.2 MiB": one line on the city's ground layer (`tileset.ground`), or that the input
+/// had none, or that --no-ground left it out.
+std::string groundSummaryLine(const Tileset& tileset);
+
+/// Prints what was written: buildings, tiles, bytes, bytes per building, drops by reason,
+/// warnings (at most `maxWarnings` listed, all counted) and the ground (groundSummaryLine).
 void printTilingSummary(std::FILE* out, const CityModel& model, const TilerReport& report, double seconds,
                         std::size_t maxWarnings = 10);
 

@@ -1,4 +1,4 @@
-// quakeview-prep synth-city --buildings N --seed S [--origin LON,LAT] [--detailed-towers N] --out DIR
+// quakeview-prep synth-city --buildings N --seed S [--origin LON,LAT] [--detailed-towers N] [--no-ground] --out DIR
 #include <chrono>
 #include <cstdio>
 
@@ -17,12 +17,13 @@ const std::string kUsage =
     std::string(
         "usage: quakeview-prep synth-city --buildings N --seed S [options] --out DIR\n"
         "  Generates a deterministic synthetic city (street grid, rectangles, L-shapes and courtyards,\n"
-        "  a dense tall core) of exactly N buildings (1 .. 10,000,000) and writes its tiles to DIR.\n"
+        "  a dense tall core) of exactly N buildings (1 .. 10,000,000) and writes its tiles to DIR,\n"
+        "  with its map: named avenues and streets, parks, a river beside it, neighbourhood names.\n"
         "  --origin LON,LAT            where the city centre is placed, degrees (default -74.00,40.71)\n"
         "  --detailed-towers N         the N tallest rectangular or L-shaped buildings (3 storeys or\n"
         "                              more) get setbacks (podium, shaft, crown) and become LOD2 models\n"
         "                              (default 0)\n") +
-    kLeafOptionsUsage + kNameOptionUsage;
+    kLeafOptionsUsage + kNameOptionUsage + kNoGroundOptionUsage;
 
 }  // namespace
 
@@ -37,6 +38,7 @@ int runSynthCity(const CommandArgs& argv) {
                                  {"max-leaf-kib"},
                                  {"max-coarse-buildings"},
                                  {"detailed-towers"},
+                                 {"no-ground", false},
                                  {"name"},
                                  {"help", false}},
                                 error);
@@ -73,8 +75,10 @@ int runSynthCity(const CommandArgs& argv) {
     if (!v || *v < 0 || *v > 10000000) return usage("--detailed-towers must be a whole number from 0 to 10,000,000");
     options.detailedTowers = static_cast<std::uint64_t>(*v);
   }
+  options.ground = !args->has("no-ground");
   TilerOptions tiler;
   tiler.generator = "quakeview-prep synth-city";
+  tiler.ground = options.ground;
   if (std::string leafError; !readLeafOptions(*args, tiler, leafError)) return usage(leafError);
   if (std::string nameError;
       !readCityName(*args, *out,

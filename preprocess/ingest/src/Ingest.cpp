@@ -489,6 +489,71 @@ std::string joinPaths(const std::vector<std::string>& paths) {
   return text;
 }
 
+/// Projects the ground features read (degrees) into `out` (city frame) with the buildings'
+/// projection: through `grid` inside its box, exactly elsewhere. A shape with a point farther
+/// than kMaxSpanDegrees from the origin (where the projection is not the city's any more) or not
+/// a longitude/latitude is skipped as "outside-projection".
+void projectGround(const detail::RawGround& raw, const CityProjection& projection,
+                   const std::optional<ProjectionGrid>& grid, const Bounds& gridBox, GroundFeatures& out) {
+  out.skipped = raw.skipped;
+  std::vector<glm::dvec2> xy(raw.points.size());
+  std::vector<bool> valid(raw.points.size());
+  const double lon0 = projection.originLon();
+  const double lat0 = projection.originLat();
+  auto usable = [&](glm::dvec2 p) {
+    return validLonLat(p.x, p.y) && std::abs(p.y) < 90.0 && std::abs(p.x - lon0) <= kMaxSpanDegrees &&
+           std::abs(p.y - lat0) <= kMaxSpanDegrees;
+  };
+  auto project = [&](glm::dvec2 p) {
+    return grid && gridBox.contains(p) ? grid->forward(p.x, p.y) : projection.forward(p.x, p.y);
+  };
+  for (std::size_t i = 0; i < raw.points.size(); ++i) {
+    valid[i] = usable(raw.points[i]);
+    if (valid[i]) xy[i] = project(raw.points[i]);
+  }
+  auto allValid = [&](std::uint32_t begin, std::uint32_t end) {
+    for (std::uint32_t i = begin; i < end; ++i) {
+      if (!valid[i]) {
+        ++out.skipped["outside-projection"];
+        return false;
+      }
+    }
+    return true;
+  };
+  auto range = [&](std::uint32_t begin, std::uint32_t end) {
+    return std::vector<glm::dvec2>(xy.begin() + begin, xy.begin() + end);
+  };
+  out.lines.reserve(out.lines.size() + raw.lines.size());
+  for (const detail::RawGround::Line& line : raw.lines) {
+    if (!allValid(line.begin, line.end)) continue;
+    out.lines.push_back({line.groundClass, range(line.begin, line.end), line.widthM, line.name, line.rank});
+  }
+  out.areas.reserve(out.areas.size() + raw.areas.size());
+  for (const detail::RawGround::Area& area : raw.areas) {
+    if (area.ringEnds.empty() || !allValid(area.begin, area.ringEnds.back())) continue;
+    GroundArea a;
+    a.groundClass = area.groundClass;
+    a.name = area.name;
+    a.rank = area.rank;
+    std::uint32_t begin = area.begin;
+    for (const std::uint32_t end : area.ringEnds) {
+      a.rings.push_back(range(begin, end));
+      begin = end;
+    }
+    out.areas.push_back(std::move(a));
+  }
+  for (const detail::RawGround::Place& place : raw.places) {
+    if (!usable(place.lonLat)) {
+      ++out.skipped["outside-projection"];
+      continue;
+    }
+    out.places.push_back({place.kind, project(place.lonLat), place.name, place.rank});
+  }
+  for (const auto& [begin, end] : raw.coastlines) {
+    if (allValid(begin, end)) out.coastlines.push_back(range(begin, end));
+  }
+}
+
 Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, const IngestOptions& options,
                                   IngestStats* statsOut) {
   using Clock = std::chrono::steady_clock;
@@ -515,7 +580,7 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
     Status read;
     switch (inputKind(path)) {
       case InputKind::Osm:
-        read = detail::readOsmFile(path, raw, stats);
+        read = detail::readOsmFile(path, options, raw, stats);
         break;
       case InputKind::GeoJson:
         read = detail::readGeoJsonFile(path, options, *plainUnit, geojsonOrdinal++, raw, stats);
@@ -693,6 +758,16 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
       ++stats.partsStandalone;
       model.buildings.push_back(makeSimpleBuilding(features[i], prepared[i], warnings));
     }
+  }
+  // ---- The ground, with the buildings' projection (its points never moved the origin).
+  if (options.ground) {
+    projectGround(raw.ground, projection, projectionGrid, lonLat, model.ground);
+    raw.ground = {};
+    stats.groundLines = model.ground.lines.size();
+    stats.groundAreas = model.ground.areas.size();
+    stats.groundPlaces = model.ground.places.size();
+    stats.groundCoastlines = model.ground.coastlines.size();
+    for (const auto& [reason, n] : model.ground.skipped) stats.groundSkipped += n;
   }
   model.warnings = std::move(warnings.messages);
   model.warningCounts = std::move(warnings.counts);

@@ -1,6 +1,8 @@
 // Internal to prep::ingest: what the readers hand to the city builder. Features keep only the tags
 // the product uses (docs/attributes.md "Tag streamlining") and their rings in degrees; the builder
-// projects, cleans, attaches parts and infers attributes.
+// projects, cleans, attaches parts and infers attributes. The map under the buildings (streets,
+// water, parks, place names: RawGround) is read beside them, in degrees too, and projected with
+// the buildings' projection.
 #pragma once
 
 #include <algorithm>
@@ -8,6 +10,7 @@
 #include <deque>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -158,16 +161,52 @@ class PointTable {
   std::size_t used_ = 0;
 };
 
+/// The ground features of the OSM inputs (docs/attributes.md "Ground features"), as GroundFeatures
+/// holds them but in degrees: the builder projects them with the buildings' projection, which
+/// they must not move (their points are kept apart from the buildings' PointTable). Empty when
+/// IngestOptions::ground is off.
+struct RawGround {
+  struct Line {
+    GroundClass groundClass = GroundClass::Street;
+    float widthM = 6.0f;
+    std::uint8_t rank = 128;
+    std::string name;
+    std::uint32_t begin = 0, end = 0;  ///< [begin, end) in points
+  };
+  struct Area {
+    GroundClass groundClass = GroundClass::Park;
+    std::uint8_t rank = 128;
+    std::string name;
+    std::uint32_t begin = 0;              ///< the first ring's first point
+    std::vector<std::uint32_t> ringEnds;  ///< one past each ring's last point (outer ring, then holes)
+  };
+  struct Place {
+    GroundLabelKind kind = GroundLabelKind::Neighbourhood;
+    std::uint8_t rank = 64;
+    std::string name;
+    glm::dvec2 lonLat{0.0};
+  };
+  std::vector<glm::dvec2> points;  ///< degrees {lon, lat}, the shapes' points one after another
+  std::vector<Line> lines;
+  std::vector<Area> areas;
+  std::vector<Place> places;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> coastlines;  ///< [begin, end) in points
+  std::map<std::string, std::uint64_t> skipped;                     ///< as GroundFeatures::skipped
+};
+
 struct RawCity {
   PointTable points;
   std::deque<RawFeature> features;  ///< a deque: features never move once read
   std::vector<BuildingGroup> groups;
   DropCounts drops;
   WarningLog warnings;
+  RawGround ground;
 };
 
-/// OSM XML / PBF (any libosmium input format) into `city`. Errors name the file and position.
-Status readOsmFile(const std::string& path, RawCity& city, IngestStats& stats);
+/// OSM XML / PBF (any libosmium input format) into `city`: buildings, and the ground features when
+/// `options.ground` is on. Errors name the file and position; a broken ground feature is never an
+/// error (it is counted in city.ground.skipped).
+Status readOsmFile(const std::string& path, const IngestOptions& options, RawCity& city, IngestStats& stats);
 
 /// A GeoJSON FeatureCollection into `city`. `ordinal` counts GeoJSON inputs from 0: index-based
 /// ids of the second and later files are "g:<ordinal>.<index>" so merged files never collide.

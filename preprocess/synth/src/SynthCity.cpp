@@ -3,7 +3,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "qv/core/SplitMix64.h"
 #include "qv/prep/Attributes.h"
@@ -143,6 +146,177 @@ void makeDetailedTowers(CityModel& model, std::uint64_t count) {
   }
 }
 
+// ---- The map (docs/synth-city.md "Map").
+
+/// The range of one grid column's (or row's) blocks, which the square spiral keeps contiguous.
+struct BlockRange {
+  long lo = 1, hi = 0;  // empty while lo > hi
+  void add(long v) {
+    if (empty()) {
+      lo = hi = v;
+    } else {
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
+    }
+  }
+  void add(const BlockRange& r) {
+    if (r.lo > r.hi) return;
+    add(r.lo);
+    add(r.hi);
+  }
+  [[nodiscard]] bool empty() const { return lo > hi; }
+};
+
+/// Park names for the empty blocks, nearest the centre first; the blocks after these have none.
+constexpr const char* kParkNames[] = {
+    "Linden Square", "Founders Park",  "Maple Green",    "Harbor Square", "Union Park",     "Chestnut Green",
+    "Mill Park",     "Orchard Square", "Willow Park",    "Market Green",  "Lantern Square", "Elm Park",
+    "Beacon Green",  "Garden Square",  "Cedar Park",     "Quarry Green",  "Meadow Square",  "Ash Park",
+    "Foundry Green", "Station Park",   "Hawthorn Green", "Bell Square",   "Juniper Park",   "Commons Green",
+};
+
+/// Neighbourhood names by compass direction from the centre (east first, counter-clockwise).
+constexpr const char* kQuarterNames[8] = {"Eastbank",  "Harbor Heights", "Northgate", "Hillcrest",
+                                          "Westfield", "Millbrook",      "Southside", "Riverside"};
+
+/// The avenues, streets, parks, river and neighbourhoods of a city whose blocks are the spiral's
+/// first `blocks`, of which `parks` (spiral order) have no buildings.
+GroundFeatures synthGround(std::uint64_t blocks, const std::vector<std::pair<long, long>>& parks) {
+  GroundFeatures g;
+  long radius = 0;
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    long i = 0, j = 0;
+    spiral(b, i, j);
+    radius = std::max({radius, std::labs(i), std::labs(j)});
+  }
+  // Column i's blocks span rows columns[i + radius], row j's span columns rows[j + radius].
+  std::vector<BlockRange> columns(static_cast<std::size_t>(2 * radius + 1));
+  std::vector<BlockRange> rows(columns.size());
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    long i = 0, j = 0;
+    spiral(b, i, j);
+    columns[static_cast<std::size_t>(i + radius)].add(j);
+    rows[static_cast<std::size_t>(j + radius)].add(i);
+  }
+  auto rangeOf = [radius](const std::vector<BlockRange>& ranges, long k) {
+    return k < -radius || k > radius ? BlockRange{} : ranges[static_cast<std::size_t>(k + radius)];
+  };
+  BlockRange allColumns, allRows;
+  for (long k = -radius; k <= radius; ++k) {
+    if (!rangeOf(columns, k).empty()) allColumns.add(k);
+    if (!rangeOf(rows, k).empty()) allRows.add(k);
+  }
+
+  // Avenues run north-south between columns i and i + 1, numbered from the west; every third is a
+  // major one. They reach as far as the blocks beside them.
+  for (long i = allColumns.lo - 1; i <= allColumns.hi; ++i) {
+    BlockRange along = rangeOf(columns, i);
+    along.add(rangeOf(columns, i + 1));
+    const long number = i - allColumns.lo + 2;
+    const bool major = number % 3 == 0;
+    const double x = (static_cast<double>(i) + 0.5) * kPitchX;
+    GroundLine avenue;
+    avenue.groundClass = major ? GroundClass::Major : GroundClass::Street;
+    avenue.widthM = major ? 20.0f : 14.0f;
+    avenue.rank = major ? 40 : 88;
+    avenue.name = ordinal(number) + " Avenue";
+    avenue.points = {{x, (static_cast<double>(along.lo) - 0.5) * kPitchY},
+                     {x, (static_cast<double>(along.hi) + 0.5) * kPitchY}};
+    g.lines.push_back(std::move(avenue));
+  }
+  // Streets run east-west between rows j and j + 1, named as the addresses of the lots of row j
+  // that face them ("North 14th Street"); every fifth is a major one.
+  for (long j = allRows.lo - 1; j <= allRows.hi; ++j) {
+    BlockRange along = rangeOf(rows, j);
+    along.add(rangeOf(rows, j + 1));
+    const long street = 2 * j + 1;
+    const long number = std::labs(street) + 1;
+    const bool major = number % 10 == 4;
+    const double y = (static_cast<double>(j) + 0.5) * kPitchY;
+    GroundLine crossStreet;
+    crossStreet.groundClass = major ? GroundClass::Major : GroundClass::Street;
+    crossStreet.widthM = major ? 14.0f : 10.0f;
+    crossStreet.rank = major ? 48 : 104;
+    crossStreet.name = (street >= 0 ? "North " : "South ") + ordinal(number) + " Street";
+    crossStreet.points = {{(static_cast<double>(along.lo) - 0.5) * kPitchX, y},
+                          {(static_cast<double>(along.hi) + 0.5) * kPitchX, y}};
+    g.lines.push_back(std::move(crossStreet));
+  }
+
+  // The empty blocks are parks.
+  for (std::size_t k = 0; k < parks.size(); ++k) {
+    const double bx = static_cast<double>(parks[k].first) * kPitchX - kBlockWidth / 2;
+    const double by = static_cast<double>(parks[k].second) * kPitchY - kBlockDepth / 2;
+    GroundArea park;
+    park.groundClass = GroundClass::Park;
+    park.rank = 112;
+    park.name = k < std::size(kParkNames) ? kParkNames[k] : "";
+    park.rings.emplace_back();
+    addRect(park.rings[0], bx, by, bx + kBlockWidth, by + kBlockDepth);
+    g.areas.push_back(std::move(park));
+  }
+
+  // A river beyond the east edge, about a twentieth of the city wide (150 .. 600 m), its banks
+  // meandering gently, running a fifth of the city's length past it north and south; between the
+  // last avenue and the river a riverside park 40 m wide at its narrowest.
+  const double south = (static_cast<double>(allRows.lo) - 0.5) * kPitchY;
+  const double north = (static_cast<double>(allRows.hi) + 0.5) * kPitchY;
+  const double west = (static_cast<double>(allColumns.lo) - 0.5) * kPitchX;
+  const double east = (static_cast<double>(allColumns.hi) + 0.5) * kPitchX;
+  const double span = std::max(north - south, east - west);
+  const double riverWidth = std::clamp(0.05 * span, 150.0, 600.0);
+  const double parkWest = east + kAvenue / 2;
+  const double bank = parkWest + 40.0;
+  const double amplitude = 30.0;
+  const double wavelength = std::max(1500.0, span / 3);
+  const double from = south - 0.2 * span - riverWidth;
+  const double to = north + 0.2 * span + riverWidth;
+  auto bankAt = [&](double y) {
+    return glm::dvec2{bank + amplitude * (1.0 - std::cos(2.0 * kPi * (y - from) / wavelength)), y};
+  };
+  const auto steps = static_cast<int>(std::ceil((to - from) / 50.0));
+  std::vector<glm::dvec2> westBank;
+  for (int k = 0; k <= steps; ++k) westBank.push_back(bankAt(from + (to - from) * k / steps));
+  GroundArea river;
+  river.groundClass = GroundClass::Water;
+  river.rank = 24;
+  river.name = "Synthetic River";
+  river.rings.emplace_back();
+  std::vector<glm::dvec2>& water = river.rings[0];
+  for (auto it = westBank.rbegin(); it != westBank.rend(); ++it) water.push_back(*it);  // north to south
+  for (const glm::dvec2& p : westBank) water.push_back({p.x + riverWidth, p.y});        // south to north
+  g.areas.push_back(std::move(river));
+  GroundArea riverside;
+  riverside.groundClass = GroundClass::Park;
+  riverside.rank = 96;
+  riverside.name = "Riverside Park";
+  riverside.rings.emplace_back();
+  std::vector<glm::dvec2>& strip = riverside.rings[0];
+  strip.push_back(bankAt(south));  // south to north along the river, then back along the avenue
+  for (const glm::dvec2& p : westBank) {
+    if (p.y > south && p.y < north) strip.push_back(p);
+  }
+  strip.push_back(bankAt(north));
+  strip.push_back({parkWest, north});
+  strip.push_back({parkWest, south});
+  g.areas.push_back(std::move(riverside));
+
+  // Neighbourhoods: downtown at the centre, the others around it at 55 % of the way to the edge,
+  // 4 to 8 of them as the city grows (one more per 1.5 km of its size beyond 1.5 km).
+  const long count = std::clamp(static_cast<long>(span / 1500.0) + 3, 4L, 8L);
+  const glm::dvec2 centre{0.5 * (west + east), 0.5 * (south + north)};
+  g.places.push_back({GroundLabelKind::Neighbourhood, centre, "Downtown", 60});
+  for (long k = 0; k + 1 < count; ++k) {
+    const double angle = kPi / 2 + 2.0 * kPi * static_cast<double>(k) / static_cast<double>(count - 1);
+    const glm::dvec2 at =
+        centre + 0.55 * glm::dvec2{0.5 * (east - west) * std::cos(angle), 0.5 * (north - south) * std::sin(angle)};
+    // The name of the compass direction nearest the angle (sectors of 45 degrees from east).
+    const auto sector = static_cast<std::size_t>(std::lround(angle / (kPi / 4))) % 8;
+    g.places.push_back({GroundLabelKind::Neighbourhood, at, kQuarterNames[sector], 80});
+  }
+  return g;
+}
+
 }  // namespace
 
 SynthRandom::SynthRandom(std::uint64_t seed) {
@@ -190,7 +364,10 @@ CityModel generateSynthCity(const SynthCityOptions& options) {
   const double coreRadius = std::max(300.0, 0.2 * cityRadius);
 
   std::uint64_t made = 0;
+  std::uint64_t blocks = 0;
+  std::vector<std::pair<long, long>> parks;  // the blocks left empty
   for (std::uint64_t blockIndex = 0; made < options.buildings; ++blockIndex) {
+    blocks = blockIndex + 1;
     long bi = 0, bj = 0;
     spiral(blockIndex, bi, bj);
     const double bx = static_cast<double>(bi) * kPitchX - kBlockWidth / 2;
@@ -198,7 +375,10 @@ CityModel generateSynthCity(const SynthCityOptions& options) {
     const double blockCentreDistance = std::hypot(bx + kBlockWidth / 2, by + kBlockDepth / 2);
     const double coreness = std::exp(-std::pow(blockCentreDistance / coreRadius, 2.0));  // 1 in the core
     // A few blocks are parks (no buildings) outside the core.
-    if (blockIndex > 0 && rng.chance(0.04 * (1.0 - coreness))) continue;
+    if (blockIndex > 0 && rng.chance(0.04 * (1.0 - coreness))) {
+      parks.emplace_back(bi, bj);
+      continue;
+    }
 
     // Lots: two rows back to back, frontages 14–34 m (wider in the core).
     std::vector<Lot> lots;
@@ -341,6 +521,7 @@ CityModel generateSynthCity(const SynthCityOptions& options) {
     }
   }
   makeDetailedTowers(model, options.detailedTowers);
+  if (options.ground) model.ground = synthGround(blocks, parks);
   return model;
 }
 

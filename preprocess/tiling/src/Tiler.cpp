@@ -546,6 +546,40 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
     if (const Status s = writeStagedFile(staging->path() + "/search.qvi", bytes); !s.ok()) return Error{s.error()};
     t.search = CityFile{"search.qvi", bytes.size(), crc32(bytes)};
   }
+  // 6. The ground (the map under the city), before the manifest that lists it.
+  if (options.ground && options.keptGround) {
+    // Files of the city being replaced, which goes when this one is committed: links (or copies)
+    // of them stay.
+    if (!options.keptGround->nodes.empty()) {
+      if (auto s = makeDirectories(staging->path() + "/ground"); !s.ok()) return Error{s.error()};
+    }
+    for (const GroundNode& node : options.keptGround->nodes) {
+      const Status s = linkOrCopyFile(options.keptGroundDir + "/" + node.file, staging->path() + "/" + node.file);
+      if (!s.ok()) return Error{"cannot keep the city's ground: " + s.error()};
+    }
+    t.ground = options.keptGround;
+  } else if (options.ground) {
+    if (!model.ground.empty()) {
+      if (auto s = makeDirectories(staging->path() + "/ground"); !s.ok()) return Error{s.error()};
+    }
+    GroundTilerOptions groundOptions;
+    groundOptions.threads = threads;
+    auto ground = writeGroundTiles(model.ground, nodes[0].bounds, staging->path(), groundOptions);
+    if (!ground.ok()) return Error{ground.error()};
+    t.ground = ground->layer;
+    if (t.ground->nodes.empty() && !(t.ground->size > 0.0)) {
+      // Nothing to draw: the layer still has a square (the manifest requires one), the city's.
+      const Rect& b = nodes[0].bounds;
+      const double side = std::max({double{b.width()}, double{b.height()}, 1.0});
+      t.ground->minX = double{b.centerX()} - 0.5 * side;
+      t.ground->minY = double{b.centerY()} - 0.5 * side;
+      t.ground->size = side;
+      t.ground->levels = 1;
+    }
+    report.ground = std::move(ground).value();
+  }
+  if (interrupted()) return Error{"interrupted; the previous output (if any) is unchanged"};
+
   t.generator = options.generator;
   t.name = options.name;
   t.originLon = model.originLon;

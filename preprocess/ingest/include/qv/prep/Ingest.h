@@ -39,6 +39,10 @@ struct IngestOptions {
   std::optional<std::array<double, 2>> originLonLat;
   /// Worker threads for projection and cleaning (0: the machine's cores, at most 4).
   unsigned threads = 0;
+  /// Read the map under the buildings from OSM inputs (streets, railways, water, parks, open land,
+  /// coastline, place names: docs/attributes.md "Ground features") into CityModel::ground. Off:
+  /// nothing of it is looked at or kept. GeoJSON inputs have no ground either way.
+  bool ground = true;
 };
 
 /// What the readers saw, for the summary and the tests.
@@ -53,9 +57,14 @@ struct IngestStats {
   std::uint64_t partsStandalone = 0;           ///< parts without a containing outline: own buildings
   std::uint64_t geojsonFeatures = 0;           ///< features in the GeoJSON inputs
   std::uint64_t buildings = 0;                 ///< buildings in the model
-  std::uint64_t points = 0;   ///< distinct footprint vertices projected (a shared OSM node counts once)
-  double readSeconds = 0.0;   ///< parsing the inputs and assembling multipolygons
-  double buildSeconds = 0.0;  ///< projection, cleaning, parts, attributes
+  std::uint64_t points = 0;            ///< distinct footprint vertices projected (a shared OSM node counts once)
+  std::uint64_t groundLines = 0;       ///< streets, railways, paths and rivers in CityModel::ground
+  std::uint64_t groundAreas = 0;       ///< water, parks, forest and open land (one per outer ring)
+  std::uint64_t groundPlaces = 0;      ///< named places
+  std::uint64_t groundCoastlines = 0;  ///< natural=coastline ways (or their pieces between missing nodes)
+  std::uint64_t groundSkipped = 0;     ///< ground objects seen but not kept (CityModel::ground.skipped)
+  double readSeconds = 0.0;            ///< parsing the inputs and assembling multipolygons
+  double buildSeconds = 0.0;           ///< projection, cleaning, parts, attributes
 };
 
 /// Reads every input (format from the file name: .osm, .osm.bz2, .osm.gz, .osm.pbf, .pbf,

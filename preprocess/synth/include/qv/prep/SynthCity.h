@@ -19,6 +19,10 @@ struct SynthCityOptions {
   /// (BuildingPart::sourceId "<id>/podium",
   /// "<id>/shaft", "<id>/crown") on floor levels, for quakeview-prep to make LOD2 models of. 0: none.
   std::uint64_t detailedTowers = 0;
+  /// The city's map in CityModel::ground (docs/synth-city.md "Map"): its avenues and streets
+  /// (named), the empty blocks as parks, a river with a riverside park beyond its east edge and
+  /// neighbourhood names. It takes no random numbers: the buildings are the same either way.
+  bool ground = true;
 };
 
 inline constexpr std::uint16_t kMinTowerStoreys = 3;

@@ -1,6 +1,7 @@
 // Cuts a CityModel into the quadtree of binary city tiles the viewer streams, and writes the
 // city directory: tiles/<level>-<x>-<y>.qvt and tileset.json (written last: the manifest is the
-// commit point), and search.qvi (the city-wide building table, docs/formats.md). Leaves hold a
+// commit point), search.qvi (the city-wide building table, docs/formats.md) and the map under the
+// city, ground/<level>-<x>-<y>.qvg (qv/prep/GroundTiler.h). Leaves hold a
 // bounded number of buildings at full detail; every inner tile holds a coarse prism of the largest
 // buildings below it (all of them up to maxCoarseBuildings), so the far city draws from a few inner
 // tiles (hierarchical LOD, as in 3D Tiles' REPLACE refinement) and no tile grows with the city.
@@ -14,6 +15,7 @@
 #include "qv/core/Result.h"
 #include "qv/format/Tileset.h"
 #include "qv/prep/CityModel.h"
+#include "qv/prep/GroundTiler.h"
 
 namespace qv::prep {
 
@@ -32,6 +34,15 @@ struct TilerOptions {
   /// passes the old record (its buildingsRevision older than `buildingsRevision`), so the city
   /// reports its response as out of date; no tile refers to the old response files.
   std::optional<ResponseInfo> response;
+  /// Writes the ground pyramid of model.ground and the manifest's `ground` layer (present with no
+  /// cells when the model has no ground features). Off (--no-ground): neither, and no `ground`.
+  bool ground = true;
+  /// A city rewritten from its own tiles (lod2) has no ground features in its model: the ground
+  /// layer of the city it replaces, kept as it is: its files are linked or copied from the city
+  /// directory `keptGroundDir` and the layer goes into the manifest unchanged. Used instead of
+  /// model.ground when set (and `ground` is on).
+  std::optional<GroundLayer> keptGround;
+  std::string keptGroundDir;
 };
 
 struct TilerReport {
@@ -44,6 +55,9 @@ struct TilerReport {
   std::uint64_t smallestLeafBytes = 0;
   int depth = 0;
   std::uint64_t triangulationDrops = 0;
+  /// What writeGroundTiles reported, when the ground was written from model.ground (not with
+  /// --no-ground, not when a kept ground was copied).
+  std::optional<GroundTilerReport> ground;
   Tileset tileset;  ///< the manifest as written
 };
 
