@@ -125,8 +125,8 @@ void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
     }
     list.AddText(font, size, topLeft, p.facility ? IM_COL32(120, 20, 10, 255) : labelColour(p.kind), begin, end);
     if (p.angleRad != 0.0f) rotateVertices(list, first, ImVec2(p.center.x, p.center.y), p.angleRad);
-    shownMapLabels_.push_back(
-        ShownMapLabel{std::string(p.text), p.kind, p.center.x, p.center.y, p.angleRad * 57.29578f, p.facility});
+    shownMapLabels_.push_back(ShownMapLabel{std::string(p.text), p.kind, p.center.x, p.center.y, p.size.x, p.size.y,
+                                            p.angleRad * 57.29578f, p.facility});
     if (!mirrored.empty()) mirrored += "; ";
     mirrored += p.text;
   }
