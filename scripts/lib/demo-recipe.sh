@@ -9,9 +9,10 @@ QV_DEMO_QUAKE_RECIPE="response --synthetic 1 2 3 --epicentre -74.02,40.69,10 --m
 # Raised when the files a recipe makes change (2: the response's far-view drift series; 3: the
 # consequences' "moderate_or_worse" totals; 4: the site's shaking, summary section SITE; 5: files
 # stored as Zstandard frames, slim tile summaries, occupants and type mixtures; 6: the situation
-# report's casualties by time of day, damage by class and inferred counts), so a prepared demo
-# from an older version is made again.
-QV_DEMO_DATA_VERSION=6
+# report's casualties by time of day, damage by class and inferred counts; 7: the map under the
+# city, streets, a river, parks and neighbourhood names), so a prepared demo from an older version
+# is made again.
+QV_DEMO_DATA_VERSION=7
 
 # qv_demo_prepare PREP DIR [LOG_PREFIX]: makes the default scenario (city and earthquake) in DIR
 # with the quakeview-prep binary PREP, unless DIR already holds it (DIR/.recipe records the
