@@ -58,6 +58,8 @@ class GroundScene {
   /// evicts beyond the budget, and fills items() and labels().
   void update(const CameraView& view);
 
+  GroundSceneOptions& mutableOptions() { return options_; }
+
   [[nodiscard]] std::span<const GroundDrawItem> items() const { return items_; }
   /// The labels of the drawn cells, most important (lowest rank) first.
   [[nodiscard]] const std::vector<MapLabel>& labels() const { return labels_; }
