@@ -189,7 +189,8 @@ TEST_CASE("The shader sources take the table layout from the generated block onl
       INFO(name);
       // kBuildingVertex etc. are the C++ names of the sources themselves.
       if (contains(name, "Vertex") || contains(name, "Fragment")) continue;
-      CHECK(std::regex_search(constants + palette, std::regex("const \\w+ " + name + " = ")));
+      // A scalar, vector or array constant: "const vec3 kSelected = ", "const vec3[10] kGroundClass = ".
+      CHECK(std::regex_search(constants + palette, std::regex("const \\w+(\\[\\d+\\])? " + name + " = ")));
     }
   }
 }

@@ -212,8 +212,8 @@ void main() {
 )";
 
 // The map under the city (qv::GroundDrawItem): flat triangles coloured by their class
-// (qv::kGroundPalette, generated into the shader at @PALETTE@), muted so that the buildings'
-// damage colours stay what the eye finds first.
+// (the palette's ground colours, kGroundClass, generated into the shader at @PALETTE@), muted so
+// that the buildings' damage colours stay what the eye finds first.
 const char* const kGroundMapVertex = R"(#version 300 es
 precision highp float;
 layout(location = 0) in vec2 a_position;

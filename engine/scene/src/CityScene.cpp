@@ -242,10 +242,9 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   t0 = clock_.nowSeconds();
   selectAndRequest(view);
   // The map after the buildings' tiles: they come first in the limit of requests in flight.
-  // The map's detail follows the buildings' (the quality presets and the governor coarsen both),
-  // half again as coarse: on a software renderer its triangles cost frames as the buildings' do.
+  // The map's detail follows the buildings' (the quality presets and the governor coarsen both).
   if (ground_) {
-    ground_->mutableOptions().maxScreenSpaceError = options_.maxScreenSpaceError * 1.5f;
+    ground_->mutableOptions().maxScreenSpaceError = options_.maxScreenSpaceError;
     ground_->update(view);
   }
   times.lod += msSince(clock_, t0);

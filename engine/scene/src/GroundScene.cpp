@@ -128,6 +128,8 @@ void GroundScene::evict(Cell& cell) {
 
 namespace {
 
+constexpr float kCellPixelsPerError = 48.0f;
+
 float distanceToBox(const glm::vec3& p, const Box& b) {
   const float dx = std::max({b.minX - p.x, 0.0f, p.x - b.maxX});
   const float dy = std::max({b.minY - p.y, 0.0f, p.y - b.maxY});
@@ -144,7 +146,13 @@ void GroundScene::visit(std::uint32_t index, const CameraView& view, std::vector
   bool hasChildren = false;
   for (std::uint32_t c : cell.children) hasChildren = hasChildren || c != UINT32_MAX;
   const float distance = std::max(distanceToBox(view.eye(), cell.box), view.nearPlane());
-  const float sse = cell.node.geometricErrorM * view.pixelsPerMeterAt(distance);
+  // An inner cell leaves out the streets, paths and small parks of its subtree, which its
+  // geometric error (its shapes' simplification) does not count: it is refined once it spans more
+  // than kCellPixelsPerError times the error limit on screen (576 pixels at the default 12), so the
+  // streets show from about a kilometre and a half on a laptop's screen.
+  const float side = cell.box.maxX - cell.box.minX;
+  const float error = std::max(cell.node.geometricErrorM, side / kCellPixelsPerError);
+  const float sse = error * view.pixelsPerMeterAt(distance);
   if (hasChildren && sse > options_.maxScreenSpaceError && drawn.size() + 4 <= options_.maxDrawCells) {
     bool ready = true;
     for (std::uint32_t c : cell.children) {

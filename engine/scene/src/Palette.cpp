@@ -63,7 +63,7 @@ std::string paletteGlsl() {
   s += "const vec3 kTagGreen = " + glslVec3(kTagPalette[0]) + ";\n";
   s += "const vec3 kTagYellow = " + glslVec3(kTagPalette[1]) + ";\n";
   s += "const vec3 kTagRed = " + glslVec3(kTagPalette[2]) + ";\n";
-  s += "const vec3 kGroundClass[" + std::to_string(kGroundPalette.size()) + "] = vec3[" +
+  s += "const vec3[" + std::to_string(kGroundPalette.size()) + "] kGroundClass = vec3[" +
        std::to_string(kGroundPalette.size()) + "](";
   for (std::size_t i = 0; i < kGroundPalette.size(); ++i) s += (i > 0 ? ", " : "") + glslVec3(kGroundPalette[i]);
   s += ");\n";

@@ -26,7 +26,9 @@
 namespace qv {
 
 struct GroundSceneOptions {
-  float maxScreenSpaceError = 8.0f;               ///< device pixels before a cell is refined
+  /// Device pixels of error before a cell is refined (its geometric error, or its side / 48 when
+  /// larger: inner cells leave out the streets and small parks).
+  float maxScreenSpaceError = 12.0f;
   std::uint32_t maxDrawCells = 160;               ///< cells drawn at most (refinement stops there)
   std::uint64_t memoryBudgetBytes = 48ull << 20;  ///< decoded labels + GPU meshes
 };

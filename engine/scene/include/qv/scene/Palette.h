@@ -86,7 +86,7 @@ Rgb notAnimatedGrey(float t);
 /// building shader: `const vec3 kNoResult`, `kSelected`, `kDimmed`, `kTagGreen`, `kTagYellow`,
 /// `kTagRed`; `vec3 ramp(float t)` (paletteRamp) and `vec3 notAnimatedGrey(float t)`
 /// (notAnimatedGrey), each with t clamped to [0, 1]; `float driftPosition(float drift)`
-/// (driftRampPosition); `const vec3 kGroundClass[10]` (kGroundPalette). Colours are written with 4
+/// (driftRampPosition); `const vec3[10] kGroundClass` (kGroundPalette). Colours are written with 4
 /// decimals.
 std::string paletteGlsl();
 
