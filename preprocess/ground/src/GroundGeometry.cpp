@@ -7,46 +7,13 @@
 #include <utility>
 
 #include "qv/core/Text.h"
+#include "qv/prep/DouglasPeucker.h"
 
 namespace qv::prep::ground {
 namespace {
 
 double cross(glm::dvec2 a, glm::dvec2 b) {
   return a.x * b.y - a.y * b.x;
-}
-
-double squaredDistanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
-  const glm::dvec2 ab = b - a;
-  const double len2 = ab.x * ab.x + ab.y * ab.y;
-  double t = len2 > 0.0 ? ((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  const glm::dvec2 d = p - (a + ab * t);
-  return d.x * d.x + d.y * d.y;
-}
-
-// Marks the points of pts[first..last] Douglas–Peucker keeps at `tol` (the ends are the caller's).
-// Iterative: rings of a million points must not recurse a million deep.
-void douglasPeucker(std::span<const glm::dvec2> pts, std::size_t first, std::size_t last, double tol,
-                    std::vector<bool>& keep) {
-  std::vector<std::pair<std::size_t, std::size_t>> stack = {{first, last}};
-  while (!stack.empty()) {
-    const auto [a, b] = stack.back();
-    stack.pop_back();
-    double worst = -1.0;
-    std::size_t index = a;
-    for (std::size_t i = a + 1; i < b; ++i) {
-      const double d = squaredDistanceToSegment(pts[i], pts[a], pts[b]);
-      if (d > worst) {
-        worst = d;
-        index = i;
-      }
-    }
-    if (worst > tol * tol) {
-      keep[index] = true;
-      stack.emplace_back(a, index);
-      stack.emplace_back(index, b);
-    }
-  }
 }
 
 void removeConsecutiveDuplicates(Ring& ring) {

@@ -4,45 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include "qv/prep/DouglasPeucker.h"
+
 namespace qv::prep {
 namespace {
 
 double cross(glm::dvec2 o, glm::dvec2 a, glm::dvec2 b) {
   return (a.x - o.x) * (b.y - o.y) - (a.y - o.y) * (b.x - o.x);
-}
-
-// Squared distance (no square root in the inner loop of the simplification).
-double squaredDistanceToSegment(glm::dvec2 p, glm::dvec2 a, glm::dvec2 b) {
-  const glm::dvec2 ab = b - a;
-  const double len2 = ab.x * ab.x + ab.y * ab.y;
-  double t = len2 > 0.0 ? ((p.x - a.x) * ab.x + (p.y - a.y) * ab.y) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  const glm::dvec2 q = a + ab * t;
-  return (p.x - q.x) * (p.x - q.x) + (p.y - q.y) * (p.y - q.y);
-}
-
-void douglasPeucker(std::span<const glm::dvec2> pts, std::size_t first, std::size_t last, double tol,
-                    std::vector<bool>& keep) {
-  // Iterative with an explicit stack: footprints with thousands of points must not recurse deeply.
-  std::vector<std::pair<std::size_t, std::size_t>> stack = {{first, last}};
-  while (!stack.empty()) {
-    const auto [a, b] = stack.back();
-    stack.pop_back();
-    double worst = -1.0;
-    std::size_t index = a;
-    for (std::size_t i = a + 1; i < b; ++i) {
-      const double d = squaredDistanceToSegment(pts[i], pts[a], pts[b]);
-      if (d > worst) {
-        worst = d;
-        index = i;
-      }
-    }
-    if (worst > tol * tol) {
-      keep[index] = true;
-      stack.emplace_back(a, index);
-      stack.emplace_back(index, b);
-    }
-  }
 }
 
 bool segmentsIntersect(glm::dvec2 p1, glm::dvec2 p2, glm::dvec2 q1, glm::dvec2 q2) {
