@@ -43,7 +43,7 @@ struct Folder {
 
 }  // namespace
 
-TEST_CASE("city writes the ground and says so; --no-ground leaves it out", "[ground][cli]") {
+TEST_CASE("city writes the ground and says so, and --no-ground leaves it out", "[ground][cli]") {
   Folder folder;
   const std::string city = folder.path + "/midtown";
   const auto written = run("city --input '" + kMidtown + "' --out '" + city + "' --no-lod2");
@@ -118,7 +118,7 @@ TEST_CASE("A city without streets, water or open land has an empty ground layer"
   CHECK(run("info --verify '" + city + "'").exitCode == 0);
 }
 
-TEST_CASE("synth-city writes its map; --no-ground leaves it out; --help lists the flag", "[ground][cli]") {
+TEST_CASE("synth-city writes its map, --no-ground leaves it out, and --help lists the flag", "[ground][cli]") {
   Folder folder;
   const std::string city = folder.path + "/synth";
   const auto written = run("synth-city --buildings 300 --seed 3 --out '" + city + "'");
