@@ -5,7 +5,6 @@
 #include <queue>
 
 namespace qv {
-namespace {
 
 float distanceToBox(const glm::vec3& p, const Box& b) {
   const float dx = std::max({b.minX - p.x, 0.0f, p.x - b.maxX});
@@ -13,8 +12,6 @@ float distanceToBox(const glm::vec3& p, const Box& b) {
   const float dz = std::max({b.minZ - p.z, 0.0f, p.z - b.maxZ});
   return std::sqrt(dx * dx + dy * dy + dz * dz);
 }
-
-}  // namespace
 
 Box nodeBox(const TileNode& n) {
   return Box{n.bounds.minX, n.bounds.minY, 0.0f, n.bounds.maxX, n.bounds.maxY, std::max(n.maxHeightM, 1.0f)};

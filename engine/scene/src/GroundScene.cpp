@@ -130,13 +130,6 @@ namespace {
 
 constexpr float kCellPixelsPerError = 48.0f;
 
-float distanceToBox(const glm::vec3& p, const Box& b) {
-  const float dx = std::max({b.minX - p.x, 0.0f, p.x - b.maxX});
-  const float dy = std::max({b.minY - p.y, 0.0f, p.y - b.maxY});
-  const float dz = std::max({b.minZ - p.z, 0.0f, p.z - b.maxZ});
-  return std::sqrt(dx * dx + dy * dy + dz * dz);
-}
-
 }  // namespace
 
 void GroundScene::visit(std::uint32_t index, const CameraView& view, std::vector<std::uint32_t>& drawn) {

@@ -61,6 +61,8 @@ struct TileSelection {
 /// Screen-space error of a node for a view, in device pixels.
 float screenSpaceError(const TileNode& node, const CameraView& view);
 
+/// Distance from a point to the nearest point of a box (0 inside), metres.
+float distanceToBox(const glm::vec3& p, const Box& b);
 /// 3D box of a node: its footprint bounds from the ground to its tallest building.
 Box nodeBox(const TileNode& node);
 
