@@ -670,6 +670,7 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
       const bool b = w.checkbox("Show LOD2 buildings (detailed models)", &lod2);
       if (a || b) city->setLodVisibility(lod1, lod2);
     }
+    drawMapNamesSwitch(viewer, w);
     bool feet = viewer.showFeet();
     if (w.radio("Metres##units", !feet)) viewer.setShowFeet(false);
     w.sameLine();

@@ -135,13 +135,14 @@ void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
 }
 
 void ControlPanel::drawMapLine(const Tileset& tileset, ui::Widgets& w) {
+  // One short line: the panel must leave the city most of the canvas.
   if (!tileset.ground) {
-    w.textWrapped("Map: none under this city (made with --no-ground, or by a quakeview-prep without the map).");
+    w.text("Map: none (made with --no-ground or an older tool)");
     return;
   }
   const GroundLayer& g = *tileset.ground;
   if (g.nodes.empty()) {
-    w.textWrapped("Map: the city's input had no streets, water or open land; the ground is plain.");
+    w.text("Map: none in the input (no streets, water or parks)");
     return;
   }
   auto count = [&g](const char* key) {
@@ -151,8 +152,12 @@ void ControlPanel::drawMapLine(const Tileset& tileset, ui::Widgets& w) {
   const unsigned long long streets = count("street") + count("major") + count("motorway") + count("path");
   const unsigned long long water = count("water");
   const unsigned long long open = count("park") + count("green") + count("forest");
-  w.textWrapped(ui::format("Map: %llu streets and paths, %llu water, %llu parks and open land from the city's input",
-                           streets, water, open));
+  w.text(ui::format("Map from the input: %llu streets, %llu water, %llu parks", streets, water, open));
+}
+
+void ControlPanel::drawMapNamesSwitch(Viewer& viewer, ui::Widgets& w) {
+  const CityScene* city = viewer.city();
+  if (city == nullptr || city->ground() == nullptr) return;
   bool names = showMapNames_;
   if (w.checkbox("Names on the map", &names)) showMapNames_ = names;
 }

@@ -137,6 +137,8 @@ class ControlPanel {
   void drawMapLabels(Viewer& viewer, ui::Widgets& w);
   /// One line on the map under the city: what it shows, or why there is none.
   void drawMapLine(const Tileset& tileset, ui::Widgets& w);
+  /// The "Names on the map" switch (General section), when the city has a map.
+  void drawMapNamesSwitch(Viewer& viewer, ui::Widgets& w);
   /// The city's scenarios (ControlPanelScenarios.cpp): the one shown, and a section listing them
   /// all with their event types, a click showing another; nothing without a catalogue.
   void drawScenarios(Viewer& viewer, ui::Widgets& w);
