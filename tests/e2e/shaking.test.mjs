@@ -159,6 +159,8 @@ test('synth: buildings far from the camera sway from their drift series, by the 
       window.quakeview.setColorMode('neutral');
       window.quakeview.setCamera({ distance: 1500, pitchDeg: 35 });
     });
+    // What the closer view brings (tiles, the map's cells) has loaded: only the shaking may change it.
+    await settle(page);
     await page.waitForTimeout(1500);
     const change = async (amplitude, [s0, s1]) => {
       assert.equal(await page.evaluate((a) => window.quakeview.setAmplitude(a), amplitude), true);
