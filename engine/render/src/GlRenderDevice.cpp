@@ -129,26 +129,19 @@ GlRenderDevice::~GlRenderDevice() {
   glDeleteProgram(groundProgram_);
 }
 
-MeshHandle GlRenderDevice::createMesh(const MeshData& data) {
-  if (!ok() || data.indices.empty() || data.vertices.empty()) return {};
+MeshHandle GlRenderDevice::uploadMesh(const void* vertices, std::size_t vertexBytes,
+                                      std::span<const std::uint32_t> indices, void (*attributes)(),
+                                      std::size_t modelTriangles, std::size_t fallbackTriangles) {
   Mesh mesh;
   glGenVertexArrays(1, &mesh.vao);
   glBindVertexArray(mesh.vao);
   glGenBuffers(1, &mesh.vertexBuffer);
   glBindBuffer(GL_ARRAY_BUFFER, mesh.vertexBuffer);
-  const auto vertexBytes = static_cast<GLsizeiptr>(data.vertices.size() * sizeof(BuildingVertex));
-  glBufferData(GL_ARRAY_BUFFER, vertexBytes, data.vertices.data(), GL_STATIC_DRAW);
-  constexpr auto stride = static_cast<GLsizei>(sizeof(BuildingVertex));
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, byteOffset(offsetof(BuildingVertex, x)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribIPointer(1, 4, GL_BYTE, stride, byteOffset(offsetof(BuildingVertex, nx)));
-  glEnableVertexAttribArray(2);
-  glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, stride, byteOffset(offsetof(BuildingVertex, slot)));
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertexBytes), vertices, GL_STATIC_DRAW);
+  attributes();
   glGenBuffers(1, &mesh.indexBuffer);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indexBuffer);
-  const auto indexBytes = static_cast<GLsizeiptr>(data.indices.size() * sizeof(std::uint32_t));
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, indexBytes, data.indices.data(), GL_STATIC_DRAW);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size_bytes()), indices.data(), GL_STATIC_DRAW);
   glBindVertexArray(0);
   if (glGetError() == GL_OUT_OF_MEMORY) {
     glDeleteVertexArrays(1, &mesh.vao);
@@ -156,10 +149,10 @@ MeshHandle GlRenderDevice::createMesh(const MeshData& data) {
     glDeleteBuffers(1, &mesh.indexBuffer);
     return {};
   }
-  mesh.indexCount = static_cast<int>(data.indices.size());
-  mesh.modelTriangles = data.modelTriangles;
-  mesh.fallbackTriangles = data.fallbackTriangles;
-  mesh.bytes = static_cast<std::size_t>(vertexBytes + indexBytes);
+  mesh.indexCount = static_cast<int>(indices.size());
+  mesh.modelTriangles = modelTriangles;
+  mesh.fallbackTriangles = fallbackTriangles;
+  mesh.bytes = vertexBytes + indices.size_bytes();
   meshBytes_ += mesh.bytes;
   pendingUpload_ += mesh.bytes;
   const std::uint32_t id = nextId_++;
@@ -167,38 +160,31 @@ MeshHandle GlRenderDevice::createMesh(const MeshData& data) {
   return MeshHandle{id};
 }
 
+MeshHandle GlRenderDevice::createMesh(const MeshData& data) {
+  if (!ok() || data.indices.empty() || data.vertices.empty()) return {};
+  const auto attributes = [] {
+    constexpr auto stride = static_cast<GLsizei>(sizeof(BuildingVertex));
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, stride, byteOffset(offsetof(BuildingVertex, x)));
+    glEnableVertexAttribArray(1);
+    glVertexAttribIPointer(1, 4, GL_BYTE, stride, byteOffset(offsetof(BuildingVertex, nx)));
+    glEnableVertexAttribArray(2);
+    glVertexAttribIPointer(2, 1, GL_UNSIGNED_INT, stride, byteOffset(offsetof(BuildingVertex, slot)));
+  };
+  return uploadMesh(data.vertices.data(), data.vertices.size() * sizeof(BuildingVertex), data.indices, attributes,
+                    data.modelTriangles, data.fallbackTriangles);
+}
+
 MeshHandle GlRenderDevice::createGroundMesh(const GroundMeshData& data) {
   if (!ok() || data.indices.empty() || data.vertices.empty()) return {};
-  Mesh mesh;
-  glGenVertexArrays(1, &mesh.vao);
-  glBindVertexArray(mesh.vao);
-  glGenBuffers(1, &mesh.vertexBuffer);
-  glBindBuffer(GL_ARRAY_BUFFER, mesh.vertexBuffer);
-  const auto vertexBytes = static_cast<GLsizeiptr>(data.vertices.size_bytes());
-  glBufferData(GL_ARRAY_BUFFER, vertexBytes, data.vertices.data(), GL_STATIC_DRAW);
-  constexpr auto stride = static_cast<GLsizei>(sizeof(GroundVertex));
-  glEnableVertexAttribArray(0);
-  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, byteOffset(offsetof(GroundVertex, x)));
-  glEnableVertexAttribArray(1);
-  glVertexAttribIPointer(1, 1, GL_UNSIGNED_BYTE, stride, byteOffset(offsetof(GroundVertex, groundClass)));
-  glGenBuffers(1, &mesh.indexBuffer);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, mesh.indexBuffer);
-  const auto indexBytes = static_cast<GLsizeiptr>(data.indices.size_bytes());
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, indexBytes, data.indices.data(), GL_STATIC_DRAW);
-  glBindVertexArray(0);
-  if (glGetError() == GL_OUT_OF_MEMORY) {
-    glDeleteVertexArrays(1, &mesh.vao);
-    glDeleteBuffers(1, &mesh.vertexBuffer);
-    glDeleteBuffers(1, &mesh.indexBuffer);
-    return {};
-  }
-  mesh.indexCount = static_cast<int>(data.indices.size());
-  mesh.bytes = static_cast<std::size_t>(vertexBytes + indexBytes);
-  meshBytes_ += mesh.bytes;
-  pendingUpload_ += mesh.bytes;
-  const std::uint32_t id = nextId_++;
-  meshes_.emplace(id, mesh);
-  return MeshHandle{id};
+  const auto attributes = [] {
+    constexpr auto stride = static_cast<GLsizei>(sizeof(GroundVertex));
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, stride, byteOffset(offsetof(GroundVertex, x)));
+    glEnableVertexAttribArray(1);
+    glVertexAttribIPointer(1, 1, GL_UNSIGNED_BYTE, stride, byteOffset(offsetof(GroundVertex, groundClass)));
+  };
+  return uploadMesh(data.vertices.data(), data.vertices.size_bytes(), data.indices, attributes, 0, 0);
 }
 
 void GlRenderDevice::drawGroundItems(const FrameUniforms& f, DeviceFrameStats& stats) {

@@ -57,6 +57,9 @@ class GlRenderDevice final : public RenderDevice {
     std::vector<float> shadow;  // rows × kTableWidth × 4 floats
     int dirtyFirstRow = -1, dirtyLastRow = -1;
   };
+  /// Uploads vertices and indices into a new VAO whose vertex layout `attributes` sets up.
+  MeshHandle uploadMesh(const void* vertices, std::size_t vertexBytes, std::span<const std::uint32_t> indices,
+                        void (*attributes)(), std::size_t modelTriangles, std::size_t fallbackTriangles);
   void writeTexels(DataTexture& table, std::size_t firstTexel, const float* data, std::size_t texelCount);
   void flush(DataTexture& table);
   struct ByteTexture {
