@@ -85,7 +85,8 @@ test('a failing tile server: failures are shown, the frame loop keeps going, and
     await healthy.waitForTimeout(500);
     const healthyStats = await healthy.evaluate(() => window.quakeview.stats());
     const reference = decodePng(await healthy.screenshot());
-    assert.equal(recoveredStats.buildings.visible, healthyStats.buildings.visible);
+    assert.equal(recoveredStats.buildings.visible, healthyStats.buildings.visible,
+      `the same buildings in view: recovered ${JSON.stringify(recoveredStats.tiles)}, healthy ${JSON.stringify(healthyStats.tiles)}`);
     assert.equal(recoveredStats.tiles.loaded >= healthyStats.tiles.loaded, true);
     const city = { x: 420, y: 40, width: 840, height: 500 };
     const diff = changedFraction(recovered, reference, 40, city);

@@ -449,8 +449,9 @@ void App::frame(bool forced) {
   dispatchInput();
   if (input_) input_->setUiWantsKeyboard(ui::imguiBrowserKeyboard() == ui::UiKeyboard::Typing);
 
-  // The city's first view is framed beside the panel as it was last drawn.
-  viewer_->setFramingInsetCss(panel_.panelRightCss(),
+  // The city's view is framed beside the panel (at its usual width, as it was last drawn: open or
+  // folded).
+  viewer_->setFramingInsetCss(panel_.framingRightCss(),
                               ControlPanel::narrowLayout(canvas.cssWidth)
                                   ? 0.0
                                   : ControlPanel::widestPanelRightCss(static_cast<float>(canvas.cssWidth)));

@@ -140,6 +140,9 @@ TileCounts CityScene::tileCounts() const {
   for (std::uint32_t i : selection_.wanted) {
     if (tiles_[i]->tile.state == TileState::Unloaded) ++c.pending;
   }
+  c.drawn = static_cast<std::uint32_t>(selection_.draw.size());
+  c.drawLimited = selection_.budgetLimited;
+  c.memoryLimited = selection_.memoryLimited;
   return c;
 }
 

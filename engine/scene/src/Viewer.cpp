@@ -461,6 +461,7 @@ std::string Viewer::statsJson(const MemoryInfo& memory) const {
   const TileCounts tiles = city_ ? city_->tileCounts() : TileCounts{};
   w.key("tiles").beginObject();
   w.field("loaded", tiles.loaded).field("pending", tiles.pending).field("failed", tiles.failed);
+  w.field("drawn", tiles.drawn).field("drawLimited", tiles.drawLimited).field("memoryLimited", tiles.memoryLimited);
   w.endObject();
   w.field("heapBytes", memory.heapBytes);
   w.field("heapReservedBytes", memory.heapReservedBytes);

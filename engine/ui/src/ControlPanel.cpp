@@ -442,11 +442,11 @@ void ControlPanel::drawPanel(Viewer& viewer, ui::Widgets& w, const MemoryInfo& m
   ImGui::SetNextWindowBgAlpha(0.90f);
   if (focusSearch_) ImGui::SetNextWindowCollapsed(false);  // '/' opens the panel, whatever its state
   if (!w.begin("QuakeView", nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
-    panelRight_ = 0.0f;
+    framingRight_ = 0.0f;
     w.end();
     return;
   }
-  panelRight_ = narrow ? 0.0f : ImGui::GetWindowPos().x + ImGui::GetWindowSize().x;
+  framingRight_ = narrow ? 0.0f : ImGui::GetWindowPos().x + std::min(kPanelWidth, maxWidth);
   const StatsSummary s = viewer.stats();
   CityScene* city = viewer.city();
   const Tileset* tileset = city != nullptr ? city->tileset() : nullptr;

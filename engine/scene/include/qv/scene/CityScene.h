@@ -84,6 +84,9 @@ struct TileCounts {
   std::uint32_t loaded = 0;
   std::uint32_t pending = 0;  ///< wanted by the view and not loaded yet (tiles and response tiers)
   std::uint32_t failed = 0;
+  std::uint32_t drawn = 0;     ///< tiles drawn in the last frame
+  bool drawLimited = false;    ///< the last selection stopped refining at the draw-call budget
+  bool memoryLimited = false;  ///< the last selection stopped refining at the memory budget
 };
 
 /// Time series of one building for plots: `samples` values evenly spaced over [0, duration].

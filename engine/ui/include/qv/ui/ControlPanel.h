@@ -91,9 +91,11 @@ class ControlPanel {
   /// Sets the city's detail from the preset, lowered by `governorStep` steps (qualitySettings).
   static void applyQuality(Viewer& viewer, QualityPreset preset, int governorStep = 0);
   [[nodiscard]] QualityPreset quality() const { return quality_; }
-  /// The right edge of the control panel as last drawn (CSS px from the canvas's left), 0 when it
-  /// is folded or on a narrow screen (then it covers none of the city's first view).
-  [[nodiscard]] float panelRightCss() const { return panelRight_; }
+  /// The right edge of the panel at its usual width (CSS px), 0 when it is folded or on a narrow
+  /// screen: the framing inset (Viewer::setFramingInsetCss). Not the width as drawn, which follows
+  /// the content (errors, sections, results arriving): the same link opens the same view however
+  /// its content arrived.
+  [[nodiscard]] float framingRightCss() const { return framingRight_; }
   /// Opens the panel's section `label` ("Damage and colours", "Performance", ...) at the next draw.
   void openSection(const std::string& label);
   void setQuality(QualityPreset preset) { quality_ = preset; }
@@ -165,7 +167,7 @@ class ControlPanel {
   [[nodiscard]] float overlayRoom() const;
   float overlayLeft_ = -1.0f;  // the map overlay's left edge last frame (px); -1 before it was drawn
   QualityPreset quality_ = QualityPreset::High;
-  float panelRight_ = 0.0f;
+  float framingRight_ = 0.0f;
   std::set<std::string> openRequests_;  // openSection's, until drawn
   QualityState* qualityState_ = nullptr;
 };
