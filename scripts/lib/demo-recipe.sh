@@ -10,9 +10,10 @@ QV_DEMO_QUAKE_RECIPE="response --synthetic 1 2 3 --epicentre -74.02,40.69,10 --m
 # consequences' "moderate_or_worse" totals; 4: the site's shaking, summary section SITE; 5: files
 # stored as Zstandard frames, slim tile summaries, occupants and type mixtures; 6: the situation
 # report's casualties by time of day, damage by class and inferred counts; 7: the map under the
-# city, streets, a river, parks and neighbourhood names), so a prepared demo from an older version
+# city, streets, a river, parks and neighbourhood names; 8: the city's own districts, its
+# neighbourhoods, with consequence totals per district), so a prepared demo from an older version
 # is made again.
-QV_DEMO_DATA_VERSION=7
+QV_DEMO_DATA_VERSION=8
 
 # qv_demo_prepare PREP DIR [LOG_PREFIX]: makes the default scenario (city and earthquake) in DIR
 # with the quakeview-prep binary PREP, unless DIR already holds it (DIR/.recipe records the

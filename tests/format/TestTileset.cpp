@@ -365,3 +365,39 @@ TEST_CASE("Ground layers outside their bounds are refused with a message naming 
   nodeNotObject.replace(nodeNotObject.find("\"nodes\":[\n"), 10, "\"nodes\":[\n5,");
   CHECK_THAT(errorOf(nodeNotObject), Catch::Contains("ground node 0: a ground node must be an object"));
 }
+
+TEST_CASE("The manifest keeps the city's own districts, and refuses bad ones by key", "[format][tileset][districts]") {
+  Tileset t = sample();
+  CHECK(tilesetToJson(t).find("\"districts\"") == std::string::npos);  // absent when none
+  t.districts = DistrictsInfo{CityFile{"districts.geojson", 1234, 0xDEADBEEFu}, 3,
+                              "each building to its nearest OpenStreetMap neighbourhood name", true, 0.5};
+  const std::string json = tilesetToJson(t);
+  const auto parsed = parseTileset(json, "tileset.json");
+  REQUIRE(parsed.ok());
+  REQUIRE(parsed->districts.has_value());
+  CHECK(parsed->districts->file.file == "districts.geojson");
+  CHECK(parsed->districts->file.bytes == 1234);
+  CHECK(parsed->districts->file.crc32 == 0xDEADBEEFu);
+  CHECK(parsed->districts->count == 3);
+  CHECK(parsed->districts->source == t.districts->source);
+  CHECK(parsed->districts->inferred);
+  CHECK(parsed->districts->coverage == 0.5);
+  CHECK(tilesetToJson(*parsed) == json);
+
+  const std::vector<std::pair<std::string, std::string>> bad{
+      {"\"inferred\":true", "\"inferred\":1"},
+      {"\"coverage\":0.5", "\"coverage\":1.5"},
+      {"\"count\":3", "\"count\":0"},
+      {"\"file\":\"districts.geojson\"", "\"file\":\"../districts.geojson\""},
+  };
+  for (const auto& [from, to] : bad) {
+    INFO(to);
+    std::string text = json;
+    const std::size_t at = text.find(from, text.find("\"districts\""));
+    REQUIRE(at != std::string::npos);
+    text.replace(at, from.size(), to);
+    const auto refused = parseTileset(text, "tileset.json");
+    REQUIRE_FALSE(refused.ok());
+    CHECK(refused.error().find("tileset.json: districts") == 0);
+  }
+}

@@ -7,10 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <string>
 #include <vector>
 
 #include "IngestTestData.h"
+#include "qv/prep/DefaultDistricts.h"
 
 using namespace qv;
 using namespace qv::prep;
@@ -396,4 +398,88 @@ TEST_CASE("GeoJSON inputs have no ground", "[ingest][geojson][ground]") {
   REQUIRE(in.model.ok());
   CHECK(in.model->ground.empty());
   CHECK(in.model->ground.skipped.empty());
+}
+
+namespace {
+
+std::vector<const GroundBoundary*> boundariesOf(const GroundFeatures& ground, const std::string& source) {
+  std::vector<const GroundBoundary*> found;
+  for (const GroundBoundary& b : ground.boundaries) {
+    if (b.source == source) found.push_back(&b);
+  }
+  return found;
+}
+
+std::vector<glm::dvec2> buildingCentres(const CityModel& model) {
+  std::vector<glm::dvec2> centres;
+  for (const Building& b : model.buildings) centres.emplace_back(b.attributes.centroidX, b.attributes.centroidY);
+  return centres;
+}
+
+}  // namespace
+
+TEST_CASE("Boundaries for districts: Liechtenstein's municipalities and Midtown's neighbourhoods",
+          "[ingest][osm][ground][districts]") {
+  SECTION("Liechtenstein: its eleven municipalities (admin_level 8) divide the country") {
+    const Ingested& in = liechtenstein();
+    REQUIRE(in.model.ok());
+    const GroundFeatures& g = in.model->ground;
+    const auto municipalities = boundariesOf(g, "boundary=administrative admin_level=8");
+    std::set<std::string> names;
+    for (const GroundBoundary* b : municipalities) {
+      names.insert(b->name);
+      CHECK(b->fineness == 8);
+      REQUIRE(!b->rings.empty());
+      CHECK(b->rings[0].size() >= 3);
+      CHECK(b->rings[0].front() != b->rings[0].back());  // closed implicitly
+    }
+    CHECK(names.size() == 11);
+    for (const char* name : {"Vaduz", "Schaan", "Balzers", "Triesenberg", "Eschen", "Ruggell"}) {
+      INFO(name);
+      CHECK(names.count(name) == 1);
+    }
+    // The districts the city gets: the finest set that divides it, the municipalities, not the
+    // country (admin_level 2: one area) nor inferred.
+    const auto districts = chooseDistricts(g, buildingCentres(*in.model), "OpenStreetMap");
+    REQUIRE(districts.has_value());
+    CHECK(districts->source == "OpenStreetMap boundary=administrative admin_level=8 areas");
+    CHECK(!districts->inferred);
+    CHECK(districts->districts.size() == 11);
+    CHECK(districts->coverage > 0.99);
+    std::uint64_t inside = 0;
+    for (const auto& d : districts->districts) inside += d.buildings;
+    CHECK(inside == static_cast<std::uint64_t>(
+                        std::llround(districts->coverage * static_cast<double>(in.model->buildings.size()))));
+    // Vaduz, the capital, had about a hundred buildings mapped in 2013.
+    const auto vaduz = std::find_if(districts->districts.begin(), districts->districts.end(),
+                                    [](const auto& d) { return d.name == "Vaduz"; });
+    REQUIRE(vaduz != districts->districts.end());
+    CHECK(vaduz->buildings > 50);
+  }
+  SECTION("Midtown: neighbourhood areas cut by the extract are counted; the districts are inferred") {
+    const Ingested& in = midtownFixture();
+    REQUIRE(in.model.ok());
+    const GroundFeatures& g = in.model->ground;
+    // Herald Square (place=neighbourhood) and Koreatown (boundary=place) relations are whole in the
+    // fixture, and the Chelsea District way; Chelsea's relation, Murray Hill, the Garment District,
+    // Midtown South and the community boards are not.
+    std::set<std::string> names;
+    for (const GroundBoundary& b : g.boundaries) names.insert(b.name);
+    CHECK(names == std::set<std::string>{"Chelsea District", "Herald Square", "Koreatown"});
+    CHECK(skipped(g, "incomplete-boundary") == 6);
+    // Two small areas hold few of the buildings: each building goes to its nearest neighbourhood name.
+    const auto districts = chooseDistricts(g, buildingCentres(*in.model), "OpenStreetMap");
+    REQUIRE(districts.has_value());
+    CHECK(districts->inferred);
+    CHECK(districts->coverage == 1.0);
+    std::set<std::string> districtNames;
+    std::uint64_t buildings = 0;
+    for (const auto& d : districts->districts) {
+      districtNames.insert(d.name);
+      buildings += d.buildings;
+      CHECK(d.buildings > 0);
+    }
+    CHECK(districtNames == std::set<std::string>{"Herald Square", "Koreatown", "Midtown South"});
+    CHECK(buildings == in.model->buildings.size());
+  }
 }

@@ -540,6 +540,20 @@ TEST_CASE("The consequences file round-trips the totals and refuses what it cann
   REQUIRE(parsed->districts[0].outline[0].size() == 3);
   CHECK(parsed->districts[0].outline[0][1][0] == -73.99);
   CHECK(parsed->districts[0].outline[0][2][1] == 40.71);
+  CHECK(parsed->districtsSource.empty());  // none given: none written
+  CHECK(json.find("districts_source") == std::string::npos);
+  // What the districts are, and whether inferred, go through the file.
+  totals.districtsSource = "each building to its nearest OpenStreetMap neighbourhood name";
+  totals.districtsInferred = true;
+  const auto withSource = parseConsequences(consequencesToJson(totals), "consequences.json");
+  REQUIRE(withSource.ok());
+  CHECK(withSource->districtsSource == totals.districtsSource);
+  CHECK(withSource->districtsInferred);
+  std::string badInferred = consequencesToJson(totals);
+  badInferred.replace(badInferred.find("\"districts_inferred\":true"), 25, "\"districts_inferred\":\"y\"");
+  const auto refusedInferred = parseConsequences(badInferred, "consequences.json");
+  REQUIRE_FALSE(refusedInferred.ok());
+  CHECK(refusedInferred.error() == "consequences.json: \"districts_inferred\" must be true or false");
   // An outline point out of range or a ring of two points is refused, naming the district.
   std::string badOutline = json;
   badOutline.replace(badOutline.find("40.71"), 5, "140.7");

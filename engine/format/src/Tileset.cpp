@@ -395,6 +395,13 @@ std::string tilesetToJson(const Tileset& t) {
   }
   if (t.search) writeCityFile(w, "search", *t.search);
   if (t.ground) writeGround(w, *t.ground);
+  if (t.districts) {
+    const DistrictsInfo& d = *t.districts;
+    w.key("districts").beginObject();
+    w.field("file", d.file.file).field("bytes", d.file.bytes).field("crc32", hex32(d.file.crc32));
+    w.field("count", d.count).field("source", d.source).field("inferred", d.inferred).field("coverage", d.coverage);
+    w.endObject();
+  }
   if (!t.nodes.empty()) {
     w.key("root");
     writeNode(w, t, 0, 0);
@@ -572,6 +579,24 @@ Result<Tileset> parseTileset(std::string_view json, std::string_view name) {
     GroundLayer g;
     if (!p.ground(groundObject, g)) return Error{p.error};
     t.ground = std::move(g);
+  }
+  // Absent in manifests written before districts by default, and for inputs that name none.
+  object districts;
+  if (root["districts"].get(districts) == simdjson::SUCCESS) {
+    DistrictsInfo d;
+    bool inferred = false;
+    if (!p.cityFile(districts, d.file, "districts") || !p.unsignedNumber(districts, "count", d.count, "districts") ||
+        !p.text(districts, "source", d.source, "districts") ||
+        !p.number(districts, "coverage", d.coverage, "districts")) {
+      return Error{p.error};
+    }
+    if (districts["inferred"].get(inferred) != simdjson::SUCCESS) {
+      return Error{p.prefix + "districts: \"inferred\" must be true or false"};
+    }
+    if (!(d.coverage >= 0.0 && d.coverage <= 1.0)) return Error{p.prefix + "districts: \"coverage\" must be 0 to 1"};
+    if (d.count < 1 || d.count > 10000) return Error{p.prefix + "districts: \"count\" must be 1 to 10000"};
+    d.inferred = inferred;
+    t.districts = std::move(d);
   }
   element rootTile;
   if (root["root"].get(rootTile) != simdjson::SUCCESS) return Error{p.prefix + "missing \"root\" tile"};

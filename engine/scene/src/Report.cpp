@@ -294,9 +294,13 @@ void writeDistricts(std::string& out, const seismic::ConsequenceTotals& c) {
   out += "<h2>Districts</h2>\n";
   if (c.districts.empty()) {
     out +=
-        "<p>No districts: the response was computed without a districts file "
+        "<p>No districts: the city's input names none, and the response was given no districts file "
         "(<code>quakeview-prep response --districts FILE.geojson</code>).</p>\n";
     return;
+  }
+  if (!c.districtsSource.empty()) {
+    out += "<p>Districts: " + esc(c.districtsSource) +
+           (c.districtsInferred ? " <strong>(INFERRED: not official boundaries)</strong>" : "") + ".</p>\n";
   }
   std::vector<const seismic::ConsequenceTotals::District*> rows;
   for (const auto& d : c.districts) rows.push_back(&d);
@@ -316,7 +320,7 @@ void writeDistricts(std::string& out, const seismic::ConsequenceTotals& c) {
   }
   out +=
       "</tbody></table>\n<p class=\"small\">Expected values; buildings outside every district are in the city's "
-      "totals only.</p>\n";
+      "totals (and in an \"Outside the districts\" row where the districts file names one).</p>\n";
 }
 
 void writeBasis(std::string& out, const ReportInputs& in) {

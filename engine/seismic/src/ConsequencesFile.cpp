@@ -217,6 +217,9 @@ std::string consequencesToJson(const ConsequenceTotals& totals) {
     w.endObject();
   }
   w.endArray();
+  if (!totals.districtsSource.empty()) {
+    w.field("districts_source", totals.districtsSource).field("districts_inferred", totals.districtsInferred);
+  }
   const auto writeClasses = [&w](const char* member, const char* keyName, const std::vector<ClassTotals>& rows) {
     if (rows.empty()) return;
     w.key(member).beginArray();
@@ -299,6 +302,17 @@ Result<ConsequenceTotals> parseConsequences(std::string_view json, const std::st
       }
     }
     out.districts.push_back(std::move(district));
+  }
+  // Optional (files before them have neither).
+  std::string_view districtsSource;
+  if (root["districts_source"].get(districtsSource) == simdjson::SUCCESS) {
+    if (districtsSource.size() > 1000) return Error{name + ": \"districts_source\" is longer than 1,000 bytes"};
+    out.districtsSource = std::string(districtsSource);
+  }
+  element districtsInferred;
+  if (root["districts_inferred"].get(districtsInferred) == simdjson::SUCCESS &&
+      districtsInferred.get(out.districtsInferred) != simdjson::SUCCESS) {
+    return Error{name + ": \"districts_inferred\" must be true or false"};
   }
   auto byOccupancy = readClasses(root, "by_occupancy", "class", name);
   if (!byOccupancy.ok()) return Error{byOccupancy.error()};

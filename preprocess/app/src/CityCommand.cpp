@@ -103,6 +103,7 @@ int runCity(const CommandArgs& argv) {
   TilerOptions tiler;
   tiler.generator = "quakeview-prep city";
   tiler.ground = options.ground;
+  tiler.districtsOrigin = "OpenStreetMap";
   if (std::string leafError; !readLeafOptions(*args, tiler, leafError)) return usage(leafError);
   if (std::string nameError; !readCityName(*args, *out, {}, tiler, nameError)) return usage(nameError);
 

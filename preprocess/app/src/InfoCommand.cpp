@@ -432,6 +432,24 @@ int runInfo(const CommandArgs& argv) {
         }
       }
     }
+    if (t.districts) {
+      // The city's own districts: as listed (size, CRC) and as the response reads them.
+      ++checked;
+      const std::string& file = t.districts->file.file;
+      auto bytes = loadCityFile(dir, t.districts->file);
+      auto districts =
+          bytes.ok() ? parseDistricts(std::string_view(reinterpret_cast<const char*>(bytes->data()), bytes->size()),
+                                      dir + "/" + file)
+                     : Result<Districts>(Error{bytes.error()});
+      if (!districts.ok()) {
+        ++bad;
+        std::fprintf(stderr, "BAD %s: %s\n", file.c_str(), districts.error().c_str());
+      } else if (districts->names.size() != t.districts->count) {
+        ++bad;
+        std::fprintf(stderr, "BAD %s: %zu districts, the manifest says %llu\n", file.c_str(), districts->names.size(),
+                     static_cast<unsigned long long>(t.districts->count));
+      }
+    }
     if (bad > 0) {
       std::fprintf(stderr, "info: %llu of %llu tiles are bad\n", static_cast<unsigned long long>(bad),
                    static_cast<unsigned long long>(checked));
@@ -687,6 +705,15 @@ int runInfo(const CommandArgs& argv) {
     for (const std::string& src : t.sources) w.value(src);
     w.endArray();
     writeGroundJson(w, t.ground);
+    // The city's own districts (made from its input; the response uses them without --districts).
+    if (t.districts) {
+      const DistrictsInfo& d = *t.districts;
+      w.key("districts").beginObject();
+      w.field("file", d.file.file).field("count", d.count).field("source", d.source).field("inferred", d.inferred);
+      w.field("coverage", d.coverage).endObject();
+    } else {
+      w.key("districts").null();
+    }
     w.key("damage_states").beginObject();
     for (std::size_t k = 0; k < 6; ++k) w.field(kDamageKeys[k], damage[k]);
     w.endObject();
@@ -731,6 +758,10 @@ int runInfo(const CommandArgs& argv) {
           w.endObject();
         }
         w.endArray();
+        if (!consequences->districtsSource.empty()) {
+          w.field("districts_source", consequences->districtsSource);
+          w.field("districts_inferred", consequences->districtsInferred);
+        }
         w.endObject();
       }
       w.key("response")
@@ -798,6 +829,7 @@ int runInfo(const CommandArgs& argv) {
   std::printf("\ntiles       %zu (%llu leaves, depth %d), %s\n", t.nodes.size(),
               static_cast<unsigned long long>(leaves), depth, humanBytes(bytes).c_str());
   printGround(t.ground);
+  std::printf("%s\n", districtsSummaryLine(t).c_str());
   if (t.response) {
     std::printf("response    %s\n", t.response->method.c_str());
     std::printf("motion      %s\n", t.response->motion.c_str());

@@ -210,6 +210,7 @@ int runLod2(const CommandArgs& argv) {
   tiler.ground = tileset->ground.has_value();
   tiler.keptGround = tileset->ground;
   tiler.keptGroundDir = *dir;
+  tiler.keptDistricts = tileset->districts;
   const auto written = writeCityTiles(*city, *dir, tiler);
   if (!written.ok()) {
     std::fprintf(stderr, "lod2: %s\n", written.error().c_str());

@@ -49,7 +49,8 @@ const char* const kUsage =
     "                     building's first-mode period equals the target there (sa, the default), or\n"
     "                     to the target PGA (pga)\n"
     "  --time-of-day T    occupants present for the consequences (HAZUS; default day)\n"
-    "  --districts FILE   GeoJSON polygons with a \"name\": consequence totals per district\n"
+    "  --districts FILE   GeoJSON polygons with a \"name\": consequence totals per district (without\n"
+    "                     it, the city's own districts.geojson, made from its input, when it has one)\n"
     "  --population-night N, --population-day N, --population-source TEXT\n"
     "                     the area's published residents and daytime population (e.g. a census): shown\n"
     "                     beside the occupants the city holds at night and by day, with the source\n"
@@ -494,6 +495,7 @@ int printReport(const std::string& city, const ResponseRunReport& r, const Respo
     std::printf("  %-22s %14.3f  (90 %%: %.3f to %.3f) million USD\n", "repair cost", t.repairCostUsd.expected / 1e6,
                 t.repairCostUsd.low / 1e6, t.repairCostUsd.high / 1e6);
   }
+  if (!r.districtsSource.empty()) std::printf("districts   the city's own: %s\n", r.districtsSource.c_str());
   std::printf("time        %.2f s\n", r.seconds);
   return kExitOk;
 }

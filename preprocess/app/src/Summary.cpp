@@ -31,6 +31,18 @@ std::string withThousands(std::uint64_t n) {
 
 }  // namespace
 
+std::string districtsSummaryLine(const Tileset& tileset) {
+  if (!tileset.districts) {
+    return tileset.ground ? "districts   none: the input names no neighbourhoods or areas that divide the city"
+                          : "districts   none (--no-ground)";
+  }
+  const DistrictsInfo& d = *tileset.districts;
+  char coverage[32];
+  std::snprintf(coverage, sizeof coverage, "%.1f %%", 100.0 * d.coverage);
+  return "districts   " + withThousands(d.count) + (d.inferred ? " inferred" : "") + " (" + d.file.file + ", " +
+         coverage + " of the buildings): " + d.source;
+}
+
 std::string groundSummaryLine(const Tileset& tileset) {
   if (!tileset.ground) return "ground      none (--no-ground)";
   const GroundLayer& g = *tileset.ground;
@@ -106,6 +118,7 @@ void printTilingSummary(std::FILE* out, const CityModel& model, const TilerRepor
     }
   }
   std::fprintf(out, "%s\n", groundSummaryLine(report.tileset).c_str());
+  std::fprintf(out, "%s\n", districtsSummaryLine(report.tileset).c_str());
   std::fprintf(out, "time        %.2f s\n", seconds);
 }
 

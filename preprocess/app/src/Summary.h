@@ -46,6 +46,9 @@ inline constexpr const char* kNoGroundOptionUsage =
 /// in 85 files, 1.2 MiB": one line on the city's ground layer (`tileset.ground`), or that the input
 /// had none, or that --no-ground left it out.
 std::string groundSummaryLine(const Tileset& tileset);
+/// "districts   12 (districts.geojson, 100.0 % of the buildings): ...": the districts the
+/// consequences are totalled by without --districts (`tileset.districts`), or why there are none.
+std::string districtsSummaryLine(const Tileset& tileset);
 
 /// Prints what was written: buildings, tiles, bytes, bytes per building, drops by reason,
 /// warnings (at most `maxWarnings` listed, all counted) and the ground (groundSummaryLine).

@@ -79,6 +79,7 @@ int runSynthCity(const CommandArgs& argv) {
   TilerOptions tiler;
   tiler.generator = "quakeview-prep synth-city";
   tiler.ground = options.ground;
+  tiler.districtsOrigin = "synth-city";
   if (std::string leafError; !readLeafOptions(*args, tiler, leafError)) return usage(leafError);
   if (std::string nameError;
       !readCityName(*args, *out,

@@ -552,6 +552,16 @@ void projectGround(const detail::RawGround& raw, const CityProjection& projectio
   for (const auto& [begin, end] : raw.coastlines) {
     if (allValid(begin, end)) out.coastlines.push_back(range(begin, end));
   }
+  for (const detail::RawGround::Boundary& b : raw.boundaries) {
+    if (b.ringEnds.empty() || !allValid(b.begin, b.ringEnds.back())) continue;
+    GroundBoundary boundary{b.name, b.source, b.fineness, {}};
+    std::uint32_t begin = b.begin;
+    for (const std::uint32_t end : b.ringEnds) {
+      boundary.rings.push_back(range(begin, end));
+      begin = end;
+    }
+    out.boundaries.push_back(std::move(boundary));
+  }
 }
 
 Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, const IngestOptions& options,

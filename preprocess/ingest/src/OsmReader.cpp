@@ -151,13 +151,24 @@ struct GroundTags {
   const char* width = nullptr;
   const char* tunnel = nullptr;
   const char* area = nullptr;
+  const char* boundary = nullptr;
+  const char* adminLevel = nullptr;
 
   static GroundTags read(const osmium::TagList& tags) {
     static constexpr std::pair<std::string_view, const char * GroundTags::*> kKeys[] = {
-        {"highway", &GroundTags::highway}, {"railway", &GroundTags::railway}, {"waterway", &GroundTags::waterway},
-        {"natural", &GroundTags::natural}, {"landuse", &GroundTags::landuse}, {"leisure", &GroundTags::leisure},
-        {"place", &GroundTags::place},     {"name", &GroundTags::name},       {"width", &GroundTags::width},
-        {"tunnel", &GroundTags::tunnel},   {"area", &GroundTags::area},
+        {"highway", &GroundTags::highway},
+        {"railway", &GroundTags::railway},
+        {"waterway", &GroundTags::waterway},
+        {"natural", &GroundTags::natural},
+        {"landuse", &GroundTags::landuse},
+        {"leisure", &GroundTags::leisure},
+        {"place", &GroundTags::place},
+        {"name", &GroundTags::name},
+        {"width", &GroundTags::width},
+        {"tunnel", &GroundTags::tunnel},
+        {"area", &GroundTags::area},
+        {"boundary", &GroundTags::boundary},
+        {"admin_level", &GroundTags::adminLevel},
     };
     GroundTags t;
     for (const osmium::Tag& tag : tags) {
@@ -271,6 +282,27 @@ std::optional<std::pair<GroundLabelKind, std::uint8_t>> placeKind(const char* pl
       {"quarter", {GroundLabelKind::Neighbourhood, 68}}, {"neighbourhood", {GroundLabelKind::Neighbourhood, 84}},
   };
   return lookUp(kPlaces, place);
+}
+
+/// What an area of these tags is as a district (GroundBoundary::source and fineness), or nullopt:
+/// an administrative boundary with its admin_level, a place's area, a boundary=place without
+/// place=* (a neighbourhood's outline). Unnamed areas are none.
+std::optional<std::pair<std::string, int>> districtSource(const GroundTags& t) {
+  if (t.name == nullptr || *t.name == '\0') return std::nullopt;
+  if (tagIs(t.boundary, "administrative") && t.adminLevel != nullptr) {
+    int level = 0;
+    const std::string_view text(t.adminLevel);
+    const auto [at, ec] = std::from_chars(text.data(), text.data() + text.size(), level);
+    if (ec != std::errc() || at != text.data() + text.size() || level < 1 || level > 12) return std::nullopt;
+    return std::pair{"boundary=administrative admin_level=" + std::to_string(level), level};
+  }
+  static constexpr StyleRow<int> kPlaceFineness[] = {
+      {"city", 8}, {"town", 8}, {"village", 8}, {"borough", 9}, {"suburb", 10}, {"quarter", 11}, {"neighbourhood", 12},
+  };
+  if (const auto fineness = lookUp(kPlaceFineness, t.place))
+    return std::pair{"place=" + std::string(t.place), *fineness};
+  if (tagIs(t.boundary, "place") && t.place == nullptr) return std::pair{std::string("boundary=place"), 12};
+  return std::nullopt;
 }
 
 /// width=* in metres when it is a plain number (a trailing " m" or "m" allowed) from 1 to 100;
@@ -480,7 +512,7 @@ class OsmReader {
       // (type=boundary, boundary=place). Routes, sites and the rest are not ground.
       if (ground_ && (multipolygon || tagIs(type, "boundary"))) {
         const GroundTags t = GroundTags::read(tags);
-        if ((multipolygon && areaClass(t)) || (t.name != nullptr && placeKind(t.place))) {
+        if ((multipolygon && areaClass(t)) || (t.name != nullptr && placeKind(t.place)) || districtSource(t)) {
           relationStore_.add_item(relation);
           relationStore_.commit();
         }
@@ -671,6 +703,17 @@ class OsmReader {
       }
       if (ring.size() >= 3) addPlaceAt(t, ring);
     }
+    if (closed) {
+      if (const auto district = districtSource(t)) {
+        const auto begin = static_cast<std::uint32_t>(g.points.size());
+        if (appendGroundRing(nodes, true)) {
+          g.boundaries.push_back(
+              {t.nameText(), district->first, district->second, begin, {static_cast<std::uint32_t>(g.points.size())}});
+        } else {
+          skipGround("missing-nodes");
+        }
+      }
+    }
     if (tagIs(t.natural, "coastline")) {
       addLinePieces(nodes, [&](std::uint32_t begin, std::uint32_t end) { g.coastlines.emplace_back(begin, end); });
       return;
@@ -731,6 +774,11 @@ class OsmReader {
     const GroundTags t = GroundTags::read(relation.tags());
     const std::optional<GroundClass> area =
         tagIs(relation.tags().get_value_by_key("type"), "multipolygon") ? areaClass(t) : std::optional<GroundClass>();
+    const auto district = districtSource(t);
+    // A boundary cut by the extract is common (an area larger than the extract): counted apart from
+    // the broken or cut areas the map would draw.
+    const char* incomplete = area || placeKind(t.place) ? "incomplete-multipolygon" : "incomplete-boundary";
+    const char* broken = area || placeKind(t.place) ? "broken-multipolygon" : "broken-boundary";
     std::vector<const osmium::Way*> members;
     for (const osmium::RelationMember& member : relation.members()) {
       if (member.type() != osmium::item_type::way) continue;
@@ -739,24 +787,24 @@ class OsmReader {
       for (std::size_t i = 0; located && i < way->nodes().size(); ++i) located = way->nodes()[i].location().valid();
       if (!located) {
         // Cut by the extract: libosmium's manager skips such relations too.
-        skipGround("incomplete-multipolygon");
+        skipGround(incomplete);
         return;
       }
       members.push_back(way);
     }
     if (members.empty()) {
-      skipGround("incomplete-multipolygon");
+      skipGround(incomplete);
       return;
     }
     osmium::memory::Buffer areaBuffer{1024, osmium::memory::Buffer::auto_grow::yes};
     try {
       osmium::area::Assembler assembler{config};
       if (!assembler(relation, members, areaBuffer) || areaBuffer.committed() == 0) {
-        skipGround("broken-multipolygon");
+        skipGround(broken);
         return;
       }
     } catch (const std::exception&) {
-      skipGround("broken-multipolygon");
+      skipGround(broken);
       return;
     }
     RawGround& g = city_.ground;
@@ -780,23 +828,30 @@ class OsmReader {
         largestArea = std::abs(twiceArea);
         largest = ring;
       }
-      if (!area) continue;
-      RawGround::Area a;
-      a.groundClass = *area;
-      a.rank = areaRank(*area);
-      a.name = t.nameText();
-      a.begin = static_cast<std::uint32_t>(g.points.size());
+      if (!area && !district) continue;
+      // The outer ring and its holes, once in the points (shared by the area and the boundary).
+      const auto begin = static_cast<std::uint32_t>(g.points.size());
+      std::vector<std::uint32_t> ringEnds;
       g.points.insert(g.points.end(), ring.begin(), ring.end());
-      a.ringEnds.push_back(static_cast<std::uint32_t>(g.points.size()));
+      ringEnds.push_back(static_cast<std::uint32_t>(g.points.size()));
       for (const osmium::InnerRing& inner : assembled.inner_rings(outer)) {
         readRing(inner);
         g.points.insert(g.points.end(), ring.begin(), ring.end());
-        a.ringEnds.push_back(static_cast<std::uint32_t>(g.points.size()));
+        ringEnds.push_back(static_cast<std::uint32_t>(g.points.size()));
       }
-      g.areas.push_back(std::move(a));
+      if (area) {
+        RawGround::Area a;
+        a.groundClass = *area;
+        a.rank = areaRank(*area);
+        a.name = t.nameText();
+        a.begin = begin;
+        a.ringEnds = ringEnds;
+        g.areas.push_back(std::move(a));
+      }
+      if (district) g.boundaries.push_back({t.nameText(), district->first, district->second, begin, ringEnds});
     }
     if (outers == 0) {
-      skipGround("broken-multipolygon");
+      skipGround(broken);
       return;
     }
     if (largest.size() >= 3) addPlaceAt(t, largest);

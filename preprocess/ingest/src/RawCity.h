@@ -190,6 +190,14 @@ struct RawGround {
   std::vector<Line> lines;
   std::vector<Area> areas;
   std::vector<Place> places;
+  struct Boundary {  ///< GroundBoundary in degrees
+    std::string name;
+    std::string source;
+    int fineness = 0;
+    std::uint32_t begin = 0;
+    std::vector<std::uint32_t> ringEnds;
+  };
+  std::vector<Boundary> boundaries;
   std::vector<std::pair<std::uint32_t, std::uint32_t>> coastlines;  ///< [begin, end) in points
   std::map<std::string, std::uint64_t> skipped;                     ///< as GroundFeatures::skipped
 };

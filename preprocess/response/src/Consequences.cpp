@@ -2,9 +2,11 @@
 
 #include <simdjson.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "qv/prep/Files.h"
+#include "qv/prep/PointInRing.h"
 #include "qv/prep/Simplify.h"
 
 namespace qv::prep {
@@ -13,15 +15,6 @@ namespace {
 constexpr std::size_t kMaxDistrictBytes = 64u << 20;
 constexpr std::size_t kMaxDistricts = 10000;
 constexpr std::size_t kMaxVertices = 1000000;
-
-bool insideRing(const Districts::Ring& ring, double x, double y) {
-  bool inside = false;
-  for (std::size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    const double xi = ring[i][0], yi = ring[i][1], xj = ring[j][0], yj = ring[j][1];
-    if ((yi > y) != (yj > y) && x < (xj - xi) * (y - yi) / (yj - yi) + xi) inside = !inside;
-  }
-  return inside;
-}
 
 using simdjson::dom::array;
 using simdjson::dom::element;
@@ -54,7 +47,12 @@ Status readPolygon(array rings, Districts::Polygon& out, std::size_t& vertices, 
 
 int Districts::find(double lon, double lat) const {
   for (std::size_t d = 0; d < areas.size(); ++d) {
-    for (const Polygon& polygon : areas[d]) {
+    for (std::size_t k = 0; k < areas[d].size(); ++k) {
+      const Polygon& polygon = areas[d][k];
+      if (d < boxes.size() && k < boxes[d].size()) {
+        const std::array<double, 4>& b = boxes[d][k];
+        if (lon < b[0] || lat < b[1] || lon > b[2] || lat > b[3]) continue;
+      }
       bool inside = false;
       for (const Ring& ring : polygon) inside ^= insideRing(ring, lon, lat);
       if (inside) return static_cast<int>(d);
@@ -110,10 +108,33 @@ Result<Districts> parseDistricts(std::string_view json, const std::string& name)
     } else {
       return Error{where + " is a " + std::string(type) + ", not a Polygon or MultiPolygon"};
     }
+    std::vector<std::array<double, 4>> boxes;
+    for (const Districts::Polygon& polygon : polygons) {
+      std::array<double, 4> b{polygon[0][0][0], polygon[0][0][1], polygon[0][0][0], polygon[0][0][1]};
+      for (const auto& p : polygon[0])
+        b = {std::min(b[0], p[0]), std::min(b[1], p[1]), std::max(b[2], p[0]), std::max(b[3], p[1])};
+      boxes.push_back(b);
+    }
     out.names.emplace_back(districtName);
     out.areas.push_back(std::move(polygons));
+    out.boxes.push_back(std::move(boxes));
   }
   if (out.names.empty()) return Error{name + ": no districts in the file"};
+  // Optional members of the collection itself (what the districts are, a row for the rest).
+  for (const auto& [key, text] :
+       {std::pair<const char*, std::string*>{"source", &out.source}, {"outside", &out.outsideName}}) {
+    simdjson::dom::element value;
+    if (root[key].get(value) != simdjson::SUCCESS) continue;
+    std::string_view v;
+    if (value.get(v) != simdjson::SUCCESS || v.size() > 1000) {
+      return Error{name + ": \"" + key + "\" must be a text of at most 1,000 bytes"};
+    }
+    *text = std::string(v);
+  }
+  simdjson::dom::element inferred;
+  if (root["inferred"].get(inferred) == simdjson::SUCCESS && inferred.get(out.inferred) != simdjson::SUCCESS) {
+    return Error{name + ": \"inferred\" must be true or false"};
+  }
   return out;
 }
 

@@ -72,6 +72,21 @@ Status finishResponse(ResponseWriter& writer, FinishInputs in, ResponseRunReport
       t.byTime = seismic::casualtiesByTimeOfDay(inside);
       totals.districts.push_back({in.districts->names[d], std::move(t), in.districts->outline(d)});
     }
+    // The buildings in no district, as a row of their own where the file names one (the city's own
+    // districts do, so that their rows add up to the city).
+    std::vector<seismic::BuildingLoss> outside;
+    for (std::size_t i = 0; i < districts.size(); ++i) {
+      if (districts[i] < 0) outside.push_back(losses[i]);
+    }
+    if (!in.districts->outsideName.empty() && !outside.empty()) {
+      seismic::LossTotals t = seismic::totalLosses(outside);
+      t.byTime = seismic::casualtiesByTimeOfDay(outside);
+      totals.districts.push_back({in.districts->outsideName, std::move(t), {}});
+    }
+    totals.districtsSource = in.districts->source.empty()
+                                 ? std::string("a districts file given to the response (--districts)")
+                                 : in.districts->source;
+    totals.districtsInferred = in.districts->inferred;
   }
   report.losses = totals.city;
   report.timeOfDay = info.timeOfDay;

@@ -337,7 +337,7 @@ Result<std::vector<std::string>> detail::expandMotionPaths(const std::vector<std
   return out;
 }
 
-Result<ResponseRunReport> runCityResponse(const std::string& dir, const ResponseRunOptions& options) {
+Result<ResponseRunReport> runCityResponse(const std::string& dir, const ResponseRunOptions& given) {
   const auto start = Clock::now();
   ResponseRunReport report;
   auto text = readTextFile(dir + "/tileset.json", 256ull << 20);
@@ -345,6 +345,13 @@ Result<ResponseRunReport> runCityResponse(const std::string& dir, const Response
   auto parsed = parseTileset(*text, dir + "/tileset.json");
   if (!parsed.ok()) return Error{parsed.error()};
   const Tileset tileset = std::move(parsed).value();
+  // Without --districts, the city's own (made from its input: qv/prep/DefaultDistricts.h). Every
+  // part of a sharded run decides the same, so the parts agree on them.
+  ResponseRunOptions options = given;
+  if (options.districts.empty() && tileset.districts) {
+    options.districts = dir + "/" + tileset.districts->file.file;
+    report.districtsSource = tileset.districts->source;
+  }
 
   std::optional<ShakeMapGrid> grid;
   if (!options.shakemap.empty()) {

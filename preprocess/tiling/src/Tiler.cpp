@@ -14,6 +14,7 @@
 #include "qv/format/CityTile.h"
 #include "qv/format/SearchIndex.h"
 #include "qv/prep/Cli.h"
+#include "qv/prep/DefaultDistricts.h"
 #include "qv/prep/Files.h"
 #include "qv/prep/Simplify.h"
 #include "qv/prep/Triangulate.h"
@@ -577,6 +578,33 @@ Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, 
       t.ground->levels = 1;
     }
     report.ground = std::move(ground).value();
+  }
+  // 7. The districts the consequences are totalled by without --districts (DefaultDistricts.h).
+  if (options.ground && options.keptGround) {
+    if (options.keptDistricts) {
+      const std::string& file = options.keptDistricts->file.file;
+      const Status s = linkOrCopyFile(options.keptGroundDir + "/" + file, staging->path() + "/" + file);
+      if (!s.ok()) return Error{"cannot keep the city's districts: " + s.error()};
+      t.districts = options.keptDistricts;
+    }
+  } else if (options.ground) {
+    std::vector<glm::dvec2> centres;
+    centres.reserve(kept.size());
+    for (const std::uint32_t i : kept) {
+      const BuildingAttributes& a = model.buildings[i].attributes;
+      centres.emplace_back(a.centroidX, a.centroidY);
+    }
+    if (const auto districts = chooseDistricts(model.ground, centres, options.districtsOrigin)) {
+      const std::string text = districtsGeoJson(*districts, GeoFrame(model.originLon, model.originLat));
+      const std::vector<std::uint8_t> bytes(text.begin(), text.end());
+      if (const Status s = writeStagedFile(staging->path() + "/districts.geojson", bytes); !s.ok()) {
+        return Error{s.error()};
+      }
+      t.districts =
+          DistrictsInfo{CityFile{"districts.geojson", bytes.size(), crc32(bytes)}, districts->districts.size(),
+                        districts->source, districts->inferred, districts->coverage};
+      report.districts = districts->districts.size();
+    }
   }
   if (interrupted()) return Error{"interrupted; the previous output (if any) is unchanged"};
 

@@ -120,6 +120,17 @@ struct GroundLayer {
   std::uint64_t bytes = 0;  ///< all ground files
 };
 
+/// The districts `quakeview-prep response` totals the consequences by when given no --districts:
+/// made by `city` and `synth-city` from the input's own boundaries or named places
+/// (docs/losses.md "Districts by default"), a GeoJSON FeatureCollection like --districts takes.
+struct DistrictsInfo {
+  CityFile file;            ///< "districts.geojson"
+  std::uint64_t count = 0;  ///< districts in the file
+  std::string source;       ///< what they were made from, e.g. "OpenStreetMap boundary=administrative admin_level=8"
+  bool inferred = false;  ///< true when no boundary was drawn by the source (each building to its nearest named place)
+  double coverage = 0.0;  ///< share of the city's buildings inside a district, 0 to 1
+};
+
 struct Tileset {
   int version = kTilesetVersion;
   std::string generator;
@@ -143,6 +154,8 @@ struct Tileset {
   /// The ground layer; absent when the city was made with --no-ground or before ground existed.
   /// Present with no nodes when the input had no streets, water or open land.
   std::optional<GroundLayer> ground;
+  /// The city's own districts; absent when its input named none (or before they existed).
+  std::optional<DistrictsInfo> districts;
 
   /// True when a response exists but was computed for an older revision of the buildings.
   [[nodiscard]] bool responseOutOfDate() const { return response && response->buildingsRevision != buildingsRevision; }

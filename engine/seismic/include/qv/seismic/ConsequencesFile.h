@@ -58,6 +58,12 @@ struct ConsequenceTotals {
     std::vector<std::vector<std::array<double, 2>>> outline;
   };
   std::vector<District> districts;
+  /// What the districts are ("OpenStreetMap boundary=administrative admin_level=10 areas", "a
+  /// districts file given to the response (--districts)"), and whether they are inferred (each
+  /// building to its nearest place name, no drawn boundary); empty without districts and in files
+  /// written before it.
+  std::string districtsSource;
+  bool districtsInferred = false;
   /// The city by HAZUS occupancy class and by the modelled structural type (buildings whose type is
   /// a mixture count under the type modelled for their motion), the classes in code order; empty
   /// in files written before them.
@@ -67,7 +73,8 @@ struct ConsequenceTotals {
 
 /// {"format": "quakeview-consequences", "version": 1, "timeOfDay": ..., "interval": ..., ["population":
 /// {"night": N, "day": N, "source": "..."} (members given only),] "city":
-/// {totals}, "districts": [{"name": ..., totals[, "outline": [[[lon, lat], ...], ...]]}, ...], ["by_occupancy":
+/// {totals}, "districts": [{"name": ..., totals[, "outline": [[[lon, lat], ...], ...]]}, ...],
+/// ["districts_source": "...", "districts_inferred": false,] ["by_occupancy":
 /// [{"class": "RES3", class totals}, ...], "by_structure": [{"type": "C1", class totals}, ...], "inferred":
 /// {"buildings", "structural_type", "code_era", "use", "occupants", "replacement_value"}]} with totals as
 /// writeLossTotals writes them and class totals {"buildings", "damage_states": {"none" .. "complete"},

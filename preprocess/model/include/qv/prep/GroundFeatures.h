@@ -41,10 +41,25 @@ struct GroundPlace {
   std::uint8_t rank = 64;
 };
 
+/// An area the input draws as a boundary that may serve as a district (an administrative boundary,
+/// a place's area): one outer ring and its holes, as GroundArea. Areas of several outer rings are
+/// several boundaries of the same name and source. Not drawn on the map.
+struct GroundBoundary {
+  std::string name;
+  /// What kind of boundary: "boundary=administrative admin_level=10", "place=neighbourhood", ...
+  /// Boundaries of one source make one set of districts (prep::chooseDistricts).
+  std::string source;
+  /// How fine the source divides (larger: finer): admin_level, or the place's equivalent
+  /// (city/town/village 8, borough 9, suburb 10, quarter 11, neighbourhood 12).
+  int fineness = 0;
+  std::vector<std::vector<glm::dvec2>> rings;
+};
+
 struct GroundFeatures {
   std::vector<GroundLine> lines;
   std::vector<GroundArea> areas;
   std::vector<GroundPlace> places;
+  std::vector<GroundBoundary> boundaries;
   /// natural=coastline ways as read, land on their left (OSM's convention), in no particular
   /// order; the tiler joins them into land polygons. Empty when the input has no coastline.
   std::vector<std::vector<glm::dvec2>> coastlines;

@@ -20,6 +20,15 @@ struct Districts {
   using Polygon = std::vector<Ring>;                ///< outer ring first, then holes
   std::vector<std::string> names;
   std::vector<std::vector<Polygon>> areas;  ///< per district, its polygons
+  /// Per district and polygon, its outer ring's box {minLon, minLat, maxLon, maxLat} (parseDistricts
+  /// fills it; find skips the polygons whose box leaves the point out). May be empty.
+  std::vector<std::vector<std::array<double, 4>>> boxes;
+  /// The file's own top-level members (a city's districts.geojson has them; DefaultDistricts.h):
+  /// what the districts were made from, whether they are inferred (nearest place names), and the
+  /// name of a row for the buildings in none ("" : no such row).
+  std::string source;
+  bool inferred = false;
+  std::string outsideName;
   /// The first district containing (lon, lat) (even-odd rule over each polygon's rings), or -1.
   [[nodiscard]] int find(double longitudeDeg, double latitudeDeg) const;
   /// District `d`'s outline for maps (ConsequenceTotals::District::outline): the outer ring of each
@@ -29,8 +38,9 @@ struct Districts {
 };
 
 /// A GeoJSON FeatureCollection of Polygon / MultiPolygon features, each with a string property
-/// "name". Errors name the file and the feature (index and name). Limits: 64 MiB, 10 000 features,
-/// 1 000 000 vertices.
+/// "name", and optional top-level "source" (text), "inferred" (boolean) and "outside" (text: the
+/// name of a row for the buildings in no district). Errors name the file and the feature (index and name). Limits: 64
+/// MiB, 10 000 features, 1 000 000 vertices.
 Result<Districts> readDistricts(const std::string& path);
 Result<Districts> parseDistricts(std::string_view json, const std::string& name);
 

@@ -48,7 +48,9 @@ struct ResponseRunOptions {
   OutsideGrid outsideGrid = OutsideGrid::Error;            ///< buildings outside the ShakeMap's grid
   double shearWaveSpeedKmPerS = 3.5;                       ///< travel time from a ShakeMap's epicentre
   seismic::TimeOfDay timeOfDay = seismic::TimeOfDay::Day;  ///< for the occupants of the consequences
-  std::string districts;                                   ///< --districts FILE.geojson: totals per district
+  /// --districts FILE.geojson: totals per district; "" : the city's own districts.geojson when its
+  /// manifest lists one (made by `city` / `synth-city` from the input, qv/prep/DefaultDistricts.h).
+  std::string districts;
   /// --population-night/-day/-source: the published population the occupants are shown against
   seismic::PopulationFigures population;
   /// --accurate-steps: accepted and ignored. The solver's defaults are the accurate path (the exact
@@ -99,6 +101,8 @@ struct ResponseRunReport {
   std::uint64_t outsideGrid = 0;              ///< buildings skipped outside the ShakeMap (--outside-grid skip)
   std::optional<seismic::LossTotals> losses;  ///< the city's consequences
   double lossSeconds = 0.0;
+  /// Without --districts: what the city's own districts were made from ("" : none used).
+  std::string districtsSource;
 };
 
 Result<ResponseRunReport> runCityResponse(const std::string& cityDir, const ResponseRunOptions& options);

@@ -43,6 +43,11 @@ struct TilerOptions {
   /// model.ground when set (and `ground` is on).
   std::optional<GroundLayer> keptGround;
   std::string keptGroundDir;
+  /// With keptGround: the districts of the city it replaces, kept the same way (their file in
+  /// keptGroundDir).
+  std::optional<DistrictsInfo> keptDistricts;
+  /// The input the ground came from, named in the districts' source ("OpenStreetMap", "synth-city").
+  std::string districtsOrigin = "the input's";
 };
 
 struct TilerReport {
@@ -58,7 +63,8 @@ struct TilerReport {
   /// What writeGroundTiles reported, when the ground was written from model.ground (not with
   /// --no-ground, not when a kept ground was copied).
   std::optional<GroundTilerReport> ground;
-  Tileset tileset;  ///< the manifest as written
+  std::uint64_t districts = 0;  ///< districts written (districts.geojson), 0 when the input offers none
+  Tileset tileset;              ///< the manifest as written
 };
 
 /// Writes the city into a new directory `outDir` (staged beside it and swapped in at the end;
