@@ -37,6 +37,7 @@
 //   lodVisibility(), setAmplitude(x), amplitude(), setColorMode('drift' | 'peak' | 'damage' |
 //   'neutral' | 'p-moderate' | 'expected-damage' | 'tag'), colorMode(), shownColorMode(), search(query), filteredList(limit),
 //   exportList('csv' | 'geojson'), flyToSelection()     extensions used by the panel's actions
+//   showDistrict(name), shownDistrict()   fly to a district of consequences() and outline it
 //   report()   a Promise of the situation report: one print-ready HTML document (the event, headline
 //              numbers with 90 % intervals, impact level, map, HAZUS tables, facilities, casualties
 //              at 2 AM / 2 PM / 5 PM, districts, limits and sources), the same as `quakeview-prep
@@ -221,6 +222,12 @@
     },
     // Extensions: fly to the selection; filters; search; the filtered list and its export.
     flyToSelection() { return !!engine && engine._qv_fly_to_selection() === 1; },
+    // Fly to a district of consequences().districts and outline it ('' clears); the one outlined.
+    showDistrict(name) {
+      if (!engine || typeof name !== 'string') return false;
+      return engine.ccall('qv_show_district', 'number', ['string'], [name]) === 1;
+    },
+    shownDistrict() { return callString('qv_shown_district'); },
     setFilters(f) {
       if (!engine || !f || typeof f !== 'object') return false;
       const states = ['none', 'slight', 'moderate', 'extensive', 'complete'];

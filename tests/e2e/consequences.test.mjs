@@ -6,7 +6,7 @@ import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, test } from 'node:test';
-import { launchBrowser, openPage, openSection, waitForFunction, waitReady } from './lib/browser.mjs';
+import { launchBrowser, openPage, openSection, panelItemInView, settle, waitForFunction, waitReady } from './lib/browser.mjs';
 import { changedFraction, decodePng } from './lib/pixels.mjs';
 import { ARTIFACTS, REPO, serveSite } from './lib/server.mjs';
 
@@ -141,6 +141,93 @@ test('the probabilistic colour modes colour the city, and the inspection shows t
     assert.match(text, /Occupants present: [\d.]+ \(inferred from floor area and use\)/);
     assert.match(text, /Shaking, X: T1 [\d.]+ s; target Sa\(T1\)/);
     await page.screenshot({ path: path.join(ARTIFACTS, 'inspection-probabilities.png') });
+    assert.deepEqual(problems, []);
+  } finally {
+    await close();
+  }
+});
+
+// The district rows of the panel's table as mirrored ("> name | buildings | >= moderate | ..."),
+// in the order shown.
+function districtRows(text) {
+  return text.split('\n').filter((l) => /^> .+ \| \d+ \| /.test(l)).map((l) => {
+    const cells = l.slice(2).split(' | ');
+    return { name: cells[0], buildings: Number(cells[1]), moderate: Number(cells[2]) };
+  });
+}
+
+// Pixels of the outline's navy (the report map's district lines, #1d3557) in a picture.
+function navyPixels(image) {
+  let n = 0;
+  for (let i = 0; i < image.width * image.height; ++i) {
+    const r = image.data[4 * i], g = image.data[4 * i + 1], b = image.data[4 * i + 2];
+    if (Math.abs(r - 29) < 14 && Math.abs(g - 53) < 14 && Math.abs(b - 87) < 14) ++n;
+  }
+  return n;
+}
+
+test('districts by default: the neighbourhoods of the city\'s own input, a sortable table, a click flies there and outlines it', async () => {
+  // The synthetic city was made and analysed without a districts file: its own neighbourhoods.
+  const info = JSON.parse(fs.readFileSync(path.join(DATA, 'synth-s1.json'), 'utf8'));
+  const { context, close } = await launchBrowser();
+  try {
+    const { page, problems } = await openPage(context, `${server.url}/?data=/synth/tileset.json`);
+    assert.deepEqual(await waitReady(page), { ok: true });
+    await waitForFunction(page, () => window.quakeview.consequences()?.city != null, null, { timeout: 30000 });
+    const c = await page.evaluate(() => window.quakeview.consequences());
+    assert.ok(c.districts.length >= 4, `neighbourhood rows: ${JSON.stringify(c.districts.map((d) => d.name))}`);
+    assert.equal(c.districts.reduce((a, d) => a + d.buildings, 0), c.city.buildings, 'the rows add up to the city');
+    const repair = c.districts.reduce((a, d) => a + d.repairCostUsd.expected, 0);
+    assert.ok(Math.abs(repair - c.city.repairCostUsd.expected) < 1e-6 * c.city.repairCostUsd.expected + 1e-3,
+      `the districts' repair costs add up to the city's: ${repair} vs ${c.city.repairCostUsd.expected}`);
+    assert.equal(c.districtsInferred, true);
+    assert.match(c.districtsSource, /nearest synth-city neighbourhood name/);
+    assert.ok(c.districts.some((d) => d.name === 'Downtown'));
+    assert.ok(info.consequences, 'the tool wrote the consequences it was checked against');
+
+    await openSection(page, 'All consequences: city, view, districts');
+    let text = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(text, new RegExp(`Districts \\(${c.districts.length}\\): each building to its nearest synth-city neighbourhood name.*INFERRED: not official boundaries`));
+    // Sorted by damage, largest first, at the start.
+    let rows = districtRows(text);
+    assert.equal(rows.length, c.districts.length, text);
+    for (let i = 1; i < rows.length; ++i) assert.ok(rows[i - 1].moderate >= rows[i].moderate, `by damage: ${JSON.stringify(rows)}`);
+    // A click on the "Buildings" header sorts by buildings (largest first).
+    const header = await panelItemInView(page, 'Buildings');
+    await page.mouse.click(header.x + header.width / 2, header.y + header.height / 2);
+    await waitForFunction(page, () => {
+      const lines = window.quakeview.uiText().split('\n').filter((l) => /^> .+ \| \d+ \| /.test(l));
+      const b = lines.map((l) => Number(l.split(' | ')[1]));
+      return b.length > 1 && b.every((v, i) => i === 0 || b[i - 1] >= v);
+    }, null, { timeout: 10000, polling: 200 });
+    rows = districtRows(await page.evaluate(() => window.quakeview.uiText()));
+    for (let i = 1; i < rows.length; ++i) assert.ok(rows[i - 1].buildings >= rows[i].buildings, `by buildings: ${JSON.stringify(rows)}`);
+
+    // A click on a district's row flies there and outlines it on the ground.
+    await page.evaluate(() => window.quakeview.pause());
+    const before = await page.evaluate(() => window.quakeview.getCamera());
+    const plain = decodePng(await page.screenshot());
+    const target = rows[rows.length - 1].name;  // the smallest: the camera must move to it
+    const row = await panelItemInView(page, target);
+    await page.mouse.click(row.x + row.width / 2, row.y + row.height / 2);
+    await waitForFunction(page, (name) => window.quakeview.shownDistrict() === name, target, { timeout: 10000 });
+    await page.waitForTimeout(1800);  // the flight (1.2 s)
+    await settle(page);
+    const after = await page.evaluate(() => window.quakeview.getCamera());
+    assert.ok(Math.hypot(after.x - before.x, after.y - before.y) > 50, `the camera flew: ${JSON.stringify([before, after])}`);
+    assert.ok(after.distance < before.distance, 'closer than the overview');
+    text = await page.evaluate(() => window.quakeview.uiText());
+    assert.match(text, new RegExp(`Outlined district: ${target}`));
+    assert.match(text, new RegExp(`Outlined: ${target}`));
+    const outlined = decodePng(await page.screenshot({ path: path.join(ARTIFACTS, 'district-outlined.png') }));
+    assert.ok(navyPixels(outlined) > 400 + navyPixels(plain), `the outline is drawn: ${navyPixels(outlined)} navy pixels`);
+    // "Clear outline" takes it away; the API does the same as the click.
+    const clear = await panelItemInView(page, 'Clear outline');
+    await page.mouse.click(clear.x + clear.width / 2, clear.y + clear.height / 2);
+    await waitForFunction(page, () => window.quakeview.shownDistrict() === '', null, { timeout: 5000 });
+    assert.equal(await page.evaluate(() => window.quakeview.showDistrict('No such place')), false);
+    assert.equal(await page.evaluate((n) => window.quakeview.showDistrict(n), rows[0].name), true);
+    assert.equal(await page.evaluate(() => window.quakeview.shownDistrict()), rows[0].name);
     assert.deepEqual(problems, []);
   } finally {
     await close();

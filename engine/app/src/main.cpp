@@ -349,6 +349,16 @@ EMSCRIPTEN_KEEPALIVE int qv_fly_to_selection() {
   return gApp != nullptr && gApp->viewer().flyToSelection() ? 1 : 0;
 }
 
+/// Flies to the consequences' district `name` and outlines it ("" clears); 0 when unknown.
+EMSCRIPTEN_KEEPALIVE int qv_show_district(const char* name) {
+  return gApp != nullptr && name != nullptr && gApp->viewer().showDistrict(name) ? 1 : 0;
+}
+
+EMSCRIPTEN_KEEPALIVE const char* qv_shown_district() {
+  if (gApp == nullptr) return hand("");
+  return hand(gApp->viewer().shownDistrict());
+}
+
 /// Amplitude exaggeration of displayed displacements, 1 … 200 as the panel's slider; 0 when out of
 /// range (nothing changes).
 EMSCRIPTEN_KEEPALIVE int qv_set_amplitude(double amplitude) {

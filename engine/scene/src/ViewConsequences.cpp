@@ -134,6 +134,13 @@ std::string consequencesJson(const ResponseInfo* response, const seismic::Conseq
     }
   }
   w.endArray();
+  // What the districts are, and whether they are inferred (nearest place names, no drawn boundary).
+  if (file != nullptr && !file->districtsSource.empty()) {
+    w.field("districtsSource", file->districtsSource).field("districtsInferred", file->districtsInferred);
+  } else {
+    w.key("districtsSource").null();
+    w.field("districtsInferred", false);
+  }
   w.endObject();
   return w.take();
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 #include "qv/core/JsonWriter.h"
 #include "qv/scene/FlyToPose.h"
@@ -89,6 +90,7 @@ void Viewer::createCity(const std::string& url, const CitySceneOptions& options)
   city_->setResolvedSink([this](const std::string& key) { withdrawErrors(key); });
   cityFramed_ = false;
   settled_ = false;
+  shownDistrict_.clear();
 }
 
 void Viewer::switchCity(const std::string& url) {
@@ -509,6 +511,57 @@ void Viewer::flyTo(double x, double y, double distance) {
   sanitizeCamera(to, camera_);
   flight_ = Flight{camera_, to, 0.0, 1.2};
   cameraSetByUser_ = true;
+}
+
+namespace {
+
+const seismic::ConsequenceTotals::District* findDistrict(const CityScene* city, const std::string& name) {
+  const seismic::ConsequenceTotals* file = city != nullptr ? city->consequences() : nullptr;
+  if (file == nullptr || name.empty()) return nullptr;
+  for (const seismic::ConsequenceTotals::District& d : file->districts) {
+    if (d.name == name && !d.outline.empty()) return &d;
+  }
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::vector<glm::dvec2>> Viewer::shownDistrictOutline() const {
+  std::vector<std::vector<glm::dvec2>> rings;
+  const seismic::ConsequenceTotals::District* d = findDistrict(city_.get(), shownDistrict_);
+  if (d == nullptr || !geo_.valid()) return rings;
+  for (const auto& ring : d->outline) {
+    std::vector<glm::dvec2>& out = rings.emplace_back();
+    out.reserve(ring.size());
+    for (const auto& p : ring) out.push_back(geo_.forwardUnchecked(LonLat{p[0], p[1]}));
+  }
+  return rings;
+}
+
+bool Viewer::showDistrict(const std::string& name) {
+  if (name.empty()) {
+    shownDistrict_.clear();
+    return true;
+  }
+  const seismic::ConsequenceTotals::District* d = findDistrict(city_.get(), name);
+  if (d == nullptr || !geo_.valid()) return false;
+  shownDistrict_ = name;
+  double minX = std::numeric_limits<double>::infinity(), minY = minX, maxX = -minX, maxY = -minX;
+  for (const std::vector<glm::dvec2>& ring : shownDistrictOutline()) {
+    for (const glm::dvec2& p : ring) {
+      minX = std::min(minX, p.x);
+      minY = std::min(minY, p.y);
+      maxX = std::max(maxX, p.x);
+      maxY = std::max(maxY, p.y);
+    }
+  }
+  if (!(minX <= maxX && minY <= maxY)) return false;
+  // The outline's larger side across about two thirds of the view (the lens shift keeps the panel's
+  // side clear), seen from the current heading and pitch.
+  const double extent = std::max({maxX - minX, maxY - minY, 50.0});
+  const double halfFov = 0.5 * camera_.fovDeg * 3.14159265358979 / 180.0;
+  flyTo(0.5 * (minX + maxX), 0.5 * (minY + maxY), 0.75 * extent / std::tan(halfFov));
+  return true;
 }
 
 std::optional<ViewArea> Viewer::viewArea() const {

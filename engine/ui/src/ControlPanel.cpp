@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "PanelText.h"
 #include "qv/format/FacilityCategory.h"
@@ -165,6 +166,7 @@ std::string ControlPanel::exportList(Viewer& viewer, const std::string& format, 
 }
 
 void ControlPanel::draw(Viewer& viewer, ui::Widgets& w, const MemoryInfo& memory, UiHost& host) {
+  drawDistrictOutline(viewer, w);
   drawMapLabels(viewer, w);
   drawPanel(viewer, w, memory, host);
   drawInspection(viewer, w, host);
@@ -380,19 +382,43 @@ void ControlPanel::drawConsequences(Viewer& viewer, ui::Widgets& w, UiHost& host
   }
   w.table("##consequences", {"", "City", "In view"}, rows);
   if (!file->districts.empty()) {
-    w.text("Districts:");
+    // Where the districts come from (a city's own are made from its input; nearest place names are
+    // inferred, and say so), then the table: sorted by a click on a header, a row flies there.
+    w.textWrapped(
+        ui::format("Districts (%zu): %s%s", file->districts.size(),
+                   file->districtsSource.empty() ? "from the response's districts file" : file->districtsSource.c_str(),
+                   file->districtsInferred ? " (INFERRED: not official boundaries)" : ""));
+    w.textWrapped(
+        "Expected values (their intervals: Export totals); Damaged: moderate or worse. Click a district to fly "
+        "there and outline it; click a header to sort.");
     std::vector<std::vector<std::string>> districtRows;
+    std::vector<std::vector<double>> keys;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     for (const seismic::ConsequenceTotals::District& d : file->districts) {
       const seismic::LossTotals& t = d.totals;
       const double moderate = t.damageStates[2].expected + t.damageStates[3].expected + t.damageStates[4].expected;
       double hurt = 0.0;
       for (std::size_t k = 0; k < 3; ++k) hurt += t.injuries[k].expected;
+      // Expected values only, so that seven columns fit the panel.
+      const double cost = t.repairCostUsd.expected;
       districtRows.push_back({d.name, ui::format("%llu", static_cast<unsigned long long>(t.buildings)),
-                              ui::format("%.1f", moderate), cell(t.tags[2], 1), ui::format("%.2f", hurt),
-                              cell(t.injuries[3], 3), money(t.repairCostUsd)});
+                              ui::format("%.1f", moderate), ui::format("%.1f", t.tags[2].expected),
+                              ui::format("%.2f", hurt), ui::format("%.3f", t.injuries[3].expected),
+                              cost >= 1e9   ? ui::format("$%.2f bn", cost / 1e9)
+                              : cost >= 1e6 ? ui::format("$%.2f M", cost / 1e6)
+                                            : ui::format("$%.0f k", cost / 1e3)});
+      keys.push_back(
+          {nan, static_cast<double>(t.buildings), moderate, t.tags[2].expected, hurt, t.injuries[3].expected, cost});
     }
-    w.table("##districts", {"District", "Buildings", ">= moderate", "Red tags", "Injured", "Deaths", "Repair cost"},
-            districtRows);
+    const int clicked =
+        w.sortableTable("##districts", {"District", "Buildings", "Damaged", "Red tags", "Injured", "Deaths", "Repair"},
+                        districtRows, keys, 2);
+    if (clicked >= 0) viewer.showDistrict(file->districts[static_cast<std::size_t>(clicked)].name);
+    if (!viewer.shownDistrict().empty()) {
+      w.text("Outlined: " + viewer.shownDistrict());
+      ImGui::SameLine();
+      if (w.button("Clear outline")) viewer.showDistrict("");
+    }
   }
   if (w.button("Export totals (CSV)")) {
     // The totals are the whole city's (and the view's): the list filters do not apply to them.

@@ -63,6 +63,29 @@ void rotateVertices(ImDrawList& list, int first, ImVec2 centre, float angle) {
 
 }  // namespace
 
+void ControlPanel::drawDistrictOutline(const Viewer& viewer, ui::Widgets& w) {
+  const std::vector<std::vector<glm::dvec2>> rings = viewer.shownDistrictOutline();
+  if (rings.empty()) return;
+  // On the ground under the map's names: a white halo, then the navy of the report map's district
+  // lines (#1d3557). A segment with an end behind the eye is left out.
+  ImDrawList& list = *ImGui::GetBackgroundDrawList();
+  for (const auto& [colour, width] :
+       {std::pair{IM_COL32(255, 255, 255, 200), 6.0f}, {IM_COL32(29, 53, 87, 255), 3.0f}}) {
+    for (const std::vector<glm::dvec2>& ring : rings) {
+      std::optional<glm::dvec2> previous = viewer.worldToScreen(ring.back().x, ring.back().y, 0.0);
+      for (const glm::dvec2& p : ring) {
+        const std::optional<glm::dvec2> at = viewer.worldToScreen(p.x, p.y, 0.0);
+        if (at && previous) {
+          list.AddLine(ImVec2(static_cast<float>(previous->x), static_cast<float>(previous->y)),
+                       ImVec2(static_cast<float>(at->x), static_cast<float>(at->y)), colour, width);
+        }
+        previous = at;
+      }
+    }
+  }
+  w.mirror().line("Outlined district: " + viewer.shownDistrict());
+}
+
 void ControlPanel::drawMapLabels(Viewer& viewer, ui::Widgets& w) {
   shownMapLabels_.clear();
   CityScene* city = viewer.city();

@@ -5,6 +5,7 @@
 #include <cstdarg>
 #include <cstdio>
 #include <cstring>
+#include <limits>
 #include <numeric>
 
 #include <imgui.h>
@@ -390,6 +391,87 @@ void Widgets::table(const char* id, const std::vector<std::string>& headers,
     mirror_.line(line);
   }
   if (shown) ImGui::EndTable();
+}
+
+int Widgets::sortableTable(const char* id, const std::vector<std::string>& headers,
+                           const std::vector<std::vector<std::string>>& rows,
+                           const std::vector<std::vector<double>>& keys, int defaultColumn) {
+  const int columns = static_cast<int>(headers.size());
+  if (columns == 0) return -1;
+  std::string line;
+  for (std::size_t c = 0; c < headers.size(); ++c) line += (c > 0 ? " | " : "") + std::string(Shown(headers[c]).view());
+  mirror_.line(line);
+  // The columns share the panel's width in proportion to their content (never wider than the
+  // panel); no scrolling region of its own (that would be a child window, out of the panel's
+  // layout): the panel scrolls.
+  const ImGuiTableFlags flags =
+      ImGuiTableFlags_Borders | ImGuiTableFlags_RowBg | ImGuiTableFlags_SizingStretchProp | ImGuiTableFlags_Sortable;
+  const bool shown = ImGui::BeginTable(id, columns, flags);
+  // The order: the header's sort (ImGui keeps it per table), by default the default column, largest first.
+  int sortColumn = std::clamp(defaultColumn, 0, columns - 1);
+  bool descending = true;
+  if (shown) {
+    for (int c = 0; c < columns; ++c) {
+      ImGuiTableColumnFlags columnFlags = ImGuiTableColumnFlags_PreferSortDescending;
+      if (c == sortColumn) columnFlags |= ImGuiTableColumnFlags_DefaultSort;
+      ImGui::TableSetupColumn(std::string(Shown(headers[static_cast<std::size_t>(c)]).view()).c_str(), columnFlags);
+    }
+    // The header row as TableHeadersRow draws it, each header in the layout (a click sorts).
+    ImGui::TableNextRow(ImGuiTableRowFlags_Headers);
+    for (int c = 0; c < columns; ++c) {
+      if (!ImGui::TableSetColumnIndex(c)) continue;
+      const char* name = ImGui::TableGetColumnName(c);
+      ImGui::PushID(c);
+      ImGui::TableHeader(name);
+      recordItem(name);
+      tabStop(name, "column header", TabStopKind::Press);
+      ImGui::PopID();
+    }
+    if (const ImGuiTableSortSpecs* specs = ImGui::TableGetSortSpecs(); specs != nullptr && specs->SpecsCount > 0) {
+      sortColumn = specs->Specs[0].ColumnIndex;
+      descending = specs->Specs[0].SortDirection == ImGuiSortDirection_Descending;
+    }
+  }
+  std::vector<std::size_t> order(rows.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto column = static_cast<std::size_t>(sortColumn);
+  auto key = [&](std::size_t r) {
+    return r < keys.size() && column < keys[r].size() ? keys[r][column] : std::numeric_limits<double>::quiet_NaN();
+  };
+  auto text = [&](std::size_t r) -> std::string_view {
+    return column < rows[r].size() ? std::string_view(rows[r][column]) : std::string_view();
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    const double ka = key(a), kb = key(b);
+    if (std::isnan(ka) || std::isnan(kb)) return descending ? text(b) < text(a) : text(a) < text(b);
+    return descending ? kb < ka : ka < kb;
+  });
+  int clicked = -1;
+  for (const std::size_t r : order) {
+    const std::vector<std::string>& row = rows[r];
+    line = "> ";
+    if (shown) ImGui::TableNextRow();
+    for (int c = 0; c < columns; ++c) {
+      const std::string cell = static_cast<std::size_t>(c) < row.size() ? row[static_cast<std::size_t>(c)] : "";
+      const Shown shownText(cell);
+      line += (c > 0 ? " | " : "") + std::string(shownText.view());
+      if (!shown) continue;
+      ImGui::TableSetColumnIndex(c);
+      if (c == 0) {
+        ImGui::PushID(static_cast<int>(r));
+        const std::string label = shownText.str();
+        if (ImGui::Selectable(label.c_str(), false, ImGuiSelectableFlags_SpanAllColumns)) clicked = static_cast<int>(r);
+        recordItem(label.c_str());
+        tabStop(label.c_str(), "table row", TabStopKind::Press);
+        ImGui::PopID();
+      } else {
+        ImGui::TextUnformatted(shownText.view().data(), shownText.view().data() + shownText.view().size());
+      }
+    }
+    mirror_.line(line);
+  }
+  if (shown) ImGui::EndTable();
+  return clicked;
 }
 
 void Widgets::swatch(float r, float g, float b, std::string_view raw, bool hatched) {

@@ -57,7 +57,8 @@ std::string viewAreaText(const ViewArea& area);
 /// `quakeview.consequences()` JSON: {eventType ("SCENARIO", "ACTUAL" or null), shakingField,
 /// shakemap ({eventId, version, processTimestamp, eventTimestamp, description} or null), timeOfDay,
 /// city, view (totals with `bounds` {west, south, east, north}, the degrees around the buildings
-/// counted, null when none is in view; or null), districts: [{name, ...totals}]}, totals being {buildings,
+/// counted, null when none is in view; or null), districts: [{name, ...totals}], districtsSource (what
+/// the districts are, null for files before it), districtsInferred}, totals being {buildings,
 /// damageStates: {none, slight, moderate, extensive, complete}, collapsed, occupants, injuries:
 /// {severity1 .. severity4}, deaths, repairCostUsd, tags: {green, yellow, red}}, every estimate
 /// {expected, low, high}. "null" without a response.

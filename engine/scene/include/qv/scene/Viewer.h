@@ -160,6 +160,13 @@ class Viewer {
   /// pitch nearest the current ones along which no loaded building hides its centre or roof
   /// (qv::chooseFlyToPose). False when nothing is selected or the building is unknown.
   bool flyToSelection();
+  /// Flies to the district `name` of the consequences (its outline's box filling most of the view)
+  /// and outlines it until another is shown or "" given (the panel draws shownDistrictOutline).
+  /// False, and nothing changes, when the city has no such district with an outline.
+  bool showDistrict(const std::string& name);
+  [[nodiscard]] const std::string& shownDistrict() const { return shownDistrict_; }
+  /// The shown district's outline rings in the city frame (metres); empty when none is shown.
+  [[nodiscard]] std::vector<std::vector<glm::dvec2>> shownDistrictOutline() const;
   /// Moves the camera smoothly to `pose` (invalid fields keep the current values).
   void flyToPose(const CameraState& pose);
   /// The ground point under a canvas point (CSS pixels), metres in the city frame.
@@ -217,6 +224,7 @@ class Viewer {
   bool timeChosen_ = false;      // setTime() was called (a link, the user): the opening time stays
   bool openingTimeSet_ = false;  // the first view was moved to the shaking's arrival
   double framingInsetCss_ = 0.0;
+  std::string shownDistrict_;     // showDistrict
   double widestInsetCss_ = -1.0;  // setFramingInsetCss's widestLeft
   double duration_ = 0.0;
   double speed_ = 1.0;

@@ -137,6 +137,9 @@ class ControlPanel {
   /// The map's names (streets, water, parks, places) under the panels (ControlPanelMap.cpp),
   /// placed by qv::placeMapLabels clear of every window, mirrored as "Map labels: ...".
   void drawMapLabels(Viewer& viewer, ui::Widgets& w);
+  /// The district shown from the consequences' table (Viewer::showDistrict) outlined on the
+  /// ground, under the map's names; mirrored as "Outlined district: <name>".
+  void drawDistrictOutline(const Viewer& viewer, ui::Widgets& w);
   /// One line on the map under the city: what it shows, or why there is none.
   void drawMapLine(const Tileset& tileset, ui::Widgets& w);
   /// The "Names on the map" switch (General section), when the city has a map.

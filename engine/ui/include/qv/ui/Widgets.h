@@ -62,6 +62,14 @@ class Widgets {
   /// A table with a header row; cells are text. Mirrored one row a line, cells separated by " | ".
   void table(const char* id, const std::vector<std::string>& headers,
              const std::vector<std::vector<std::string>>& rows);
+  /// A table whose rows are sorted by a click on a column's header (again: the other way) and
+  /// chosen by a click on the row. `keys[row][column]` orders the rows (NaN: by the cell's text);
+  /// `defaultColumn` is sorted on first, largest first. The rows are mirrored in the order shown,
+  /// each starting "> " (clickable; in the layout by its first cell). Returns the index (into
+  /// `rows`) of the row clicked in this frame, or -1.
+  int sortableTable(const char* id, const std::vector<std::string>& headers,
+                    const std::vector<std::vector<std::string>>& rows, const std::vector<std::vector<double>>& keys,
+                    int defaultColumn);
   /// A filled colour square followed by text on the same line.
   void swatch(float r, float g, float b, std::string_view text, bool hatched = false);
 
