@@ -5,12 +5,16 @@
 #include <unistd.h>
 #include <zstd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <thread>
+
+#include "qv/core/Crc32.h"
 
 namespace qv::prep {
 namespace fs = std::filesystem;
@@ -226,6 +230,42 @@ void installInterruptHandler() {
 
 bool interrupted() {
   return gInterrupted.load();
+}
+
+void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body) {
+  const unsigned n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t i = next++; i < count; i = next++) {
+      if (interrupted()) return;
+      body(i);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < n && t < count; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+Result<FileDigest> fileDigest(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return Error{"cannot read " + path + ": " + systemError(errno)};
+  std::vector<std::uint8_t> buffer(std::size_t{1} << 20);
+  FileDigest digest;
+  for (;;) {
+    const ssize_t got = ::read(fd, buffer.data(), buffer.size());
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      const int error = errno;
+      ::close(fd);
+      return Error{"cannot read " + path + ": " + systemError(error)};
+    }
+    if (got == 0) break;
+    digest.crc32 = qv::crc32(std::span<const std::uint8_t>(buffer.data(), static_cast<std::size_t>(got)), digest.crc32);
+    digest.bytes += static_cast<std::uint64_t>(got);
+  }
+  ::close(fd);
+  return digest;
 }
 
 }  // namespace qv::prep

@@ -690,20 +690,6 @@ CellOutput processCell(const CellInput& in, const Features& f, const GroundLayer
   return out;
 }
 
-void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body) {
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < count; i = next++) {
-      if (interrupted()) return;
-      body(i);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads && t < count; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-}
-
 struct WorkCell {
   std::uint32_t x = 0, y = 0;
   CellInput input;

@@ -98,20 +98,6 @@ std::size_t stringsBytes(const BuildingAttributes& a) {
          a.amenity.size();
 }
 
-void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body) {
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < count; i = next++) {
-      if (interrupted()) return;
-      body(i);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& t : pool) t.join();
-}
-
 // The footprints' bounds of a set of buildings (metres, city frame).
 struct Extent {
   double minX = 1e300, minY = 1e300, maxX = -1e300, maxY = -1e300;

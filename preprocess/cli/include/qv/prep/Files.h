@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -73,5 +74,19 @@ void removeTree(const std::string& path);
 void installInterruptHandler();
 /// True after Ctrl-C: long loops stop, clean up and exit with a message.
 bool interrupted();
+
+/// Runs body(i) for every i in [0, count) on `threads` threads (0: every core), this one included,
+/// each taking the next index as it finishes one, and returns when all are done. After Ctrl-C
+/// (interrupted()) no new index is started. `body` must be safe to run concurrently with itself.
+void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body);
+
+/// A file's size and CRC-32 (qv::crc32, as zlib's).
+struct FileDigest {
+  std::uint64_t bytes = 0;
+  std::uint32_t crc32 = 0;
+};
+/// Reads the file at `path` in pieces through a fixed 1 MiB buffer (memory stays flat however large
+/// the file) and returns its size and CRC-32; the error names the path and the system's reason.
+Result<FileDigest> fileDigest(const std::string& path);
 
 }  // namespace qv::prep
