@@ -199,7 +199,7 @@ merge_script() { # SCENARIO
 # The merge of scenario $1's $n parts of a QuakeView catalogue, submitted by scripts/slurm/submit-catalogue.sh.
 set -uo pipefail
 echo "[quakeview] merge of scenario $1 of $q_city ($n parts): job \${SLURM_JOB_ID} on \$(hostname), started \$(date -u +%Y-%m-%dT%H:%M:%SZ)"
-$q_prep response --city $q_city --merge --scenario $1
+$q_prep response --city $q_city --merge --scenario $1 --threads "\${SLURM_CPUS_PER_TASK:-1}"
 status=\$?
 echo "[quakeview] merge of scenario $1 finished with exit status \$status at \$(date -u +%Y-%m-%dT%H:%M:%SZ)"
 exit \$status

@@ -172,7 +172,7 @@ merge_script=$(cat <<SCRIPT
 # The merge of a QuakeView response's $n parts, submitted by scripts/slurm/submit-response.sh.
 set -uo pipefail
 echo "[quakeview] merge of $q_city ($n parts): job \${SLURM_JOB_ID} on \$(hostname), started \$(date -u +%Y-%m-%dT%H:%M:%SZ)"
-$q_prep response --city $q_city --merge
+$q_prep response --city $q_city --merge --threads "\${SLURM_CPUS_PER_TASK:-1}"
 status=\$?
 echo "[quakeview] merge finished with exit status \$status at \$(date -u +%Y-%m-%dT%H:%M:%SZ)"
 exit \$status

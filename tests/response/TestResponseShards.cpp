@@ -86,7 +86,9 @@ struct Cities {
   [[nodiscard]] qv::test::ToolRun part(const std::string& spec, const std::string& extra = "") const {
     return run("response --city '" + sharded + "' " + options + " --shard " + spec + " " + extra);
   }
-  [[nodiscard]] qv::test::ToolRun merge() const { return run("response --city '" + sharded + "' --merge"); }
+  [[nodiscard]] qv::test::ToolRun merge(const std::string& extra = "") const {
+    return run("response --city '" + sharded + "' --merge " + extra);
+  }
 };
 
 }  // namespace
@@ -105,6 +107,9 @@ TEST_CASE("a response run in parts and merged is byte-identical to the run on on
   }
   // Until the merge, the city has no response.
   CHECK(readAll(c.sharded + "/tileset.json").find("\"response\"") == std::string::npos);
+  const auto noCores = c.merge("--threads 0");
+  CHECK(noCores.exitCode == 2);
+  CHECK(noCores.output.find("--threads must be from 1 to 256") != std::string::npos);
   const auto merged = c.merge();
   INFO(merged.output);
   REQUIRE(merged.exitCode == 0);
@@ -186,11 +191,13 @@ TEST_CASE("a merge with a part missing, failed, damaged or from another run publ
   }
   REQUIRE_FALSE(damagedFile.empty());
   std::ofstream(damagedFile, std::ios::app) << 'x';
-  auto damaged = c.merge();
+  auto damaged = c.merge("--threads 1");
   INFO(damaged.output);
   CHECK(damaged.exitCode == 1);
   CHECK(damaged.output.find("part 2 of 3") != std::string::npos);
   CHECK(damaged.output.find("is damaged") != std::string::npos);
+  CHECK(damaged.output.find(fs::path(damagedFile).filename().string() + " is not the file its part.json names") !=
+        std::string::npos);
   unchanged();
 
   // Re-running the one failed part is enough.

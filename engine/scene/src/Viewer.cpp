@@ -526,16 +526,20 @@ const seismic::ConsequenceTotals::District* findDistrict(const CityScene* city, 
 
 }  // namespace
 
-std::vector<std::vector<glm::dvec2>> Viewer::shownDistrictOutline() const {
-  std::vector<std::vector<glm::dvec2>> rings;
-  const seismic::ConsequenceTotals::District* d = findDistrict(city_.get(), shownDistrict_);
-  if (d == nullptr || !geo_.valid()) return rings;
+const std::vector<std::vector<glm::dvec2>>& Viewer::shownDistrictOutline() const {
+  // Projected once per district shown (an outline may hold up to 20,000 points), again only when
+  // the consequences it came from were loaded anew.
+  const seismic::ConsequenceTotals::District* d = geo_.valid() ? findDistrict(city_.get(), shownDistrict_) : nullptr;
+  if (d == outlineSource_) return outline_;
+  outlineSource_ = d;
+  outline_.clear();
+  if (d == nullptr) return outline_;
   for (const auto& ring : d->outline) {
-    std::vector<glm::dvec2>& out = rings.emplace_back();
+    std::vector<glm::dvec2>& out = outline_.emplace_back();
     out.reserve(ring.size());
     for (const auto& p : ring) out.push_back(geo_.forwardUnchecked(LonLat{p[0], p[1]}));
   }
-  return rings;
+  return outline_;
 }
 
 bool Viewer::showDistrict(const std::string& name) {

@@ -64,7 +64,7 @@ void rotateVertices(ImDrawList& list, int first, ImVec2 centre, float angle) {
 }  // namespace
 
 void ControlPanel::drawDistrictOutline(const Viewer& viewer, ui::Widgets& w) {
-  const std::vector<std::vector<glm::dvec2>> rings = viewer.shownDistrictOutline();
+  const std::vector<std::vector<glm::dvec2>>& rings = viewer.shownDistrictOutline();
   if (rings.empty()) return;
   // On the ground under the map's names: a white halo, then the navy of the report map's district
   // lines (#1d3557). A segment with an end behind the eye is left out.

@@ -28,7 +28,7 @@ const char* const kUsage =
     "                               [--time-of-day night|day|commute] [--districts FILE.geojson]\n"
     "                               [--population-night N] [--population-day N] [--population-source TEXT]\n"
     "                               [--accurate-steps] [--threads N] [--shard K/N]\n"
-    "       quakeview-prep response --city DIR --merge [--scenario I]\n"
+    "       quakeview-prep response --city DIR --merge [--scenario I] [--threads N]\n"
     "       quakeview-prep response --city DIR --catalogue FILE --scenario I [--shard K/N] [--threads N]\n"
     "       quakeview-prep response --catalogue FILE --list\n"
     "  Analyses every building of the city as an MDOF shear building with Bouc-Wen storeys (X and Y)\n"
@@ -59,6 +59,7 @@ const char* const kUsage =
     "                     the city's response is unchanged until --merge\n"
     "  --merge            check that DIR/staging holds every part of one run, complete, then publish\n"
     "                     them as the city's response, byte-identical to the same run on one machine\n"
+    "  --threads N        cores to use (default: every core this process may run on)\n"
     "  --catalogue FILE   a scenario catalogue (JSON: each scenario's name and response options, docs/cluster.md):\n"
     "  --scenario I       run its scenario I as its own response, beside the others (scenario-I.json,\n"
     "                     scenarios.json: the viewer switches between them; scenario 1 is also tileset.json);\n"
@@ -220,8 +221,14 @@ int runResponseWith(const CommandArgs& argv, const ScenarioTarget* target) {
       }
       scenario = static_cast<std::size_t>(*i);
     }
+    unsigned threads = 0;
+    if (const auto v = args->value("threads")) {
+      const auto t = parseInteger(*v);
+      if (!t || *t < 1 || *t > 256) return usage("--threads must be from 1 to 256");
+      threads = static_cast<unsigned>(*t);
+    }
     installInterruptHandler();
-    const auto merged = mergeCityResponse(*city, scenario);
+    const auto merged = mergeCityResponse(*city, scenario, threads);
     if (!merged.ok()) {
       std::fprintf(stderr, "response: %s\n", merged.error().c_str());
       return kExitDataError;

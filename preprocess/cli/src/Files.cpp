@@ -1,6 +1,7 @@
 #include "qv/prep/Files.h"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <sys/stat.h>
 #include <unistd.h>
 #include <zstd.h>
@@ -232,8 +233,17 @@ bool interrupted() {
   return gInterrupted.load();
 }
 
+unsigned usableCores() {
+  // The cores this process may run on (a batch job's CPU set: Slurm's task affinity, taskset,
+  // a container's cpuset), not the machine's.
+  cpu_set_t set;
+  CPU_ZERO(&set);
+  if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return static_cast<unsigned>(CPU_COUNT(&set));
+  return std::max(1u, std::thread::hardware_concurrency());
+}
+
 void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body) {
-  const unsigned n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned n = threads > 0 ? threads : usableCores();
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
     for (std::size_t i = next++; i < count; i = next++) {

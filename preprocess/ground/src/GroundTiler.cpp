@@ -703,7 +703,7 @@ std::string groundFileName(int level, std::uint32_t x, std::uint32_t y) {
 
 Result<GroundTilerReport> writeGroundTiles(const GroundFeatures& features, const Rect& cityBounds,
                                            const std::string& cityDir, const GroundTilerOptions& options) {
-  const unsigned threads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = options.threads > 0 ? options.threads : usableCores();
   const double leafCellM =
       std::isfinite(options.leafCellM) && options.leafCellM > 0.0 ? options.leafCellM : GroundTilerOptions{}.leafCellM;
   GroundTilerReport report;

@@ -19,6 +19,7 @@
 #include "RawCity.h"
 #include "qv/prep/Attributes.h"
 #include "qv/prep/Cleaning.h"
+#include "qv/prep/Files.h"
 #include "qv/prep/Projection.h"
 
 namespace qv::prep {
@@ -646,8 +647,7 @@ Result<CityModel> readCityOrThrow(const std::vector<std::string>& inputPaths, co
   const CityProjection projection(originLon, originLat);
 
   // ---- Project every point once, then clean and parse every feature (independent: a few threads).
-  const unsigned maxThreads =
-      options.threads > 0 ? options.threads : std::min(4u, std::max(1u, std::thread::hardware_concurrency()));
+  const unsigned maxThreads = options.threads > 0 ? options.threads : std::min(4u, usableCores());
   // Through a grid of exact values when the points outnumber its nodes (ProjectionGrid: under a
   // millimetre from the exact projection, measured), else one by one.
   const std::optional<ProjectionGrid> projectionGrid = ProjectionGrid::make(

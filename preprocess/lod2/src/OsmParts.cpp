@@ -8,6 +8,7 @@
 #include <thread>
 #include <utility>
 
+#include "qv/prep/Files.h"
 #include "qv/prep/Lod2CityModel.h"
 #include "qv/prep/Lod2Geometry.h"
 
@@ -119,7 +120,7 @@ OsmPartsReport assembleOsmPartModels(CityModel& city, const FinishOptions& optio
       out.building = std::move(*building);
     }
   };
-  const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned hardware = usableCores();
   const auto workers = static_cast<unsigned>(
       std::min<std::size_t>(threads == 0 ? hardware : threads, std::max<std::size_t>(candidates.size(), 1)));
   std::vector<std::thread> pool;

@@ -752,7 +752,7 @@ std::string stagingFolder(std::size_t scenario) {
                        : std::string(kStagingFolder) + "/scenario-" + std::to_string(scenario);
 }
 
-Result<ResponseRunReport> mergeCityResponse(const std::string& dir, std::size_t scenario) {
+Result<ResponseRunReport> mergeCityResponse(const std::string& dir, std::size_t scenario, unsigned threads) {
   namespace fs = std::filesystem;
   const auto start = std::chrono::steady_clock::now();
   auto text = readTextFile(dir + "/tileset.json", 256ull << 20);
@@ -883,7 +883,7 @@ Result<ResponseRunReport> mergeCityResponse(const std::string& dir, std::size_t 
       }
     }
     std::vector<std::string> problems(checks.size());
-    parallelFor(checks.size(), 0, [&](std::size_t i) {
+    parallelFor(checks.size(), threads, [&](std::size_t i) {
       const Check& c = checks[i];
       const std::string label = describePart({c.part, n}) + " (" + *c.folder + ")";
       const std::string path = *c.folder + "/" + *c.file;
@@ -983,7 +983,7 @@ Result<ResponseRunReport> mergeCityResponse(const std::string& dir, std::size_t 
   std::uint64_t done = 0;
   std::vector<std::string> problems(leaves.size());
   std::atomic<bool> failed{false};
-  parallelFor(leaves.size(), 0, [&](std::size_t j) {
+  parallelFor(leaves.size(), threads, [&](std::size_t j) {
     if (failed) return;
     const Failure fail{problems[j], failed};
     const auto& [folder, m] = parts.at(leaves[j].part);

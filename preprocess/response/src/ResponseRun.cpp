@@ -179,7 +179,7 @@ Result<std::vector<Record>> loadRecords(const ResponseRunOptions& options, bool 
 // Runs `work` on `threads` threads (0: all cores), this one included, and waits for them all.
 template <typename Work>
 void runOnThreads(unsigned threads, Work& work) {
-  const unsigned n = threads > 0 ? threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned n = threads > 0 ? threads : usableCores();
   std::vector<std::thread> pool;
   for (unsigned t = 1; t < n; ++t) pool.emplace_back(std::ref(work));
   work();

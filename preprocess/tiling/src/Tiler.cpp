@@ -325,7 +325,7 @@ std::string tileFileName(int level, std::uint32_t x, std::uint32_t y) {
 }
 
 Result<TilerReport> writeCityTiles(CityModel& model, const std::string& outDir, const TilerOptions& options) {
-  const unsigned threads = options.threads > 0 ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+  const unsigned threads = options.threads > 0 ? options.threads : usableCores();
   if (model.buildings.empty()) return Error{"no buildings to write"};
 
   auto staging = StagingDirectory::create(outDir);

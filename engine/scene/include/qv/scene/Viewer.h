@@ -166,7 +166,8 @@ class Viewer {
   bool showDistrict(const std::string& name);
   [[nodiscard]] const std::string& shownDistrict() const { return shownDistrict_; }
   /// The shown district's outline rings in the city frame (metres); empty when none is shown.
-  [[nodiscard]] std::vector<std::vector<glm::dvec2>> shownDistrictOutline() const;
+  /// Valid until the next call or another district is shown.
+  [[nodiscard]] const std::vector<std::vector<glm::dvec2>>& shownDistrictOutline() const;
   /// Moves the camera smoothly to `pose` (invalid fields keep the current values).
   void flyToPose(const CameraState& pose);
   /// The ground point under a canvas point (CSS pixels), metres in the city frame.
@@ -224,7 +225,10 @@ class Viewer {
   bool timeChosen_ = false;      // setTime() was called (a link, the user): the opening time stays
   bool openingTimeSet_ = false;  // the first view was moved to the shaking's arrival
   double framingInsetCss_ = 0.0;
-  std::string shownDistrict_;     // showDistrict
+  std::string shownDistrict_;  // showDistrict
+  // shownDistrictOutline's projected rings and the district they were projected from.
+  mutable const seismic::ConsequenceTotals::District* outlineSource_ = nullptr;
+  mutable std::vector<std::vector<glm::dvec2>> outline_;
   double widestInsetCss_ = -1.0;  // setFramingInsetCss's widestLeft
   double duration_ = 0.0;
   double speed_ = 1.0;

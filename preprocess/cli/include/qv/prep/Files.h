@@ -75,7 +75,11 @@ void installInterruptHandler();
 /// True after Ctrl-C: long loops stop, clean up and exit with a message.
 bool interrupted();
 
-/// Runs body(i) for every i in [0, count) on `threads` threads (0: every core), this one included,
+/// The cores this process may run on: its CPU affinity (what a Slurm task, taskset or a container's
+/// cpuset allows), else the machine's cores; at least 1.
+unsigned usableCores();
+
+/// Runs body(i) for every i in [0, count) on `threads` threads (0: usableCores()), this one included,
 /// each taking the next index as it finishes one, and returns when all are done. After Ctrl-C
 /// (interrupted()) no new index is started. `body` must be safe to run concurrently with itself.
 void parallelFor(std::size_t count, unsigned threads, const std::function<void(std::size_t)>& body);

@@ -69,8 +69,9 @@ Result<PartResults> decodePartResults(std::span<const std::uint8_t> bytes, std::
 /// says which part is missing, incomplete or from another run and changes nothing. On success the
 /// staging area is removed.
 /// `scenario`: merge the parts of that scenario of a catalogue (their staging folder is
-/// staging/scenario-I; 0: not a catalogue's).
-Result<ResponseRunReport> mergeCityResponse(const std::string& cityDir, std::size_t scenario = 0);
+/// staging/scenario-I; 0: not a catalogue's). `threads`: cores for checking and adopting the
+/// parts' files (0: every core this process may run on); the result does not depend on it.
+Result<ResponseRunReport> mergeCityResponse(const std::string& cityDir, std::size_t scenario = 0, unsigned threads = 0);
 /// The staging folder of a run's parts, relative to the city: "staging" or "staging/scenario-I".
 std::string stagingFolder(std::size_t scenario);
 
