@@ -957,8 +957,8 @@ Result<ResponseRunReport> mergeCityResponse(const std::string& dir, std::size_t 
   finish.districts = districts ? &*districts : nullptr;
   finish.population = first.population;
   // The leaves of every part adopted on every core (each tile read again for its buildings' ids);
-  // the writer's bookkeeping does not depend on their order. The first error in part and leaf
-  // order is named.
+  // the writer's bookkeeping does not depend on their order. A failed leaf stops the others from
+  // starting and its message is returned (with several bad leaves, not always the first in order).
   struct Leaf {
     unsigned part;
     std::size_t index;
