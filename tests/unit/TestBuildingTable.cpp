@@ -101,3 +101,57 @@ TEST_CASE("Rows are reused after release, a full table says so, floors are sent 
   table.releaseFloors(*f1, 6);
   CHECK(table.reserveFloors(6) == f1);
 }
+
+TEST_CASE("The table gives back the rows of evicted tiles once they are many, and keeps what is in use",
+          "[scene][table]") {
+  BuildingTable table(1u << 21, 1u << 22);
+  // A large coarse tile and a leaf above it; the coarse tile is evicted after a flight.
+  const auto coarse = table.reserveBuildings(200000);
+  const auto leaf = table.reserveBuildings(3000);
+  REQUIRE(coarse);
+  REQUIRE(leaf);
+  table.edit(*leaf, 3000)[2999].storeys = 7.0f;
+  const std::uint64_t full = table.heapBytes();
+  CHECK(full >= 203000u * sizeof(BuildingGpuRecord));
+  CHECK(full <= 203000u * sizeof(BuildingGpuRecord) * 9 / 8 + 1);  // an eighth of room, not twice
+  CHECK(table.inUseBytes() == 203000u * sizeof(BuildingGpuRecord));
+  // The rows are below the leaf's: nothing can be given back (the leaf keeps its rows).
+  table.releaseBuildings(*coarse, 200000);
+  CHECK_FALSE(table.trim());
+  CHECK(table.heapBytes() == full);
+  // Once the leaf goes too, the room is given back and the table still grows when needed.
+  const auto small = table.reserveBuildings(100);
+  REQUIRE(small == coarse);
+  table.releaseBuildings(*leaf, 3000);
+  CHECK(table.trim());
+  CHECK(table.heapBytes() == 100u * sizeof(BuildingGpuRecord));
+  CHECK_FALSE(table.trim());  // nothing more to give
+  const auto again = table.reserveBuildings(5000);
+  REQUIRE(again == 100u);
+  table.edit(*again, 5000)[4999].storeys = 3.0f;
+  RowRecorder device;
+  table.upload(device, false);
+  REQUIRE(device.buildings.count(*again + 4999) == 1);
+  CHECK(device.buildings[*again + 4999].storeys == 3.0f);
+  // A change marked on rows that were given back is not sent.
+  table.changed(10000, 50);
+  device.buildingWrites.clear();
+  table.upload(device, false);
+  CHECK(device.buildingWrites.empty());
+}
+
+TEST_CASE("Floors are sent up to the highest in use now, not the highest ever", "[scene][table]") {
+  BuildingTable table(16, 1u << 20);
+  const auto low = table.reserveFloors(10);
+  const auto high = table.reserveFloors(200000);
+  REQUIRE(low);
+  REQUIRE(high);
+  RowRecorder device;
+  table.upload(device, true);
+  CHECK(device.floorRowsSent == 200010);
+  table.releaseFloors(*high, 200000);
+  table.upload(device, true);
+  CHECK(device.floorRowsSent == 10);
+  CHECK(table.trim());
+  CHECK(table.heapBytes() < 20000u);
+}

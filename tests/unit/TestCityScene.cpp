@@ -556,6 +556,56 @@ TEST_CASE("A view larger than the memory budget is drawn coarser, within the bud
   CHECK(viewer.city()->tileSelection().draw.size() == 4);
 }
 
+TEST_CASE("Heap the scene's parts do not count, once measured, comes out of the tiles' share of the budget",
+          "[scene][city][memory]") {
+  SceneRig rig;
+  rig.open(0.0f);
+  Viewer& viewer = rig.viewer;
+  const CameraState close{0.0, 0.0, 150.0, 0.0, 89.0, 60.0};
+  viewer.setCamera(close);
+  for (int i = 0; i < 60 && !viewer.settled(); ++i) runFrames(viewer, 1);
+  REQUIRE(viewer.settled());
+  REQUIRE(viewer.city()->tileSelection().draw.size() == 4);
+  const std::uint64_t full = viewer.city()->memoryBytes();
+  viewer.city()->mutableOptions().memoryBudgetBytes = full * 2;
+  CHECK(viewer.city()->memoryUse().otherHeap == 0);  // not measured: not counted
+  // A heap that holds, besides what the parts count, 1.4 times what the view needs (a browser's
+  // allocator overhead, the panels): it is counted, and only the root fits beside it.
+  const auto countedHeap = [&] {
+    MemoryUse use = viewer.city()->memoryUse();
+    return use.total() - use.tilesGpu - use.otherHeap;
+  };
+  const auto framesWithRestOfHeap = [&](std::uint64_t rest, int frames) {
+    for (int i = 0; i < frames; ++i) {
+      viewer.setMeasuredHeapBytes(countedHeap() + rest);
+      runFrames(viewer, 1);
+    }
+  };
+  // The engine's own memory, as first measured, comes on top of the budget.
+  const std::uint64_t engine = full / 8;
+  framesWithRestOfHeap(engine, 1);
+  CHECK(viewer.city()->memoryUse().otherHeap == 0);
+  CHECK(viewer.city()->tileSelection().draw.size() == 4);
+  // (What the scene counts can change a little between the test's measure and the frame's.)
+  const auto near = [&](std::uint64_t bytes, std::uint64_t expected) {
+    return bytes + full / 10 >= expected && bytes <= expected + full / 10;
+  };
+  const std::uint64_t rest = full * 7 / 5;
+  framesWithRestOfHeap(engine + rest, 20);
+  CHECK(near(viewer.city()->memoryUse().otherHeap, rest));
+  CHECK(viewer.city()->tileSelection().memoryLimited);
+  CHECK(viewer.city()->tileSelection().draw == std::vector<std::uint32_t>{0});
+  const MemoryUse use = viewer.city()->memoryUse();
+  CHECK(use.tilesCpu + use.tilesGpu <= full * 2 - rest);  // the leaves evicted
+  // A passing peak of the heap (one frame) is not taken for the rest of it.
+  framesWithRestOfHeap(engine, 1);
+  framesWithRestOfHeap(engine + full * 4, 1);
+  CHECK(near(viewer.city()->memoryUse().otherHeap, 0));
+  // Once the heap holds less beside the parts, the leaves return.
+  for (int i = 0; i < 60 && viewer.city()->tileSelection().draw.size() < 4; ++i) framesWithRestOfHeap(engine, 1);
+  CHECK(viewer.city()->tileSelection().draw.size() == 4);
+}
+
 TEST_CASE("A manifest that cannot be loaded is an error, not a hang", "[scene][city][errors]") {
   FakeFetcher fetcher;
   fetcher.files["bad/tileset.json"] = {'{', 'x'};

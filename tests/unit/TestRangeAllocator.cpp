@@ -19,3 +19,20 @@ TEST_CASE("RangeAllocator reuses freed ranges and merges neighbours", "[core][al
   CHECK(a.allocate(100) == 0u);  // everything merged back
   CHECK_FALSE(a.allocate(0).has_value());
 }
+
+TEST_CASE("RangeAllocator's end is one past the highest index in use now, not ever", "[core][allocator]") {
+  qv::RangeAllocator a(100);
+  CHECK(a.end() == 0u);
+  CHECK(a.allocate(30) == 0u);
+  CHECK(a.allocate(30) == 30u);
+  CHECK(a.end() == 60u);
+  a.release(30, 30);  // the top range: the end falls back
+  CHECK(a.end() == 30u);
+  CHECK(a.highWater() == 60u);
+  CHECK(a.allocate(70) == 30u);  // up to the capacity: no free range at the top
+  CHECK(a.end() == 100u);
+  a.release(0, 30);  // a hole below does not lower it
+  CHECK(a.end() == 100u);
+  a.release(30, 70);
+  CHECK(a.end() == 0u);
+}

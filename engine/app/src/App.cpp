@@ -490,6 +490,7 @@ void App::frame(bool forced) {
   keepSelectionAboveSheet(canvas.cssWidth, canvas.cssHeight);
 
   const MemoryInfo memory = browser::memoryInfo();
+  viewer_->setMeasuredHeapBytes(memory.heapBytes);
   mirror_.beginFrame();
   ui::Widgets widgets(mirror_);
   panel_.setCursor(cursor_);

@@ -19,6 +19,12 @@ std::optional<std::uint32_t> RangeAllocator::allocate(std::uint32_t count) {
   return std::nullopt;
 }
 
+std::uint32_t RangeAllocator::end() const {
+  if (free_.empty()) return capacity_;
+  const auto& last = *free_.rbegin();
+  return last.first + last.second == capacity_ ? last.first : capacity_;
+}
+
 void RangeAllocator::release(std::uint32_t first, std::uint32_t count) {
   if (count == 0) return;
   used_ -= std::min(used_, count);

@@ -13,9 +13,32 @@ BuildingTable::BuildingTable(std::uint32_t maxBuildingRows, std::uint32_t maxFlo
 
 BuildingTable::~BuildingTable() = default;
 
+namespace {
+
+// Grows `rows` to `size`, leaving an eighth more room (not twice as much, as a vector's own growth
+// may: these tables reach tens of megabytes).
+template <typename T>
+void growTo(std::vector<T>& rows, std::size_t size, const T& fill = T{}) {
+  if (rows.size() >= size) return;
+  if (rows.capacity() < size) rows.reserve(size + size / 8);
+  rows.resize(size, fill);
+}
+
+// Gives back the room beyond `end` (rows no range uses) once it is more than a quarter of `end`
+// and at least `minRows`: after a flight, the rows of evicted tiles.
+template <typename T>
+bool trimTo(std::vector<T>& rows, std::size_t end, std::size_t minRows) {
+  if (rows.capacity() <= end + std::max(end / 4, minRows)) return false;
+  std::vector<T> kept(rows.begin(), rows.begin() + static_cast<std::ptrdiff_t>(std::min(end, rows.size())));
+  rows.swap(kept);
+  return true;
+}
+
+}  // namespace
+
 std::optional<std::uint32_t> BuildingTable::reserveBuildings(std::uint32_t count) {
   const auto first = buildingSlots_->allocate(std::max(count, 1u));
-  if (first && buildings_.size() < buildingSlots_->highWater()) buildings_.resize(buildingSlots_->highWater());
+  if (first) growTo(buildings_, buildingSlots_->end());
   return first;
 }
 
@@ -41,7 +64,7 @@ void BuildingTable::setFlag(BuildingGpuRecord& row, BuildingFlag flag, bool on) 
 
 std::optional<std::uint32_t> BuildingTable::reserveFloors(std::uint32_t count) {
   const auto first = floorSlots_->allocate(count);
-  if (first && floorRows_.size() < floorSlots_->highWater()) floorRows_.resize(floorSlots_->highWater());
+  if (first) growTo(floorRows_, floorSlots_->end());
   return first;
 }
 
@@ -61,7 +84,7 @@ std::optional<std::uint32_t> BuildingTable::reserveSeries(std::uint32_t count) {
   if (count == 0) return std::nullopt;
   const auto first = seriesSlots_->allocate(count);
   if (!first) return std::nullopt;
-  if (seriesCodes_.size() < seriesSlots_->highWater()) seriesCodes_.resize(seriesSlots_->highWater(), 0);
+  growTo<std::uint8_t>(seriesCodes_, seriesSlots_->end(), 0);
   seriesInUse_ += count;
   return first;
 }
@@ -70,6 +93,23 @@ void BuildingTable::releaseSeries(std::uint32_t first, std::uint32_t count) {
   if (count == 0) return;
   seriesSlots_->release(first, count);
   seriesInUse_ -= std::min<std::uint64_t>(seriesInUse_, count);
+}
+
+bool BuildingTable::trim() {
+  bool trimmed = trimTo(buildings_, buildingSlots_->end(), 16384);
+  trimmed = trimTo(floorRows_, floorSlots_->end(), 65536) || trimmed;
+  trimmed = trimTo(seriesCodes_, seriesSlots_->end(), 1u << 20) || trimmed;
+  return trimmed;
+}
+
+std::uint64_t BuildingTable::heapBytes() const {
+  return buildings_.capacity() * sizeof(BuildingGpuRecord) + floorRows_.capacity() * sizeof(FloorGpuRecord) +
+         seriesCodes_.capacity();
+}
+
+std::uint64_t BuildingTable::inUseBytes() const {
+  return std::uint64_t{buildingSlots_->used()} * sizeof(BuildingGpuRecord) +
+         std::uint64_t{floorSlots_->used()} * sizeof(FloorGpuRecord) + seriesInUse_;
 }
 
 std::span<std::uint8_t> BuildingTable::editSeries(std::uint32_t first, std::uint32_t count) {
@@ -85,6 +125,8 @@ std::uint64_t BuildingTable::seriesInUse() const {
 void BuildingTable::upload(RenderDevice& device, bool floorsInUse) {
   if (seriesChangedFirst_ < seriesChangedEnd_) {
     seriesChangedEnd_ = std::min<std::uint32_t>(seriesChangedEnd_, static_cast<std::uint32_t>(seriesCodes_.size()));
+  }
+  if (seriesChangedFirst_ < seriesChangedEnd_) {
     device.writeSeries(seriesChangedFirst_,
                        std::span(seriesCodes_).subspan(seriesChangedFirst_, seriesChangedEnd_ - seriesChangedFirst_));
   }
@@ -92,13 +134,14 @@ void BuildingTable::upload(RenderDevice& device, bool floorsInUse) {
   seriesChangedEnd_ = 0;
   if (changedFirst_ < changedEnd_) {
     changedEnd_ = std::min<std::uint32_t>(changedEnd_, static_cast<std::uint32_t>(buildings_.size()));
+  }
+  if (changedFirst_ < changedEnd_) {
     device.writeBuildings(changedFirst_, std::span(buildings_).subspan(changedFirst_, changedEnd_ - changedFirst_));
   }
   changedFirst_ = UINT32_MAX;
   changedEnd_ = 0;
   if (floorsInUse) {
-    device.writeFloors(0,
-                       std::span(floorRows_).first(std::min<std::size_t>(floorRows_.size(), floorSlots_->highWater())));
+    device.writeFloors(0, std::span(floorRows_).first(std::min<std::size_t>(floorRows_.size(), floorSlots_->end())));
   }
 }
 

@@ -238,6 +238,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
     settled_ = manifestFailed_;
     return;
   }
+  noteMeasuredHeap();
   double t0 = clock_.nowSeconds();
   decodeArrived(frameStart);
   const double streamingMs = msSince(clock_, t0);
@@ -262,6 +263,7 @@ void CityScene::update(const CameraView& view, double timeSeconds, FrameTimesMs&
   times.animate += msSince(clock_, t0);
   t0 = clock_.nowSeconds();
   enforceMemoryBudget();
+  table_.trim();
   const double evictMs = msSince(clock_, t0);
 
   // Upload the changed rows of the building table and the whole used floor table.
@@ -304,8 +306,11 @@ void CityScene::selectAndRequest(const CameraView& view) {
   const std::uint64_t budget = options_.memoryBudgetBytes;
   selectorOptions.nodeBytes = nodeBytes_;
   selectorOptions.wasLoaded = std::span<const bool>(wasLoaded_.get(), nodeBytes_.size());
-  selectorOptions.memoryBudgetBytes =
-      std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, index_.bytes() + histories)});
+  // The GPU tables' unused room and the heap the parts do not count (where it is measured) are
+  // not the tiles' either.
+  const MemoryUse use = memoryUse();
+  const std::uint64_t notTiles = use.index + histories + use.tableSlack + use.otherHeap;
+  selectorOptions.memoryBudgetBytes = std::max<std::uint64_t>({1, budget / 8, budget - std::min(budget, notTiles)});
   for (std::uint32_t i = 0; i < tiles_.size(); ++i) states_[i] = tiles_[i]->tile.state;
   selectTiles(*tileset_, states_, view, selectorOptions, selection_);
   for (std::uint32_t i : selection_.used) tiles_[i]->lastUsed = frame_;

@@ -7,6 +7,22 @@
 
 namespace qv {
 
+void CityScene::noteMeasuredHeap() {
+  if (measuredHeap_ == 0) return;
+  // What the parts count of the heap (not the meshes, which the device holds), against what it is.
+  MemoryUse use = memoryUse();
+  use.otherHeap = 0;
+  const std::uint64_t counted = use.total() - use.tilesGpu;
+  const std::uint64_t uncounted = measuredHeap_ - std::min(measuredHeap_, counted);
+  // The engine's own memory (its code's data, the panels, fonts: what the heap held before this
+  // city had anything) comes on top of the budget; what grew since, uncounted, is the city's.
+  if (!heapBaseline_) heapBaseline_ = uncounted;
+  otherHeapRecent_[otherHeapSamples_ % otherHeapRecent_.size()] = uncounted - std::min(uncounted, *heapBaseline_);
+  ++otherHeapSamples_;
+  const auto n = static_cast<std::ptrdiff_t>(std::min<std::uint64_t>(otherHeapSamples_, otherHeapRecent_.size()));
+  otherHeap_ = *std::min_element(otherHeapRecent_.begin(), otherHeapRecent_.begin() + n);
+}
+
 std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
   const TileRuntime& t = *tiles_[node];
   std::uint64_t total = t.bytes.size() + t.historyBytes;
@@ -25,10 +41,21 @@ std::uint64_t CityScene::tileBytes(std::uint32_t node) const {
   return total;
 }
 
-std::uint64_t CityScene::memoryBytes() const {
-  std::uint64_t total = index_.bytes() + (ground_ ? ground_->memoryBytes() : 0);
-  for (std::uint32_t i = 0; i < tiles_.size(); ++i) total += tileBytes(i);
-  return total;
+MemoryUse CityScene::memoryUse() const {
+  MemoryUse use;
+  use.index = index_.bytes();
+  use.ground = ground_ ? ground_->memoryBytes() : 0;
+  const std::uint64_t tableHeap = table_.heapBytes(), tableInUse = table_.inUseBytes();
+  use.tableSlack = tableHeap - std::min(tableHeap, tableInUse);
+  use.otherHeap = otherHeap_;
+  for (std::uint32_t i = 0; i < tiles_.size(); ++i) {
+    const TileRuntime& t = *tiles_[i];
+    const std::uint64_t gpu = t.loaded ? t.loaded->gpuBytes : 0;
+    use.histories += t.historyBytes;
+    use.tilesGpu += gpu;
+    use.tilesCpu += tileBytes(i) - t.historyBytes - gpu;
+  }
+  return use;
 }
 
 void CityScene::updateNodeBytes() {

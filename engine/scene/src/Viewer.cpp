@@ -445,6 +445,10 @@ void Viewer::frame(double dtSeconds) {
   advanceScenarios();
 }
 
+void Viewer::setMeasuredHeapBytes(std::uint64_t bytes) {
+  if (city_) city_->setMeasuredHeapBytes(bytes);
+}
+
 std::string Viewer::statsJson(const MemoryInfo& memory) const {
   const StatsSummary s = stats_.summary();
   JsonWriter w;
@@ -467,6 +471,15 @@ std::string Viewer::statsJson(const MemoryInfo& memory) const {
   w.endObject();
   w.field("heapBytes", memory.heapBytes);
   w.field("heapReservedBytes", memory.heapReservedBytes);
+  // What the scene counts against its budget, by part (the heap also holds what it does not
+  // count: the panels, the animation's tables, the allocator's own overhead).
+  const MemoryUse use = city_ ? city_->memoryUse() : MemoryUse{};
+  w.key("memory").beginObject();
+  w.field("budgetBytes", city_ ? city_->memoryBudgetBytes() : 0);
+  w.field("countedBytes", use.total()).field("indexBytes", use.index).field("tilesBytes", use.tilesCpu);
+  w.field("meshBytes", use.tilesGpu).field("historyBytes", use.histories).field("groundBytes", use.ground);
+  w.field("tableSlackBytes", use.tableSlack).field("otherHeapBytes", use.otherHeap);
+  w.endObject();
   w.field("uploadBytes", s.uploadBytes);
   w.field("timeSeconds", time_);
   w.endObject();

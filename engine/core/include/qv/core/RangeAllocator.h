@@ -21,8 +21,10 @@ class RangeAllocator {
 
   [[nodiscard]] std::uint32_t capacity() const { return capacity_; }
   [[nodiscard]] std::uint32_t used() const { return used_; }
-  /// One past the highest index ever in use (the part of a table that must exist).
+  /// One past the highest index ever in use.
   [[nodiscard]] std::uint32_t highWater() const { return highWater_; }
+  /// One past the highest index in use now (the part of a table that must exist); 0 when none is.
+  [[nodiscard]] std::uint32_t end() const;
 
  private:
   std::map<std::uint32_t, std::uint32_t> free_;  // first -> count

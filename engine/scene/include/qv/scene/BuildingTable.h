@@ -69,6 +69,15 @@ class BuildingTable {
   /// Series samples reserved now.
   [[nodiscard]] std::uint64_t seriesInUse() const;
 
+  /// Gives back the CPU side's room beyond the highest row (and sample) in use, when it is large
+  /// (a quarter or more of what is in use): the rows of tiles evicted after a flight. Whether it
+  /// did. The device's textures keep their size.
+  bool trim();
+  /// Bytes the CPU side holds: every row and sample the tables have room for, in use or not.
+  [[nodiscard]] std::uint64_t heapBytes() const;
+  /// Bytes of the rows and samples reserved now (what the tiles and animated buildings use).
+  [[nodiscard]] std::uint64_t inUseBytes() const;
+
   /// Sends the changed building rows and series samples (each one span from the first to the last
   /// changed) and, when `floorsInUse`, every floor row up to the highest reserved to `device`; then
   /// nothing is changed.

@@ -70,14 +70,34 @@ struct CitySceneOptions {
   float animationRadiusM = 1000.0f;
   std::uint32_t maxAnimatedBuildings = 20000;
   float swayPixels = 1.0f;
-  std::uint64_t memoryBudgetBytes = 512ull << 20;  ///< decoded tiles + GPU meshes + histories
-  double workBudgetMs = 12.0;                      ///< decoding and meshing per frame
+  /// What the scene may hold: decoded tiles, GPU meshes, histories, the city index, the GPU tables'
+  /// unused room and, where the heap is measured (setMeasuredHeapBytes), the rest of the heap
+  /// beyond the engine's own memory (MemoryUse::otherHeap).
+  std::uint64_t memoryBudgetBytes = 512ull << 20;
+  double workBudgetMs = 12.0;  ///< decoding and meshing per frame
   /// The deployment's data origin policy: a city from an origin it does not allow is refused
   /// before any request (qv::dataOriginProblem).
   DataOriginPolicy origin;
   /// The time retries, the decode budget and frame timings are measured in; nullptr: steadyClock().
   /// Not owned; must outlive the scene.
   SceneClock* clock = nullptr;
+};
+
+/// What the scene holds against its memory budget (bytes), by part: what `memoryBytes()` sums.
+struct MemoryUse {
+  std::uint64_t index = 0;       ///< city index: search index and the city-wide response summary
+  std::uint64_t tilesCpu = 0;    ///< decoded tiles, their drift series and response summaries, arrived files
+  std::uint64_t tilesGpu = 0;    ///< the tiles' meshes on the device (outside the WASM heap in a browser)
+  std::uint64_t histories = 0;   ///< decoded response histories of the animated leaves
+  std::uint64_t ground = 0;      ///< the map under the city
+  std::uint64_t tableSlack = 0;  ///< the GPU tables' CPU copy: room no tile or building uses now
+  /// The rest of the measured heap (setMeasuredHeapBytes) beyond what it held when the scene first
+  /// measured it (the engine's own memory, which comes on top of the budget): the allocator's
+  /// overhead, what the parts above do not count; 0 where the heap is not measured.
+  std::uint64_t otherHeap = 0;
+  [[nodiscard]] std::uint64_t total() const {
+    return index + tilesCpu + tilesGpu + histories + ground + tableSlack + otherHeap;
+  }
 };
 
 struct TileCounts {
@@ -141,7 +161,16 @@ class CityScene {
   /// A camera that frames the whole city.
   [[nodiscard]] CameraState overviewCamera(double fovDeg = 45.0) const;
   /// Bytes held: decoded tiles and histories (CPU) and meshes (GPU).
-  [[nodiscard]] std::uint64_t memoryBytes() const;
+  [[nodiscard]] std::uint64_t memoryBytes() const { return memoryUse().total(); }
+  /// The same by part.
+  [[nodiscard]] MemoryUse memoryUse() const;
+  /// The live heap as the platform measures it (a browser: the WASM allocator's bytes in use),
+  /// after the last frame; 0: not measured. The scene then counts what its parts leave out of it
+  /// (MemoryUse::otherHeap, the least over the last frames: not a passing peak) against its budget,
+  /// so that the heap stays within the budget, plus the engine's own memory, however well the parts
+  /// are estimated.
+  void setMeasuredHeapBytes(std::uint64_t bytes) { measuredHeap_ = bytes; }
+  [[nodiscard]] std::uint64_t memoryBudgetBytes() const { return options_.memoryBudgetBytes; }
   /// The last frame's choice of tiles (drawn, wanted, limits).
   [[nodiscard]] const TileSelection& tileSelection() const { return selection_; }
 
@@ -348,6 +377,12 @@ class CityScene {
   std::uint64_t residentOfFile_[2] = {0, 0};  // [leaf, coarse]: resident bytes of the tiles loaded so far
   std::uint64_t fileOfResident_[2] = {0, 0};  // their file bytes
   void updateNodeBytes();
+  std::uint64_t measuredHeap_ = 0;
+  std::array<std::uint64_t, 16> otherHeapRecent_{};  // otherHeap measured in the last frames
+  std::uint64_t otherHeapSamples_ = 0;
+  std::optional<std::uint64_t> heapBaseline_;                       // the heap not counted when first measured
+  std::uint64_t otherHeap_ = 0;                                     // their least
+  void noteMeasuredHeap();                                          // at the start of a frame
   [[nodiscard]] std::uint64_t tileBytes(std::uint32_t node) const;  // a loaded tile's resident bytes
 
   // GPU tables and their CPU mirrors.

@@ -138,6 +138,8 @@ class Viewer {
 
   /// Advances the clock by dtSeconds of wall time (× speed while playing) and draws a frame.
   void frame(double dtSeconds);
+  /// The live heap measured after the last frame (CityScene::setMeasuredHeapBytes); 0: unknown.
+  void setMeasuredHeapBytes(std::uint64_t bytes);
 
   /// Starts the benchmark flight of `seconds` once the initial view has loaded (see Bench.h).
   void startBench(double seconds);
