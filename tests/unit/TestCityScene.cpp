@@ -524,16 +524,21 @@ TEST_CASE(
   CHECK(viewer.city()->cityIndexNotice().empty());
 }
 
+namespace {
+// Close over the whole city: the four leaves replace the root; the view must settle.
+void viewCloseOverTheCity(Viewer& viewer) {
+  viewer.setCamera(CameraState{0.0, 0.0, 150.0, 0.0, 89.0, 60.0});
+  for (int i = 0; i < 60 && !viewer.settled(); ++i) runFrames(viewer, 1);
+  REQUIRE(viewer.settled());
+}
+}  // namespace
+
 TEST_CASE("A view larger than the memory budget is drawn coarser, within the budget, without reloading",
           "[scene][city][memory]") {
   SceneRig rig;
   rig.open(0.0f);
   Viewer& viewer = rig.viewer;
-  // Close over the whole city: the four leaves replace the root.
-  const CameraState close{0.0, 0.0, 150.0, 0.0, 89.0, 60.0};
-  viewer.setCamera(close);
-  for (int i = 0; i < 60 && !viewer.settled(); ++i) runFrames(viewer, 1);
-  REQUIRE(viewer.settled());
+  viewCloseOverTheCity(viewer);
   const std::uint32_t fullDraws = viewer.stats().latest.drawCalls;
   REQUIRE(fullDraws >= 4);
   const std::size_t visible = viewer.stats().latest.buildingsVisible;
@@ -561,10 +566,7 @@ TEST_CASE("Heap the scene's parts do not count, once measured, comes out of the 
   SceneRig rig;
   rig.open(0.0f);
   Viewer& viewer = rig.viewer;
-  const CameraState close{0.0, 0.0, 150.0, 0.0, 89.0, 60.0};
-  viewer.setCamera(close);
-  for (int i = 0; i < 60 && !viewer.settled(); ++i) runFrames(viewer, 1);
-  REQUIRE(viewer.settled());
+  viewCloseOverTheCity(viewer);
   REQUIRE(viewer.city()->tileSelection().draw.size() == 4);
   const std::uint64_t full = viewer.city()->memoryBytes();
   viewer.city()->mutableOptions().memoryBudgetBytes = full * 2;
