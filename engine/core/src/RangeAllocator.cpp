@@ -13,7 +13,6 @@ std::optional<std::uint32_t> RangeAllocator::allocate(std::uint32_t count) {
     free_.erase(it);
     if (rest > 0) free_[first + count] = rest;
     used_ += count;
-    highWater_ = std::max(highWater_, first + count);
     return first;
   }
   return std::nullopt;

@@ -21,8 +21,6 @@ class RangeAllocator {
 
   [[nodiscard]] std::uint32_t capacity() const { return capacity_; }
   [[nodiscard]] std::uint32_t used() const { return used_; }
-  /// One past the highest index ever in use.
-  [[nodiscard]] std::uint32_t highWater() const { return highWater_; }
   /// One past the highest index in use now (the part of a table that must exist); 0 when none is.
   [[nodiscard]] std::uint32_t end() const;
 
@@ -30,7 +28,6 @@ class RangeAllocator {
   std::map<std::uint32_t, std::uint32_t> free_;  // first -> count
   std::uint32_t capacity_ = 0;
   std::uint32_t used_ = 0;
-  std::uint32_t highWater_ = 0;
 };
 
 }  // namespace qv
